@@ -1,0 +1,194 @@
+//! A bounding volume hierarchy over the tetrahedra's 4D bounding boxes.
+//! Built once per database; it only decides which tetrahedra a ray is tested
+//! against, never how (that is [`crate::intersect`]).
+//!
+//! Splits are spatial only (median along the widest of x, y, z of the
+//! centroids): static objects live for the whole scene, so splitting along t
+//! would separate the three pieces of each prism rather than cull anything.
+
+use crate::extrude::Tetrahedron;
+use crate::intersect::{nearer, Hit, PreparedTet};
+use crate::lightcone::Ray;
+use glam::DVec4;
+
+const LEAF_SIZE: usize = 4;
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    min: DVec4,
+    max: DVec4,
+    /// Leaf: first index into `order`; inner: index of the second child
+    /// (the first child follows the node).
+    index: u32,
+    /// Number of tetrahedra of a leaf; 0 for an inner node.
+    count: u32,
+}
+
+/// The hierarchy: nodes in depth-first order and the tetrahedron order they index.
+#[derive(Clone, Debug, Default)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+}
+
+/// Pads a box so that hits accepted with barycentric slack are never culled.
+fn pad(min: DVec4, max: DVec4) -> (DVec4, DVec4) {
+    let e = (max - min) * 1e-9 + (max.abs() + min.abs()) * 1e-12 + DVec4::splat(1e-300);
+    (min - e, max + e)
+}
+
+impl Bvh {
+    pub fn build(tets: &[Tetrahedron]) -> Bvh {
+        let bounds: Vec<(DVec4, DVec4)> = tets.iter().map(PreparedTet::bounds).collect();
+        let mut bvh = Bvh {
+            nodes: Vec::new(),
+            order: (0..tets.len() as u32).collect(),
+        };
+        if !tets.is_empty() {
+            let mut order = std::mem::take(&mut bvh.order);
+            bvh.build_node(&bounds, &mut order, 0);
+            bvh.order = order;
+        }
+        bvh
+    }
+
+    fn build_node(&mut self, bounds: &[(DVec4, DVec4)], items: &mut [u32], first: usize) -> usize {
+        let (mut min, mut max) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
+        let (mut cmin, mut cmax) = (min, max);
+        for &i in items.iter() {
+            let (lo, hi) = bounds[i as usize];
+            min = min.min(lo);
+            max = max.max(hi);
+            let c = (lo + hi) * 0.5;
+            cmin = cmin.min(c);
+            cmax = cmax.max(c);
+        }
+        let (min, max) = pad(min, max);
+        let node = self.nodes.len();
+        self.nodes.push(Node {
+            min,
+            max,
+            index: first as u32,
+            count: items.len() as u32,
+        });
+        let extent = cmax - cmin;
+        let axis = if extent.x >= extent.y && extent.x >= extent.z {
+            0
+        } else if extent.y >= extent.z {
+            1
+        } else {
+            2
+        };
+        if items.len() <= LEAF_SIZE || extent[axis] <= 0.0 {
+            return node;
+        }
+        let mid = items.len() / 2;
+        let key = |i: &u32| {
+            let (lo, hi) = bounds[*i as usize];
+            lo[axis] + hi[axis]
+        };
+        items.select_nth_unstable_by(mid, |a, b| key(a).total_cmp(&key(b)).then(a.cmp(b)));
+        let (left, right) = items.split_at_mut(mid);
+        self.nodes[node].count = 0;
+        self.build_node(bounds, left, first);
+        let second = self.build_node(bounds, right, first + mid);
+        self.nodes[node].index = second as u32;
+        node
+    }
+
+    /// Entry parameter of the ray into a node's box within `range`, if any.
+    fn enter(node: &Node, o: DVec4, d: DVec4, range: (f64, f64)) -> Option<f64> {
+        let (mut lo, mut hi) = range;
+        for axis in 0..4 {
+            if d[axis] == 0.0 {
+                if o[axis] < node.min[axis] || o[axis] > node.max[axis] {
+                    return None;
+                }
+            } else {
+                let inv = 1.0 / d[axis];
+                let (a, b) = (
+                    (node.min[axis] - o[axis]) * inv,
+                    (node.max[axis] - o[axis]) * inv,
+                );
+                lo = lo.max(a.min(b));
+                hi = hi.min(a.max(b));
+            }
+        }
+        (lo <= hi).then_some(lo)
+    }
+
+    /// Closest hit; `test(tet, range)` is the barycentric solve.
+    pub fn closest(
+        &self,
+        ray: &Ray,
+        range: (f64, f64),
+        test: impl Fn(u32, (f64, f64)) -> Option<Hit>,
+    ) -> Option<Hit> {
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let (o, d) = (ray.origin.to_xyzt(), ray.direction.to_xyzt());
+        let mut best: Option<Hit> = None;
+        let mut stack = vec![0usize];
+        while let Some(n) = stack.pop() {
+            let hi = best.map_or(range.1, |b| b.s);
+            let node = &self.nodes[n];
+            if Self::enter(node, o, d, (range.0, hi)).is_none() {
+                continue;
+            }
+            if node.count > 0 {
+                let start = node.index as usize;
+                for &i in &self.order[start..start + node.count as usize] {
+                    let hi = best.map_or(range.1, |b| b.s);
+                    if let Some(h) = test(i, (range.0, hi)) {
+                        best = Some(nearer(best, h));
+                    }
+                }
+            } else {
+                let (a, b) = (n + 1, node.index as usize);
+                let ea = Self::enter(&self.nodes[a], o, d, (range.0, hi));
+                let eb = Self::enter(&self.nodes[b], o, d, (range.0, hi));
+                match (ea, eb) {
+                    (Some(x), Some(y)) if x <= y => stack.extend([b, a]),
+                    (Some(_), Some(_)) => stack.extend([a, b]),
+                    (Some(_), None) => stack.push(a),
+                    (None, Some(_)) => stack.push(b),
+                    (None, None) => {}
+                }
+            }
+        }
+        best
+    }
+
+    /// Whether any tetrahedron is hit in `range`.
+    pub fn any(
+        &self,
+        ray: &Ray,
+        range: (f64, f64),
+        test: impl Fn(u32, (f64, f64)) -> bool,
+    ) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let (o, d) = (ray.origin.to_xyzt(), ray.direction.to_xyzt());
+        let mut stack = vec![0usize];
+        while let Some(n) = stack.pop() {
+            let node = &self.nodes[n];
+            if Self::enter(node, o, d, range).is_none() {
+                continue;
+            }
+            if node.count > 0 {
+                let start = node.index as usize;
+                if self.order[start..start + node.count as usize]
+                    .iter()
+                    .any(|&i| test(i, range))
+                {
+                    return true;
+                }
+            } else {
+                stack.extend([node.index as usize, n + 1]);
+            }
+        }
+        false
+    }
+}

@@ -1,0 +1,264 @@
+//! The static 4D database (paper 3, items 1-2): every object temporally
+//! extruded once, and never modified between frames (paper 3, item 6).
+
+use crate::boost::Boost;
+use crate::bvh::Bvh;
+use crate::extrude::{extrude, Prism, Tetrahedron};
+use crate::intersect::{nearer, Hit, Miss, PreparedTet};
+use crate::lightcone::Ray;
+use crate::scene::{Motion, ObjectKind, Scene};
+use crate::shade::Material;
+use crate::spacetime::{Event, FourVector, Worldline};
+use glam::DVec3;
+use std::fmt;
+
+/// A scene that cannot be inserted, with the field at fault.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneError {
+    /// Location of the offending field, e.g. `objects[2].worldline.velocity`.
+    pub path: String,
+    pub message: String,
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.path, self.message)
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// An object as inserted into the database.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectRecord {
+    pub name: String,
+    pub kind: ObjectKind,
+    pub material: Material,
+    /// Lab-frame worldline of the reference point, lifetime included.
+    pub worldline: Worldline,
+    /// Boost from the object's rest frame (identity when Lorentz-decoupled).
+    pub clock: Boost,
+}
+
+impl ObjectRecord {
+    /// The object's own time at a lab event on it: the rest-frame time
+    /// coordinate, zero at the start event; for a decoupled object, lab time
+    /// since the start. Drives time-dependent materials (paper 3, item 2d).
+    pub fn proper_time(&self, event: Event) -> f64 {
+        self.clock.to_rest(event - self.worldline.start).t
+    }
+
+    /// Where a lab event on the object lies in the object's frame:
+    /// rest-frame coordinates relative to the reference point.
+    pub fn local_point(&self, event: Event) -> DVec3 {
+        self.clock.to_rest(event - self.worldline.start).x
+    }
+}
+
+/// How rays find candidate tetrahedra. Both give identical hits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Traversal {
+    /// Every tetrahedron for every ray.
+    BruteForce,
+    /// A bounding volume hierarchy over the tetrahedra's 4D bounds.
+    Bvh,
+}
+
+/// The static 4D database.
+pub struct Database {
+    objects: Vec<ObjectRecord>,
+    prisms: Vec<Prism>,
+    tets: Vec<Tetrahedron>,
+    prepared: Vec<PreparedTet>,
+    bvh: Bvh,
+    traversal: Traversal,
+}
+
+fn err(path: String, message: String) -> SceneError {
+    SceneError { path, message }
+}
+
+fn check_event(path: &str, e: Event) -> Result<(), SceneError> {
+    if e.is_finite() {
+        Ok(())
+    } else {
+        Err(err(path.into(), "must be finite numbers".into()))
+    }
+}
+
+impl Database {
+    /// Temporally extrudes every object of `scene`. With `lorentz` on, V_obj
+    /// objects are contracted along their velocity and their lifetimes and
+    /// clocks dilated; with it off every object is inserted as an H_obj.
+    pub fn build(scene: &Scene, lorentz: bool) -> Result<Database, SceneError> {
+        let mut objects = Vec::new();
+        let mut prisms = Vec::new();
+        let mut tets = Vec::new();
+        for (i, obj) in scene.objects.iter().enumerate() {
+            let at = |field: &str| format!("objects[{i}].{field}");
+            let named = |m: String| format!("object {:?}: {m}", obj.name);
+            obj.mesh
+                .validate()
+                .map_err(|e| err(at("mesh"), named(e.to_string())))?;
+            let v = obj.motion.velocity();
+            if !v.is_finite() {
+                return Err(err(
+                    at("worldline"),
+                    named("the velocity is not finite (zero-duration extrusion?)".into()),
+                ));
+            }
+            if obj.kind == ObjectKind::VObj && v.length() >= 1.0 {
+                return Err(err(
+                    at("worldline"),
+                    named(format!(
+                        "a V_obj moves at {:.6}c; it must be slower than light (use an H_obj for a Lorentz-decoupled, superluminal object)",
+                        v.length()
+                    )),
+                ));
+            }
+            let boost = match (obj.kind, lorentz) {
+                (ObjectKind::VObj, true) => Boost::new(v).expect("checked above"),
+                _ => Boost::identity(),
+            };
+            let worldline = match obj.motion {
+                Motion::Extrusion { start, extrusion } => {
+                    check_event(&at("worldline.start"), start)?;
+                    if !extrusion.is_finite() {
+                        return Err(err(
+                            at("worldline.extrusion"),
+                            "must be finite numbers".into(),
+                        ));
+                    }
+                    if extrusion.t == 0.0 {
+                        return Err(err(
+                            at("worldline.extrusion"),
+                            named("zero-duration extrusion (dt = 0): the object would exist for no time".into()),
+                        ));
+                    }
+                    if extrusion.t < 0.0 {
+                        Worldline {
+                            start: start + extrusion,
+                            extrusion: -extrusion,
+                        }
+                    } else {
+                        Worldline { start, extrusion }
+                    }
+                }
+                Motion::Velocity {
+                    start,
+                    velocity,
+                    proper_lifetime,
+                } => {
+                    check_event(&at("worldline.start"), start)?;
+                    if !(proper_lifetime > 0.0 && proper_lifetime.is_finite()) {
+                        return Err(err(
+                            at("worldline.proper_lifetime"),
+                            named("must be a positive finite time".into()),
+                        ));
+                    }
+                    let dt = boost.gamma() * proper_lifetime;
+                    Worldline {
+                        start,
+                        extrusion: FourVector::new(dt, velocity * dt),
+                    }
+                }
+            };
+            let mesh = obj.mesh.map_vertices(|p| boost.contract(p));
+            mesh.validate()
+                .map_err(|e| err(at("mesh"), named(format!("after Lorentz contraction: {e}"))))?;
+            extrude(&mesh, &worldline, i as u32, &mut prisms, &mut tets);
+            objects.push(ObjectRecord {
+                name: obj.name.clone(),
+                kind: obj.kind,
+                material: obj.material.clone(),
+                worldline,
+                clock: boost,
+            });
+        }
+        let mut prepared = Vec::with_capacity(tets.len());
+        for t in &tets {
+            let p = PreparedTet::new(t).ok_or_else(|| {
+                let prism = prisms[t.prism as usize];
+                err(
+                    format!("objects[{}].mesh", prism.object),
+                    format!(
+                        "triangle {} extrudes to a tetrahedron with no 3-volume",
+                        prism.triangle
+                    ),
+                )
+            })?;
+            prepared.push(p);
+        }
+        let bvh = Bvh::build(&tets);
+        Ok(Database {
+            objects,
+            prisms,
+            tets,
+            prepared,
+            bvh,
+            traversal: Traversal::Bvh,
+        })
+    }
+
+    pub fn set_traversal(&mut self, traversal: Traversal) {
+        self.traversal = traversal;
+    }
+
+    pub fn traversal(&self) -> Traversal {
+        self.traversal
+    }
+
+    pub fn objects(&self) -> &[ObjectRecord] {
+        &self.objects
+    }
+
+    pub fn prisms(&self) -> &[Prism] {
+        &self.prisms
+    }
+
+    pub fn tetrahedra(&self) -> &[Tetrahedron] {
+        &self.tets
+    }
+
+    /// The prism a tetrahedron belongs to.
+    pub fn prism_of(&self, tet: u32) -> &Prism {
+        &self.prisms[self.tets[tet as usize].prism as usize]
+    }
+
+    /// One tetrahedron's barycentric solve, with the reason for a miss.
+    pub fn test(&self, ray: &Ray, tet: u32, range: (f64, f64)) -> Result<Hit, Miss> {
+        self.prepared[tet as usize].intersect(ray, tet, range)
+    }
+
+    /// The hit with the smallest ray parameter in `range`: on a light-cone
+    /// ray, the most recent event (paper 3.2).
+    pub fn closest_hit(&self, ray: &Ray, range: (f64, f64)) -> Option<Hit> {
+        match self.traversal {
+            Traversal::BruteForce => {
+                let mut best: Option<Hit> = None;
+                for i in 0..self.tets.len() as u32 {
+                    let hi = best.map_or(range.1, |b| b.s);
+                    if let Ok(h) = self.test(ray, i, (range.0, hi)) {
+                        best = Some(nearer(best, h));
+                    }
+                }
+                best
+            }
+            Traversal::Bvh => self
+                .bvh
+                .closest(ray, range, |i, r| self.test(ray, i, r).ok()),
+        }
+    }
+
+    /// Whether anything is hit in `range` (shadow rays).
+    pub fn any_hit(&self, ray: &Ray, range: (f64, f64)) -> bool {
+        match self.traversal {
+            Traversal::BruteForce => {
+                (0..self.tets.len() as u32).any(|i| self.test(ray, i, range).is_ok())
+            }
+            Traversal::Bvh => self
+                .bvh
+                .any(ray, range, |i, r| self.test(ray, i, r).is_ok()),
+        }
+    }
+}

@@ -1,0 +1,113 @@
+//! Temporal extrusion (paper 3.1): a triangle swept along its object's
+//! worldline is a prism, a 3-manifold of spacetime, cut into three
+//! tetrahedra by a fixed table (paper Figure 4).
+
+use crate::mesh::Mesh;
+use crate::spacetime::{Event, FourVector, Worldline};
+use glam::DVec3;
+use std::cmp::Ordering;
+
+/// A 3-simplex of spacetime: one of the three pieces of an extruded triangle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tetrahedron {
+    pub vertices: [Event; 4],
+    /// Index of the prism (extruded triangle) this piece belongs to.
+    pub prism: u32,
+    /// Which of the prism's three pieces, 0..3.
+    pub piece: u8,
+}
+
+/// An extruded triangle: the shading data shared by its three tetrahedra.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Prism {
+    /// Index into the database's objects.
+    pub object: u32,
+    /// Index of the triangle in the object's mesh.
+    pub triangle: u32,
+    /// Lab-frame unit normal of the triangle (after any Lorentz contraction);
+    /// constant along the worldline since the motion is a pure translation.
+    pub normal: DVec3,
+}
+
+/// Orders a triangle's corners by position (lexicographic x, y, z). Every
+/// prism cuts the quad face over a mesh edge along the diagonal from the
+/// edge's lower corner at the start to its higher corner at the end, so two
+/// prisms sharing an edge cut their common face identically: a closed mesh
+/// stays closed in spacetime.
+pub fn corner_order(corners: [DVec3; 3]) -> [usize; 3] {
+    let key = |p: DVec3| [p.x, p.y, p.z];
+    let cmp = |a: &usize, b: &usize| {
+        let (ka, kb) = (key(corners[*a]), key(corners[*b]));
+        ka.iter()
+            .zip(kb.iter())
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| *o != Ordering::Equal)
+            .unwrap_or(Ordering::Equal)
+    };
+    let mut order = [0, 1, 2];
+    order.sort_by(cmp);
+    order
+}
+
+/// The prism `bottom[i] -> bottom[i] + extrusion` as three tetrahedra.
+/// With corners ordered a < b < c by [`corner_order`] (0 = start, 1 = end):
+/// (a0 b0 c0 c1), (a0 b0 b1 c1), (a0 a1 b1 c1).
+pub fn split_prism(
+    bottom: [Event; 3],
+    extrusion: FourVector,
+    order: [usize; 3],
+) -> [[Event; 4]; 3] {
+    let [a, b, c] = order;
+    let lo = bottom;
+    let hi = bottom.map(|e| e + extrusion);
+    [
+        [lo[a], lo[b], lo[c], hi[c]],
+        [lo[a], lo[b], hi[b], hi[c]],
+        [lo[a], hi[a], hi[b], hi[c]],
+    ]
+}
+
+/// Extrudes every triangle of `mesh` (lab-frame shape, relative to the
+/// worldline's reference point) along `worldline`, appending prisms and
+/// tetrahedra. The caller has validated the mesh and the worldline.
+pub fn extrude(
+    mesh: &Mesh,
+    worldline: &Worldline,
+    object: u32,
+    prisms: &mut Vec<Prism>,
+    tets: &mut Vec<Tetrahedron>,
+) {
+    for (t, _) in mesh.triangles.iter().enumerate() {
+        let corners = mesh.corners(t);
+        let normal = (corners[1] - corners[0])
+            .cross(corners[2] - corners[0])
+            .normalize();
+        let prism = prisms.len() as u32;
+        prisms.push(Prism {
+            object,
+            triangle: t as u32,
+            normal,
+        });
+        let bottom = corners.map(|p| Event::new(worldline.start.t, worldline.start.x + p));
+        let pieces = split_prism(bottom, worldline.extrusion, corner_order(corners));
+        for (piece, vertices) in pieces.into_iter().enumerate() {
+            tets.push(Tetrahedron {
+                vertices,
+                prism,
+                piece: piece as u8,
+            });
+        }
+    }
+}
+
+/// Euclidean 3-volume of a tetrahedron embedded in 4D (sqrt of the Gram
+/// determinant of its edges, over 6). Used by tests of the tiling.
+pub fn tetrahedron_volume(v: &[Event; 4]) -> f64 {
+    let e = [v[1] - v[0], v[2] - v[0], v[3] - v[0]].map(|e| e.to_xyzt());
+    let g = glam::DMat3::from_cols_array_2d(&[
+        [e[0].dot(e[0]), e[0].dot(e[1]), e[0].dot(e[2])],
+        [e[1].dot(e[0]), e[1].dot(e[1]), e[1].dot(e[2])],
+        [e[2].dot(e[0]), e[2].dot(e[1]), e[2].dot(e[2])],
+    ]);
+    g.determinant().max(0.0).sqrt() / 6.0
+}

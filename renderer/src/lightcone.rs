@@ -1,0 +1,149 @@
+//! Rays on the camera's past light cone, and the camera that casts them
+//! (paper 3, item 3, and 3.2, eq. 11-12).
+
+use crate::spacetime::{Event, FourVector};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// How fast light travels between events (paper 4.1.5, Figure 1 top band).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LightSpeed {
+    /// Conventional ray tracing: every ray stays in the slice t = const.
+    Infinite,
+    /// c = 1: rays lie on past light cones.
+    Finite,
+}
+
+/// A straight line of spacetime, `origin + s * direction`, s >= 0.
+/// The direction's spatial part is a unit vector, so `s` is the spatial
+/// distance travelled; its time part is -1 for light at c = 1 (past-directed,
+/// null) and 0 for infinitely fast light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    pub origin: Event,
+    pub direction: FourVector,
+}
+
+impl Ray {
+    /// The ray along which light reaches `origin` from spatial direction
+    /// `towards` (unit vector), under the given light speed.
+    pub fn backwards(origin: Event, towards: DVec3, light: LightSpeed) -> Ray {
+        let t = match light {
+            LightSpeed::Infinite => 0.0,
+            LightSpeed::Finite => -1.0,
+        };
+        Ray {
+            origin,
+            direction: FourVector::new(t, towards),
+        }
+    }
+
+    pub fn at(&self, s: f64) -> Event {
+        self.origin + self.direction * s
+    }
+
+    /// The direction scaled to Euclidean unit length in 4D; for a light-cone
+    /// ray its t component is -sqrt(2)/2 (paper 2.1).
+    pub fn normalized_direction(&self) -> FourVector {
+        let len = self.direction.to_xyzt().length();
+        self.direction * (1.0 / len)
+    }
+}
+
+/// Camera attitude: either a target to look at, or yaw and pitch.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Attitude {
+    /// Look from the camera position towards `look_at`, with `up` giving the image's up.
+    LookAt { look_at: DVec3, up: DVec3 },
+    /// Yaw: right-handed rotation about +y, degrees; 0 looks along -z and
+    /// 90 along -x. Pitch: degrees above the horizontal. Image up follows +y.
+    YawPitch { yaw_deg: f64, pitch_deg: f64 },
+}
+
+/// A pinhole camera at rest in the lab frame at `event`. Its viewplane is
+/// spherical in time (paper 3.2): every pixel's ray starts at the camera event,
+/// so the image adds no light delay of its own. Pixel (0, 0) is the top left;
+/// pixel centres are at half-integers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub event: Event,
+    pub forward: DVec3,
+    pub right: DVec3,
+    pub up: DVec3,
+    /// Vertical field of view, degrees.
+    pub vfov_deg: f64,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Camera {
+    /// `None` when the attitude is degenerate (look-at at the camera, up parallel to the view).
+    pub fn new(
+        event: Event,
+        attitude: Attitude,
+        vfov_deg: f64,
+        width: u32,
+        height: u32,
+    ) -> Option<Camera> {
+        let (forward, up_hint) = match attitude {
+            Attitude::LookAt { look_at, up } => ((look_at - event.x).try_normalize()?, up),
+            Attitude::YawPitch { yaw_deg, pitch_deg } => {
+                let (y, p) = (yaw_deg.to_radians(), pitch_deg.to_radians());
+                (
+                    DVec3::new(-y.sin() * p.cos(), p.sin(), -y.cos() * p.cos()),
+                    DVec3::Y,
+                )
+            }
+        };
+        let right = forward.cross(up_hint).try_normalize()?;
+        let up = right.cross(forward);
+        Some(Camera {
+            event,
+            forward,
+            right,
+            up,
+            vfov_deg,
+            width,
+            height,
+        })
+    }
+
+    /// Half-extent of the image plane at unit distance, vertically.
+    fn tan_half_v(&self) -> f64 {
+        (self.vfov_deg.to_radians() / 2.0).tan()
+    }
+
+    /// Unit direction (lab frame, from the camera into the scene) through the
+    /// continuous pixel position (px, py).
+    pub fn direction(&self, px: f64, py: f64) -> DVec3 {
+        let th = self.tan_half_v();
+        let aspect = f64::from(self.width) / f64::from(self.height);
+        let u = (2.0 * px / f64::from(self.width) - 1.0) * th * aspect;
+        let v = (1.0 - 2.0 * py / f64::from(self.height)) * th;
+        (self.forward + self.right * u + self.up * v).normalize()
+    }
+
+    /// Inverse of [`Camera::direction`]: the continuous pixel position where
+    /// light arriving from spatial direction `dir` lands; `None` if behind.
+    pub fn pixel_of(&self, dir: DVec3) -> Option<(f64, f64)> {
+        let f = dir.dot(self.forward);
+        if f <= 0.0 {
+            return None;
+        }
+        let th = self.tan_half_v();
+        let aspect = f64::from(self.width) / f64::from(self.height);
+        let u = dir.dot(self.right) / f / (th * aspect);
+        let v = dir.dot(self.up) / f / th;
+        Some((
+            (u + 1.0) * f64::from(self.width) / 2.0,
+            (1.0 - v) * f64::from(self.height) / 2.0,
+        ))
+    }
+
+    /// The primary ray through (px, py) for a camera at lab time `t`.
+    pub fn ray(&self, px: f64, py: f64, t: f64, light: LightSpeed) -> Ray {
+        Ray::backwards(Event::new(t, self.event.x), self.direction(px, py), light)
+    }
+}

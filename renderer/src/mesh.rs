@@ -1,0 +1,279 @@
+//! Triangle meshes in an object's own coordinates (l.units, relative to the
+//! object's reference point), the primitives the paper's scenes need, and a
+//! Wavefront OBJ reader.
+
+use glam::DVec3;
+use std::fmt;
+
+/// An indexed triangle mesh. Faces are two-sided for shading; winding only
+/// sets the direction of the stored normal.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    pub vertices: Vec<DVec3>,
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Why a mesh cannot be extruded.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MeshError {
+    Empty,
+    NonFiniteVertex { vertex: usize },
+    IndexOutOfRange { triangle: usize, index: u32 },
+    DegenerateTriangle { triangle: usize, area: f64 },
+    Obj { line: usize, message: String },
+}
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MeshError::Empty => write!(f, "the mesh has no triangles"),
+            MeshError::NonFiniteVertex { vertex } => {
+                write!(f, "vertex {vertex} has a non-finite coordinate")
+            }
+            MeshError::IndexOutOfRange { triangle, index } => {
+                write!(f, "triangle {triangle} refers to vertex {index}, which does not exist")
+            }
+            MeshError::DegenerateTriangle { triangle, area } => write!(
+                f,
+                "triangle {triangle} is degenerate (area {area:e}): its vertices are collinear or coincide"
+            ),
+            MeshError::Obj { line, message } => write!(f, "OBJ line {line}: {message}"),
+        }
+    }
+}
+
+impl std::error::Error for MeshError {}
+
+impl Mesh {
+    /// A triangle's corners.
+    pub fn corners(&self, triangle: usize) -> [DVec3; 3] {
+        self.triangles[triangle].map(|i| self.vertices[i as usize])
+    }
+
+    /// Appends `other`, shifted by `offset`.
+    pub fn append(&mut self, other: &Mesh, offset: DVec3) {
+        let base = self.vertices.len() as u32;
+        self.vertices
+            .extend(other.vertices.iter().map(|v| *v + offset));
+        self.triangles
+            .extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
+    }
+
+    pub fn map_vertices(&self, f: impl Fn(DVec3) -> DVec3) -> Mesh {
+        Mesh {
+            vertices: self.vertices.iter().map(|v| f(*v)).collect(),
+            triangles: self.triangles.clone(),
+        }
+    }
+
+    /// Rejects empty meshes, non-finite vertices, bad indices and triangles
+    /// whose area is below 1e-12 of their longest edge squared.
+    pub fn validate(&self) -> Result<(), MeshError> {
+        if self.triangles.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        if let Some(vertex) = self.vertices.iter().position(|v| !v.is_finite()) {
+            return Err(MeshError::NonFiniteVertex { vertex });
+        }
+        for (triangle, tri) in self.triangles.iter().enumerate() {
+            if let Some(&index) = tri.iter().find(|&&i| i as usize >= self.vertices.len()) {
+                return Err(MeshError::IndexOutOfRange { triangle, index });
+            }
+            let [a, b, c] = self.corners(triangle);
+            let area = 0.5 * (b - a).cross(c - a).length();
+            let longest = (b - a)
+                .length_squared()
+                .max((c - b).length_squared())
+                .max((a - c).length_squared());
+            if !(area > 1e-12 * longest) {
+                return Err(MeshError::DegenerateTriangle { triangle, area });
+            }
+        }
+        Ok(())
+    }
+
+    /// A planar quadrilateral `corner, corner+u, corner+u+v, corner+v` (two triangles).
+    pub fn quad(corner: DVec3, u: DVec3, v: DVec3) -> Mesh {
+        Mesh {
+            vertices: vec![corner, corner + u, corner + u + v, corner + v],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+        }
+    }
+
+    /// An axis-aligned box with outward-wound faces, sharing its 8 corners.
+    pub fn cuboid(min: DVec3, max: DVec3) -> Mesh {
+        let v = |i: u32| {
+            DVec3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            )
+        };
+        let faces: [[u32; 4]; 6] = [
+            [0, 4, 6, 2], // x = min
+            [1, 3, 7, 5], // x = max
+            [0, 1, 5, 4], // y = min
+            [2, 6, 7, 3], // y = max
+            [0, 2, 3, 1], // z = min
+            [4, 5, 7, 6], // z = max
+        ];
+        Mesh {
+            vertices: (0..8).map(v).collect(),
+            triangles: faces
+                .iter()
+                .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+                .collect(),
+        }
+    }
+
+    /// The paper's right-angle flange (4.1.1): two two-sided planes meeting
+    /// at a right angle along the trailing vertical edge x = 0.
+    /// The front plane z = `depth` spans x in [0, width]; the side plane
+    /// x = 0 spans z in [0, depth]; both span y in [0, height].
+    /// The reference point (origin) is the trailing lower far corner.
+    pub fn flange(height: f64, width: f64, depth: f64) -> Mesh {
+        let mut m = Mesh::quad(
+            DVec3::new(0.0, 0.0, depth),
+            DVec3::new(width, 0.0, 0.0),
+            DVec3::new(0.0, height, 0.0),
+        );
+        m.append(
+            &Mesh::quad(
+                DVec3::ZERO,
+                DVec3::new(0.0, 0.0, depth),
+                DVec3::new(0.0, height, 0.0),
+            ),
+            DVec3::ZERO,
+        );
+        m
+    }
+
+    /// Bars of square cross-section `thickness` lying on the plane y = `y`
+    /// (tops at y, bottoms at y - thickness): `count` bars parallel to z at
+    /// x = first, first + spacing, ... and `count` parallel to x likewise,
+    /// each spanning [first - thickness/2, last + thickness/2].
+    pub fn bar_grid(count: u32, spacing: f64, first: f64, thickness: f64, y: f64) -> Mesh {
+        let half = thickness / 2.0;
+        let last = first + spacing * f64::from(count.saturating_sub(1));
+        let (lo, hi) = (first - half, last + half);
+        let mut m = Mesh::default();
+        for i in 0..count {
+            let c = first + spacing * f64::from(i);
+            m.append(
+                &Mesh::cuboid(
+                    DVec3::new(c - half, y - thickness, lo),
+                    DVec3::new(c + half, y, hi),
+                ),
+                DVec3::ZERO,
+            );
+            m.append(
+                &Mesh::cuboid(
+                    DVec3::new(lo, y - thickness, c - half),
+                    DVec3::new(hi, y, c + half),
+                ),
+                DVec3::ZERO,
+            );
+        }
+        m
+    }
+
+    /// Reads the vertices (`v`) and faces (`f`, polygons fanned into
+    /// triangles; `i`, `i/t`, `i//n`, `i/t/n` and negative indices) of a
+    /// Wavefront OBJ file. Other statements are ignored.
+    pub fn from_obj(text: &str) -> Result<Mesh, MeshError> {
+        let mut mesh = Mesh::default();
+        for (n, raw) in text.lines().enumerate() {
+            let line = n + 1;
+            let err = |message: String| MeshError::Obj { line, message };
+            let mut words = raw.split_whitespace();
+            match words.next() {
+                Some("v") => {
+                    let c: Vec<f64> = words
+                        .take(3)
+                        .map(|w| {
+                            w.parse::<f64>()
+                                .map_err(|_| err(format!("bad coordinate {w:?}")))
+                        })
+                        .collect::<Result<_, _>>()?;
+                    if c.len() != 3 {
+                        return Err(err("a vertex needs 3 coordinates".into()));
+                    }
+                    mesh.vertices.push(DVec3::new(c[0], c[1], c[2]));
+                }
+                Some("f") => {
+                    let count = mesh.vertices.len() as i64;
+                    let idx: Vec<u32> = words
+                        .map(|w| {
+                            let first = w.split('/').next().unwrap_or("");
+                            let i: i64 = first
+                                .parse()
+                                .map_err(|_| err(format!("bad face index {w:?}")))?;
+                            let resolved = if i < 0 { count + i } else { i - 1 };
+                            if i == 0 || resolved < 0 || resolved >= count {
+                                return Err(err(format!(
+                                    "face index {i} is out of range (1..={count})"
+                                )));
+                            }
+                            Ok(resolved as u32)
+                        })
+                        .collect::<Result<_, _>>()?;
+                    if idx.len() < 3 {
+                        return Err(err("a face needs at least 3 vertices".into()));
+                    }
+                    for k in 1..idx.len() - 1 {
+                        mesh.triangles.push([idx[0], idx[k], idx[k + 1]]);
+                    }
+                }
+                _ => {}
+            }
+        }
+        Ok(mesh)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cuboid_is_closed_and_outward() {
+        let m = Mesh::cuboid(DVec3::splat(-1.0), DVec3::splat(1.0));
+        m.validate().unwrap();
+        // Divergence theorem: sum of (centroid . area-normal) / 3 is the volume.
+        let vol: f64 = (0..m.triangles.len())
+            .map(|i| {
+                let [a, b, c] = m.corners(i);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum();
+        assert!((vol - 8.0).abs() < 1e-12, "volume {vol}");
+    }
+
+    #[test]
+    fn degenerate_triangle_is_rejected() {
+        let m = Mesh {
+            vertices: vec![DVec3::ZERO, DVec3::X, DVec3::X * 2.0],
+            triangles: vec![[0, 1, 2]],
+        };
+        assert!(matches!(
+            m.validate(),
+            Err(MeshError::DegenerateTriangle { triangle: 0, .. })
+        ));
+    }
+
+    #[test]
+    fn obj_faces_are_fanned_and_checked() {
+        let m =
+            Mesh::from_obj("# quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1/1/1 2/2/2 3//3 -1\n")
+                .unwrap();
+        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+        assert!(matches!(
+            Mesh::from_obj("v 0 0 0\nf 1 2 3\n"),
+            Err(MeshError::Obj { line: 2, .. })
+        ));
+        assert!(matches!(
+            Mesh::from_obj("v 0 zero 0\n"),
+            Err(MeshError::Obj { line: 1, .. })
+        ));
+    }
+}

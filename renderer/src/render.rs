@@ -1,0 +1,129 @@
+//! Rendering an image: one or more light-cone rays per pixel, in parallel,
+//! with 4D anti-aliasing (paper 5): samples jittered over the pixel and over
+//! the shutter interval of the camera's t, which gives motion blur.
+//!
+//! Each pixel's samples come from a generator seeded by (seed, pixel), and
+//! pixels are independent, so the image is the same bit for bit whatever
+//! the number of threads.
+
+use crate::database::Database;
+use crate::lightcone::Camera;
+use crate::model::Model;
+use crate::rng::SplitMix64;
+use crate::scene::Scene;
+use crate::shade::Shader;
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Per-image settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Samples per pixel. 1 samples the pixel centre at the camera's t exactly.
+    pub spp: u32,
+    /// Length of the shutter interval of camera time, centred on t_c (t.units).
+    pub shutter: f64,
+    pub seed: u64,
+    /// Mirror bounces followed.
+    pub max_depth: u32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            spp: 1,
+            shutter: 0.0,
+            seed: 1,
+            max_depth: 4,
+        }
+    }
+}
+
+/// Linear RGB pixels, row-major from the top left.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<DVec3>,
+}
+
+impl Image {
+    /// 8 bits per channel; values are stored linearly (no sRGB curve) so
+    /// that a pixel's value is proportional to the coverage of an edge.
+    pub fn to_rgb8(&self) -> image::RgbImage {
+        let mut out = image::RgbImage::new(self.width, self.height);
+        for (p, c) in out.pixels_mut().zip(&self.pixels) {
+            let q = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+            *p = image::Rgb([q(c.x), q(c.y), q(c.z)]);
+        }
+        out
+    }
+}
+
+/// Renders the view from `camera` at lab time `camera_t`.
+pub fn render(
+    db: &Database,
+    scene: &Scene,
+    camera: &Camera,
+    camera_t: f64,
+    model: Model,
+    settings: &RenderSettings,
+) -> Image {
+    let shader = Shader {
+        db,
+        light: &scene.light,
+        background: scene.background,
+        light_speed: model.light_speed,
+        max_depth: settings.max_depth,
+    };
+    let (w, h) = (camera.width, camera.height);
+    let mut pixels = vec![DVec3::ZERO; w as usize * h as usize];
+    pixels
+        .par_chunks_mut(w as usize)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, px) in row.iter_mut().enumerate() {
+                *px = pixel(
+                    &shader, camera, camera_t, model, settings, x as u32, y as u32,
+                );
+            }
+        });
+    Image {
+        width: w,
+        height: h,
+        pixels,
+    }
+}
+
+/// One pixel: the mean of its samples. With n*n >= spp strata, sample k
+/// falls in stratum k (row-major), jittered within it.
+pub fn pixel(
+    shader: &Shader,
+    camera: &Camera,
+    camera_t: f64,
+    model: Model,
+    settings: &RenderSettings,
+    x: u32,
+    y: u32,
+) -> DVec3 {
+    if settings.spp <= 1 {
+        let ray = camera.ray(
+            f64::from(x) + 0.5,
+            f64::from(y) + 0.5,
+            camera_t,
+            model.light_speed,
+        );
+        return shader.radiance(&ray, 0);
+    }
+    let mut rng = SplitMix64::for_pixel(settings.seed, x, y);
+    let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
+    let mut sum = DVec3::ZERO;
+    for k in 0..settings.spp {
+        let (sx, sy) = (k % n, (k / n) % n);
+        let px = f64::from(x) + (f64::from(sx) + rng.next_f64()) / f64::from(n);
+        let py = f64::from(y) + (f64::from(sy) + rng.next_f64()) / f64::from(n);
+        let t = camera_t + (rng.next_f64() - 0.5) * settings.shutter;
+        let ray = camera.ray(px, py, t, model.light_speed);
+        sum += shader.radiance(&ray, 0);
+    }
+    sum / f64::from(settings.spp)
+}

@@ -1,0 +1,170 @@
+//! Shading (paper 3, item 5): one point light at rest in the lab, Lambert
+//! plus Phong specular on two-sided faces, with shadow and reflection rays
+//! that, like primary rays, travel on past light cones from the hit event:
+//! the light a surface receives left the light source, or the reflected
+//! object, earlier.
+
+use crate::database::Database;
+use crate::intersect::Hit;
+use crate::lightcone::{LightSpeed, Ray};
+use crate::spacetime::Event;
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// A point light at rest in the lab frame.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Light {
+    /// Lab position, l.units.
+    pub position: DVec3,
+    /// Linear RGB intensity.
+    #[serde(default = "white")]
+    pub color: DVec3,
+    /// Fraction of a material's colour seen without direct light.
+    #[serde(default = "default_ambient")]
+    pub ambient: f64,
+}
+
+fn white() -> DVec3 {
+    DVec3::ONE
+}
+fn default_ambient() -> f64 {
+    0.25
+}
+fn default_diffuse() -> f64 {
+    0.75
+}
+fn default_shininess() -> f64 {
+    32.0
+}
+
+/// A colour that alternates with the object's own (proper) time, so that
+/// time dilation is visible (paper 3, item 2d).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Blink {
+    /// Period in the object's proper time, t.units.
+    pub period: f64,
+    /// Colour during the first half of each period (the base colour the rest).
+    pub color: DVec3,
+}
+
+/// Surface appearance. Colours are linear RGB in [0, 1].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    pub color: DVec3,
+    #[serde(default = "default_diffuse")]
+    pub diffuse: f64,
+    #[serde(default)]
+    pub specular: f64,
+    #[serde(default = "default_shininess")]
+    pub shininess: f64,
+    /// Fraction of the colour taken from the mirror reflection, 0..=1.
+    #[serde(default)]
+    pub mirror: f64,
+    #[serde(default)]
+    pub blink: Option<Blink>,
+}
+
+impl Material {
+    pub fn matte(color: DVec3) -> Material {
+        Material {
+            color,
+            diffuse: default_diffuse(),
+            specular: 0.0,
+            shininess: default_shininess(),
+            mirror: 0.0,
+            blink: None,
+        }
+    }
+
+    /// The colour at the object's proper time `tau`.
+    pub fn color_at(&self, tau: f64) -> DVec3 {
+        match self.blink {
+            Some(b) if (tau / b.period).rem_euclid(1.0) < 0.5 => b.color,
+            _ => self.color,
+        }
+    }
+}
+
+/// The start of the searched stretch of a secondary ray leaving `event`:
+/// far enough to step off the surface it leaves, relative to the scale of
+/// the coordinates.
+pub fn self_hit_margin(event: Event) -> f64 {
+    1e-9 * (1.0 + event.x.abs().max_element() + event.t.abs())
+}
+
+/// Everything fixed for one render: the database and how light travels.
+pub struct Shader<'a> {
+    pub db: &'a Database,
+    pub light: &'a Light,
+    pub background: DVec3,
+    pub light_speed: LightSpeed,
+    /// Number of mirror bounces followed.
+    pub max_depth: u32,
+}
+
+impl Shader<'_> {
+    /// Colour of the light arriving along `ray` (towards its origin).
+    pub fn radiance(&self, ray: &Ray, depth: u32) -> DVec3 {
+        let margin = if depth == 0 {
+            0.0
+        } else {
+            self_hit_margin(ray.origin)
+        };
+        match self.db.closest_hit(ray, (margin, f64::INFINITY)) {
+            None => self.background,
+            Some(hit) => self.shade(ray, &hit, depth),
+        }
+    }
+
+    /// The unit normal of the hit surface, turned to face the ray's origin.
+    pub fn facing_normal(&self, ray: &Ray, hit: &Hit) -> DVec3 {
+        let n = self.db.prism_of(hit.tet).normal;
+        if n.dot(ray.direction.x) > 0.0 {
+            -n
+        } else {
+            n
+        }
+    }
+
+    /// Whether the light source is hidden from `event`: the past light cone
+    /// of the event, towards the light's (static) position, meets an object
+    /// before reaching it.
+    pub fn in_shadow(&self, event: Event) -> bool {
+        let to_light = self.light.position - event.x;
+        let dist = to_light.length();
+        let shadow = Ray::backwards(event, to_light / dist, self.light_speed);
+        let margin = self_hit_margin(event);
+        dist > 2.0 * margin && self.db.any_hit(&shadow, (margin, dist - margin))
+    }
+
+    /// Lambert plus Phong at `hit`, plus the mirror term.
+    pub fn shade(&self, ray: &Ray, hit: &Hit, depth: u32) -> DVec3 {
+        let prism = self.db.prism_of(hit.tet);
+        let object = &self.db.objects()[prism.object as usize];
+        let m = &object.material;
+        let albedo = m.color_at(object.proper_time(hit.event));
+        let n = self.facing_normal(ray, hit);
+        let view = -ray.direction.x;
+        let mut color = albedo * self.light.ambient;
+        let l = (self.light.position - hit.event.x).normalize_or_zero();
+        let lambert = n.dot(l);
+        if lambert > 0.0 && !self.in_shadow(hit.event) {
+            let r = 2.0 * lambert * n - l;
+            let spec = if m.specular > 0.0 {
+                m.specular * r.dot(view).max(0.0).powf(m.shininess)
+            } else {
+                0.0
+            };
+            color += self.light.color * (albedo * (m.diffuse * lambert) + DVec3::splat(spec));
+        }
+        if m.mirror > 0.0 && depth < self.max_depth {
+            let d = ray.direction.x;
+            let reflected = Ray::backwards(hit.event, d - 2.0 * d.dot(n) * n, self.light_speed);
+            color = color * (1.0 - m.mirror) + self.radiance(&reflected, depth + 1) * m.mirror;
+        }
+        color
+    }
+}

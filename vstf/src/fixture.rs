@@ -1,0 +1,571 @@
+//! The fixture file format: a JSON scene (objects, camera, light, model,
+//! image settings), read with the JSON path of any bad field in the error.
+//! The format is documented with an example in `docs/fixtures.md`.
+
+use glam::DVec3;
+use renderer::{
+    Attitude, Camera, Event, FourVector, Light, Material, Mesh, Model, Motion, ObjectKind,
+    RenderSettings, Scene, SceneObject,
+};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// A fixture that cannot be used: the file, the JSON path of the field, and what was expected.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FixtureError {
+    pub file: PathBuf,
+    pub path: String,
+    pub message: String,
+}
+
+impl fmt::Display for FixtureError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.path.is_empty() || self.path == "." {
+            write!(f, "{}: {}", self.file.display(), self.message)
+        } else {
+            write!(
+                f,
+                "{}: {}: {}",
+                self.file.display(),
+                self.path,
+                self.message
+            )
+        }
+    }
+}
+
+impl std::error::Error for FixtureError {}
+
+/// Largest image accepted, in pixels (8192 x 8192).
+pub const MAX_PIXELS: u64 = 8192 * 8192;
+/// Largest side accepted, in pixels.
+pub const MAX_SIDE: u32 = 16384;
+/// Most samples per pixel accepted.
+pub const MAX_SPP: u32 = 4096;
+
+fn default_up() -> DVec3 {
+    DVec3::Y
+}
+fn default_vfov() -> f64 {
+    50.0
+}
+fn default_static_lifetime() -> [f64; 2] {
+    [-1.0e6, 1.0e6]
+}
+fn default_background() -> DVec3 {
+    DVec3::new(0.02, 0.02, 0.05)
+}
+
+/// The camera (paper 3.2): at rest in the lab at (t, position).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSpec {
+    /// Lab position, l.units.
+    pub position: DVec3,
+    /// Lab time of the camera event, t.units.
+    pub t: f64,
+    /// Point looked at (use either this or yaw_deg/pitch_deg).
+    #[serde(default)]
+    pub look_at: Option<DVec3>,
+    #[serde(default = "default_up")]
+    pub up: DVec3,
+    #[serde(default)]
+    pub yaw_deg: Option<f64>,
+    #[serde(default)]
+    pub pitch_deg: Option<f64>,
+    /// Vertical field of view, degrees.
+    #[serde(default = "default_vfov")]
+    pub vfov_deg: f64,
+}
+
+/// Image settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImageSpec {
+    pub width: u32,
+    pub height: u32,
+    #[serde(default = "one")]
+    pub spp: u32,
+    /// Shutter interval of camera time for motion blur, t.units.
+    #[serde(default)]
+    pub shutter: f64,
+    #[serde(default = "one_u64")]
+    pub seed: u64,
+    #[serde(default = "four")]
+    pub max_depth: u32,
+}
+
+fn one() -> u32 {
+    1
+}
+fn one_u64() -> u64 {
+    1
+}
+fn four() -> u32 {
+    4
+}
+
+/// A mesh primitive, in the object's own coordinates.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum MeshSpec {
+    /// corner, corner+u, corner+u+v, corner+v.
+    Quad { corner: DVec3, u: DVec3, v: DVec3 },
+    /// Axis-aligned box.
+    Cuboid { min: DVec3, max: DVec3 },
+    /// The paper's right-angle flange (two two-sided planes).
+    Flange { height: f64, width: f64, depth: f64 },
+    /// Bars of square section on the plane y (see `Mesh::bar_grid`).
+    BarGrid {
+        count: u32,
+        spacing: f64,
+        first: f64,
+        thickness: f64,
+        y: f64,
+    },
+    /// A Wavefront OBJ file, relative to the fixture file.
+    Obj { path: PathBuf },
+    /// Explicit triangles.
+    Triangles {
+        vertices: Vec<DVec3>,
+        indices: Vec<[u32; 3]>,
+    },
+    /// Several meshes merged.
+    Group(Vec<MeshSpec>),
+}
+
+/// An object's worldline: either `extrusion`, or `velocity` with `proper_lifetime`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WorldlineSpec {
+    /// Event (t, x, y, z) where the reference point starts.
+    pub start: [f64; 4],
+    /// Lab 4-vector (dt, dx, dy, dz) of the temporal extrusion.
+    #[serde(default)]
+    pub extrusion: Option<[f64; 4]>,
+    /// Lab velocity (fraction of c).
+    #[serde(default)]
+    pub velocity: Option<DVec3>,
+    /// Lifetime in the object's proper time.
+    #[serde(default)]
+    pub proper_lifetime: Option<f64>,
+}
+
+/// One object.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectSpec {
+    pub name: String,
+    #[serde(default = "h_obj")]
+    pub kind: ObjectKind,
+    pub mesh: MeshSpec,
+    /// Omitted: at rest at `position` for the fixture's `static_lifetime`.
+    #[serde(default)]
+    pub worldline: Option<WorldlineSpec>,
+    /// Position of a static object's reference point.
+    #[serde(default)]
+    pub position: Option<DVec3>,
+    pub material: Material,
+}
+
+fn h_obj() -> ObjectKind {
+    ObjectKind::HObj
+}
+
+/// A whole fixture file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FixtureSpec {
+    #[serde(default)]
+    pub description: String,
+    pub camera: CameraSpec,
+    pub light: Light,
+    #[serde(default = "default_background")]
+    pub background: DVec3,
+    /// `infinite`, `classical` or `relativistic`.
+    #[serde(default = "default_model")]
+    pub model: String,
+    /// With `infinite`: insert V_obj objects Lorentz-contracted (the fourth combination).
+    #[serde(default)]
+    pub lorentz: Option<bool>,
+    pub image: ImageSpec,
+    /// Lab times [t0, t1] during which objects without a worldline exist.
+    #[serde(default = "default_static_lifetime")]
+    pub static_lifetime: [f64; 2],
+    pub objects: Vec<ObjectSpec>,
+}
+
+fn default_model() -> String {
+    "relativistic".into()
+}
+
+/// A loaded, validated fixture: the scene and how to view it.
+#[derive(Clone, Debug)]
+pub struct Fixture {
+    pub name: String,
+    pub file: PathBuf,
+    pub spec: FixtureSpec,
+    pub scene: Scene,
+}
+
+/// What to render: the fixture's values, overridden by command-line flags.
+#[derive(Clone, Debug, Default)]
+pub struct Overrides {
+    pub model: Option<Model>,
+    pub camera_t: Option<f64>,
+    pub width: Option<u32>,
+    pub height: Option<u32>,
+    pub spp: Option<u32>,
+}
+
+/// A view ready to render.
+#[derive(Clone, Copy, Debug)]
+pub struct View {
+    pub camera: Camera,
+    pub camera_t: f64,
+    pub model: Model,
+    pub settings: RenderSettings,
+}
+
+/// The fixtures folder of this workspace.
+pub fn fixtures_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join("fixtures")
+}
+
+/// A path to a fixture file, or the name of one in `fixtures/` (of the
+/// current directory, then of this workspace).
+pub fn resolve(name_or_path: &str) -> Result<PathBuf, String> {
+    let p = Path::new(name_or_path);
+    if p.is_file() {
+        return Ok(p.to_path_buf());
+    }
+    let file = format!("{name_or_path}.json");
+    for dir in [Path::new("fixtures").to_path_buf(), fixtures_dir()] {
+        let candidate = dir.join(&file);
+        if candidate.is_file() {
+            return Ok(candidate);
+        }
+    }
+    Err(format!(
+        "no fixture {name_or_path:?}: not a file, and no {file} in ./fixtures or {}",
+        fixtures_dir().display()
+    ))
+}
+
+/// Names of the fixtures in the workspace's `fixtures/` folder, sorted.
+pub fn all_names() -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(fixtures_dir())
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter_map(|e| {
+            let p = e.path();
+            (p.extension()? == "json").then(|| p.file_stem()?.to_str().map(String::from))?
+        })
+        .collect();
+    names.sort();
+    names
+}
+
+impl Fixture {
+    /// Loads a fixture by path or name.
+    pub fn load(name_or_path: &str) -> Result<Fixture, FixtureError> {
+        let file = resolve(name_or_path).map_err(|message| FixtureError {
+            file: PathBuf::from(name_or_path),
+            path: String::new(),
+            message,
+        })?;
+        let text = std::fs::read_to_string(&file).map_err(|e| FixtureError {
+            file: file.clone(),
+            path: String::new(),
+            message: format!("cannot read: {e}"),
+        })?;
+        Fixture::parse(&text, &file)
+    }
+
+    /// Parses and validates fixture text; `file` names it in errors and
+    /// anchors relative paths (OBJ meshes).
+    pub fn parse(text: &str, file: &Path) -> Result<Fixture, FixtureError> {
+        let de = &mut serde_json::Deserializer::from_str(text);
+        let spec: FixtureSpec = serde_path_to_error::deserialize(de).map_err(|e| FixtureError {
+            file: file.to_path_buf(),
+            path: e.path().to_string(),
+            message: e.inner().to_string(),
+        })?;
+        let fail = |path: String, message: String| FixtureError {
+            file: file.to_path_buf(),
+            path,
+            message,
+        };
+        let scene = build_scene(&spec, file).map_err(|(p, m)| fail(p, m))?;
+        // Insert once with each Lorentz setting, so that errors surface on load.
+        for lorentz in [false, true] {
+            renderer::Database::build(&scene, lorentz).map_err(|e| fail(e.path, e.message))?;
+        }
+        let name = file
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("fixture")
+            .to_string();
+        let fixture = Fixture {
+            name,
+            file: file.to_path_buf(),
+            spec,
+            scene,
+        };
+        fixture
+            .view(&Overrides::default())
+            .map_err(|(p, m)| fail(p, m))?;
+        Ok(fixture)
+    }
+
+    /// The model after overrides.
+    pub fn model(&self, overrides: &Overrides) -> Result<Model, (String, String)> {
+        if let Some(m) = overrides.model {
+            return Ok(m);
+        }
+        let mut m = Model::from_name(&self.spec.model).ok_or_else(|| {
+            (
+                "model".to_string(),
+                format!(
+                    "unknown model {:?}: expected infinite, classical or relativistic",
+                    self.spec.model
+                ),
+            )
+        })?;
+        if let Some(l) = self.spec.lorentz {
+            m.lorentz = l;
+        }
+        Ok(m)
+    }
+
+    /// The view after overrides, validated.
+    pub fn view(&self, o: &Overrides) -> Result<View, (String, String)> {
+        let c = &self.spec.camera;
+        let im = &self.spec.image;
+        let model = self.model(o)?;
+        let camera_t = o.camera_t.unwrap_or(c.t);
+        let (width, height) = (o.width.unwrap_or(im.width), o.height.unwrap_or(im.height));
+        let spp = o.spp.unwrap_or(im.spp);
+        let bad = |p: &str, m: String| Err((p.to_string(), m));
+        if !camera_t.is_finite() {
+            return bad("camera.t", "must be a finite number".into());
+        }
+        finite3("camera.position", c.position)?;
+        if width == 0
+            || height == 0
+            || width > MAX_SIDE
+            || height > MAX_SIDE
+            || u64::from(width) * u64::from(height) > MAX_PIXELS
+        {
+            return bad(
+                "image",
+                format!("resolution {width}x{height} is out of range: each side 1..={MAX_SIDE}, at most {MAX_PIXELS} pixels"),
+            );
+        }
+        if spp == 0 || spp > MAX_SPP {
+            return bad(
+                "image.spp",
+                format!("{spp} samples per pixel: expected 1..={MAX_SPP}"),
+            );
+        }
+        if !(im.shutter >= 0.0 && im.shutter.is_finite()) {
+            return bad("image.shutter", "must be a finite time >= 0".into());
+        }
+        if !(c.vfov_deg > 0.0 && c.vfov_deg < 180.0) {
+            return bad(
+                "camera.vfov_deg",
+                format!("{} degrees: expected between 0 and 180", c.vfov_deg),
+            );
+        }
+        let attitude = match (c.look_at, c.yaw_deg, c.pitch_deg) {
+            (Some(look_at), None, None) => {
+                finite3("camera.look_at", look_at)?;
+                finite3("camera.up", c.up)?;
+                Attitude::LookAt { look_at, up: c.up }
+            }
+            (None, yaw, pitch) if yaw.is_some() || pitch.is_some() => {
+                let (yaw_deg, pitch_deg) = (yaw.unwrap_or(0.0), pitch.unwrap_or(0.0));
+                if !(yaw_deg.is_finite() && pitch_deg.is_finite()) {
+                    return bad("camera", "yaw_deg and pitch_deg must be finite".into());
+                }
+                Attitude::YawPitch { yaw_deg, pitch_deg }
+            }
+            _ => {
+                return bad(
+                    "camera",
+                    "give either look_at (with optional up) or yaw_deg/pitch_deg".into(),
+                )
+            }
+        };
+        let camera = Camera::new(
+            Event::new(camera_t, c.position),
+            attitude,
+            c.vfov_deg,
+            width,
+            height,
+        )
+        .ok_or_else(|| {
+            (
+                "camera".to_string(),
+                "degenerate attitude: look_at equals position, or up is parallel to the view"
+                    .to_string(),
+            )
+        })?;
+        let settings = RenderSettings {
+            spp,
+            shutter: im.shutter,
+            seed: im.seed,
+            max_depth: im.max_depth,
+        };
+        Ok(View {
+            camera,
+            camera_t,
+            model,
+            settings,
+        })
+    }
+}
+
+fn finite3(path: &str, v: DVec3) -> Result<(), (String, String)> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err((path.to_string(), "must be finite numbers".to_string()))
+    }
+}
+
+fn build_mesh(spec: &MeshSpec, path: &str, file: &Path) -> Result<Mesh, (String, String)> {
+    let bad = |m: String| Err((path.to_string(), m));
+    let positive = |name: &str, v: f64| -> Result<(), (String, String)> {
+        if v > 0.0 && v.is_finite() {
+            Ok(())
+        } else {
+            Err((
+                format!("{path}.{name}"),
+                format!("{v}: expected a positive length"),
+            ))
+        }
+    };
+    Ok(match spec {
+        MeshSpec::Quad { corner, u, v } => Mesh::quad(*corner, *u, *v),
+        MeshSpec::Cuboid { min, max } => {
+            if !(min.cmplt(*max).all()) {
+                return bad(format!(
+                    "cuboid min {min} must be below max {max} on every axis"
+                ));
+            }
+            Mesh::cuboid(*min, *max)
+        }
+        MeshSpec::Flange {
+            height,
+            width,
+            depth,
+        } => {
+            positive("flange.height", *height)?;
+            positive("flange.width", *width)?;
+            positive("flange.depth", *depth)?;
+            Mesh::flange(*height, *width, *depth)
+        }
+        MeshSpec::BarGrid {
+            count,
+            spacing,
+            first,
+            thickness,
+            y,
+        } => {
+            positive("bar_grid.spacing", *spacing)?;
+            positive("bar_grid.thickness", *thickness)?;
+            if *count == 0 {
+                return bad("bar_grid.count must be at least 1".into());
+            }
+            Mesh::bar_grid(*count, *spacing, *first, *thickness, *y)
+        }
+        MeshSpec::Obj { path: p } => {
+            let full = file.parent().unwrap_or(Path::new(".")).join(p);
+            let text = std::fs::read_to_string(&full).map_err(|e| {
+                (
+                    format!("{path}.obj.path"),
+                    format!("cannot read {}: {e}", full.display()),
+                )
+            })?;
+            Mesh::from_obj(&text).map_err(|e| {
+                (
+                    format!("{path}.obj.path"),
+                    format!("{}: {e}", full.display()),
+                )
+            })?
+        }
+        MeshSpec::Triangles { vertices, indices } => Mesh {
+            vertices: vertices.clone(),
+            triangles: indices.clone(),
+        },
+        MeshSpec::Group(parts) => {
+            let mut m = Mesh::default();
+            for (i, part) in parts.iter().enumerate() {
+                m.append(
+                    &build_mesh(part, &format!("{path}.group[{i}]"), file)?,
+                    DVec3::ZERO,
+                );
+            }
+            m
+        }
+    })
+}
+
+fn event(a: [f64; 4]) -> Event {
+    Event::new(a[0], DVec3::new(a[1], a[2], a[3]))
+}
+
+fn build_scene(spec: &FixtureSpec, file: &Path) -> Result<Scene, (String, String)> {
+    let [t0, t1] = spec.static_lifetime;
+    if !(t0.is_finite() && t1.is_finite() && t0 < t1) {
+        return Err((
+            "static_lifetime".into(),
+            "expected [t0, t1] with t0 < t1, finite".into(),
+        ));
+    }
+    finite3("light.position", spec.light.position)?;
+    let mut objects = Vec::new();
+    for (i, o) in spec.objects.iter().enumerate() {
+        let at = |f: &str| format!("objects[{i}].{f}");
+        let mesh = build_mesh(&o.mesh, &at("mesh"), file)?;
+        let motion = match (&o.worldline, o.position) {
+            (None, p) => {
+                let p = p.unwrap_or(DVec3::ZERO);
+                finite3(&at("position"), p)?;
+                Motion::at_rest(p, t0, t1)
+            }
+            (Some(_), Some(_)) => {
+                return Err((at("position"), "give either position (static object) or worldline, not both".into()))
+            }
+            (Some(w), None) => match (w.extrusion, w.velocity, w.proper_lifetime) {
+                (Some(e), None, None) => Motion::Extrusion { start: event(w.start), extrusion: FourVector::new(e[0], DVec3::new(e[1], e[2], e[3])) },
+                (None, Some(velocity), Some(proper_lifetime)) => {
+                    Motion::Velocity { start: event(w.start), velocity, proper_lifetime }
+                }
+                _ => {
+                    return Err((
+                        at("worldline"),
+                        "give either extrusion [dt, dx, dy, dz], or velocity [vx, vy, vz] with proper_lifetime".into(),
+                    ))
+                }
+            },
+        };
+        objects.push(SceneObject {
+            name: o.name.clone(),
+            kind: o.kind,
+            mesh,
+            motion,
+            material: o.material.clone(),
+        });
+    }
+    Ok(Scene {
+        objects,
+        light: spec.light,
+        background: spec.background,
+    })
+}

@@ -1,0 +1,9 @@
+//! The Visual Software Test Fixture (paper section 4): loads scene fixtures,
+//! renders them with the `renderer` crate, and checks what the images show.
+//!
+//! fixture ([`fixture`]) -> scene -> 4D database -> image ([`output`]).
+
+pub mod fixture;
+pub mod oracle;
+pub mod output;
+pub mod run;

@@ -1,0 +1,154 @@
+//! The `vstf` command line.
+
+use clap::{Parser, Subcommand};
+use renderer::{LightSpeed, Model, Traversal};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+use vstf::fixture::{Fixture, Overrides};
+
+#[derive(Parser)]
+#[command(
+    name = "vstf",
+    version,
+    about = "Visual Software Test Fixture for a spacetime ray tracer"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+enum ModelArg {
+    Infinite,
+    Classical,
+    Relativistic,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render one view of a fixture to a PNG.
+    Render {
+        /// A fixture JSON file, or the name of one in fixtures/.
+        fixture: String,
+        /// Output PNG.
+        #[arg(long)]
+        out: PathBuf,
+        /// Light-speed model (default: the fixture's).
+        #[arg(long, value_enum)]
+        model: Option<ModelArg>,
+        /// Insert V_obj objects Lorentz-transformed (with --model infinite: the
+        /// contracted objects as they are at t_c).
+        #[arg(long)]
+        lorentz: bool,
+        /// Camera lab time, t.units.
+        #[arg(long, allow_hyphen_values = true)]
+        camera_t: Option<f64>,
+        #[arg(long)]
+        width: Option<u32>,
+        #[arg(long)]
+        height: Option<u32>,
+        /// Samples per pixel (4D anti-aliasing).
+        #[arg(long)]
+        spp: Option<u32>,
+        /// Test every tetrahedron for every ray (no acceleration structure).
+        #[arg(long)]
+        brute_force: bool,
+    },
+    /// List the fixtures in fixtures/.
+    List,
+}
+
+fn model_of(
+    arg: Option<ModelArg>,
+    lorentz: bool,
+    fixture: &Fixture,
+) -> Result<Option<Model>, String> {
+    let base = match arg {
+        Some(ModelArg::Infinite) => Some(Model::INFINITE),
+        Some(ModelArg::Classical) => Some(Model::CLASSICAL),
+        Some(ModelArg::Relativistic) => Some(Model::RELATIVISTIC),
+        None if lorentz => Some(
+            fixture
+                .model(&Overrides::default())
+                .map_err(|(p, m)| format!("{p}: {m}"))?,
+        ),
+        None => None,
+    };
+    Ok(base.map(|m| Model {
+        lorentz: m.lorentz || lorentz,
+        ..m
+    }))
+}
+
+fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        Command::Render {
+            fixture,
+            out,
+            model,
+            lorentz,
+            camera_t,
+            width,
+            height,
+            spp,
+            brute_force,
+        } => {
+            let fixture = Fixture::load(&fixture).map_err(|e| e.to_string())?;
+            let overrides = Overrides {
+                model: model_of(model, lorentz, &fixture)?,
+                camera_t,
+                width,
+                height,
+                spp,
+            };
+            let view = vstf::run::view(&fixture, &overrides)?;
+            let traversal = if brute_force {
+                Traversal::BruteForce
+            } else {
+                Traversal::Bvh
+            };
+            let started = Instant::now();
+            let db = vstf::run::database(&fixture, view.model.lorentz, traversal)?;
+            let image = vstf::run::render_with(&db, &fixture, &view);
+            vstf::output::write_png(&out, &image.to_rgb8())?;
+            eprintln!(
+                "rendered {} ({} model{}, t_c = {}, {}x{}, {} spp, {} tetrahedra) in {:.2} s -> {}",
+                fixture.name,
+                view.model,
+                if view.model.light_speed == LightSpeed::Infinite {
+                    ", lab slice"
+                } else {
+                    ""
+                },
+                view.camera_t,
+                view.camera.width,
+                view.camera.height,
+                view.settings.spp,
+                db.tetrahedra().len(),
+                started.elapsed().as_secs_f64(),
+                out.display()
+            );
+            Ok(())
+        }
+        Command::List => {
+            for name in vstf::fixture::all_names() {
+                let desc = Fixture::load(&name)
+                    .map(|f| f.spec.description)
+                    .unwrap_or_else(|e| format!("(invalid: {e})"));
+                println!("{name:24} {desc}");
+            }
+            Ok(())
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

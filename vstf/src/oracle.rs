@@ -1,0 +1,111 @@
+//! First-principles expectations, computed without the ray tracer.
+//!
+//! The central closed form: a point moving on the straight worldline
+//! x(t) = x0 + v (t - t0) is seen by a camera at event (tc, c) where that
+//! worldline meets the camera's past light cone, |x(t) - c| = tc - t, t <= tc.
+//! With a = x0 - v t0 - c this is the quadratic
+//! (v.v - 1) t^2 + 2 (a.v + tc) t + (a.a - tc^2) = 0.
+
+use glam::DVec3;
+
+/// A point's straight worldline: at lab time `t0` it is at `x0`, moving with `v`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointWorldline {
+    pub t0: f64,
+    pub x0: DVec3,
+    pub v: DVec3,
+}
+
+impl PointWorldline {
+    pub fn at(&self, t: f64) -> DVec3 {
+        self.x0 + self.v * (t - self.t0)
+    }
+}
+
+/// Where a point is seen: the emission event on the camera's past light cone.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Retarded {
+    /// Lab time of emission.
+    pub t: f64,
+    /// Lab position at emission.
+    pub x: DVec3,
+    /// Unit direction from the camera to `x`.
+    pub direction: DVec3,
+}
+
+/// The latest emission event of `p` on the past light cone of the camera at
+/// (`tc`, `camera`) (for a subluminal point there is exactly one); `None` if
+/// the worldline never meets it.
+pub fn retarded(p: &PointWorldline, tc: f64, camera: DVec3) -> Option<Retarded> {
+    let a = p.x0 - p.v * p.t0 - camera;
+    let qa = p.v.length_squared() - 1.0;
+    let qb = 2.0 * (a.dot(p.v) + tc);
+    let qc = a.length_squared() - tc * tc;
+    let roots: Vec<f64> = if qa.abs() < 1e-15 {
+        if qb == 0.0 {
+            vec![]
+        } else {
+            vec![-qc / qb]
+        }
+    } else {
+        let disc = qb * qb - 4.0 * qa * qc;
+        if disc < 0.0 {
+            return None;
+        }
+        // Numerically stable pair of roots.
+        let q = -0.5 * (qb + qb.signum() * disc.sqrt());
+        let mut r = vec![q / qa];
+        if q != 0.0 {
+            r.push(qc / q);
+        }
+        r
+    };
+    let t = roots
+        .into_iter()
+        .filter(|t| *t <= tc + 1e-12 * tc.abs().max(1.0))
+        .fold(f64::NEG_INFINITY, f64::max);
+    if !t.is_finite() {
+        return None;
+    }
+    let x = p.at(t);
+    Some(Retarded {
+        t,
+        x,
+        direction: (x - camera).normalize(),
+    })
+}
+
+/// Lorentz factor, paper eq. (2).
+pub fn gamma(beta: f64) -> f64 {
+    1.0 / (1.0 - beta * beta).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn static_point_is_seen_one_light_time_ago() {
+        let p = PointWorldline {
+            t0: 0.0,
+            x0: DVec3::new(3.0, 4.0, 0.0),
+            v: DVec3::ZERO,
+        };
+        let r = retarded(&p, 10.0, DVec3::ZERO).unwrap();
+        assert_relative_eq!(r.t, 5.0, max_relative = 1e-14);
+    }
+
+    #[test]
+    fn retarded_event_is_on_the_light_cone() {
+        let p = PointWorldline {
+            t0: 2.0,
+            x0: DVec3::new(-5.0, 1.0, 2.0),
+            v: DVec3::new(0.866, 0.1, -0.2),
+        };
+        let c = DVec3::new(0.0, 9.0, 15.0);
+        let r = retarded(&p, 40.0, c).unwrap();
+        assert_relative_eq!((r.x - c).length(), 40.0 - r.t, max_relative = 1e-12);
+        assert!(r.t < 40.0);
+    }
+}
