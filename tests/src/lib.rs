@@ -1,1 +1,52 @@
-//! Workspace-level integration tests live in `tests/tests/`.
+//! Helpers shared by the workspace-level integration tests in `tests/tests/`.
+
+use glam::DVec3;
+use renderer::rng::SplitMix64;
+use renderer::{Event, FourVector, Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject};
+
+/// A random point in the cube [-r, r]^3.
+pub fn point(rng: &mut SplitMix64, r: f64) -> DVec3 {
+    DVec3::new(rng.range(-r, r), rng.range(-r, r), rng.range(-r, r))
+}
+
+/// A random unit vector.
+pub fn unit(rng: &mut SplitMix64) -> DVec3 {
+    loop {
+        let p = point(rng, 1.0);
+        let l = p.length();
+        if l > 0.1 && l <= 1.0 {
+            return p / l;
+        }
+    }
+}
+
+/// A random non-degenerate triangle mesh of `n` triangles within [-r, r]^3.
+pub fn random_mesh(rng: &mut SplitMix64, n: usize, r: f64) -> Mesh {
+    let mut m = Mesh::default();
+    while m.triangles.len() < n {
+        let (a, b, c) = (point(rng, r), point(rng, r), point(rng, r));
+        if (b - a).cross(c - a).length() > 0.05 * r * r {
+            let k = m.vertices.len() as u32;
+            m.vertices.extend([a, b, c]);
+            m.triangles.push([k, k + 1, k + 2]);
+        }
+    }
+    m
+}
+
+/// A random motion: subluminal (up to 0.95c) unless `superluminal`.
+pub fn random_motion(rng: &mut SplitMix64, superluminal: bool) -> Motion {
+    let speed = if superluminal { rng.range(1.05, 3.0) } else { rng.range(0.0, 0.95) };
+    let v = unit(rng) * speed;
+    let dt = rng.range(5.0, 60.0);
+    Motion::Extrusion { start: Event::new(rng.range(-40.0, -10.0), point(rng, 3.0)), extrusion: FourVector::new(dt, v * dt) }
+}
+
+/// A scene of the given objects under a light far above.
+pub fn scene(objects: Vec<SceneObject>) -> Scene {
+    Scene { objects, light: Light { position: DVec3::new(0.0, 100.0, 0.0), color: DVec3::ONE, ambient: 0.3 }, background: DVec3::ZERO }
+}
+
+pub fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> SceneObject {
+    SceneObject { name: name.into(), kind, mesh, motion, material: Material::matte(DVec3::new(0.8, 0.5, 0.2)) }
+}

@@ -1,0 +1,39 @@
+//! The `vstf` binary as a user runs it.
+
+use std::process::Command;
+
+fn vstf() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_vstf"))
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size() {
+    let out = std::env::temp_dir().join(format!("vstf-cli-{}.png", std::process::id()));
+    let status = vstf()
+        .args(["render", "flange", "--out"])
+        .arg(&out)
+        .args(["--width", "64", "--height", "48", "--model", "classical", "--camera-t", "1171"])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (64, 48));
+    std::fs::remove_file(&out).ok();
+}
+
+#[test]
+fn a_missing_fixture_is_a_clear_error_not_a_panic() {
+    let out = vstf().args(["render", "no-such-scene", "--out", "/tmp/x.png"]).output().unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.starts_with("error: ") && err.contains("no fixture \"no-such-scene\""), "{err}");
+    assert!(!err.contains("panicked"));
+}
+
+#[test]
+fn an_absurd_resolution_is_refused() {
+    let out = vstf().args(["render", "flange", "--out", "/tmp/x.png", "--width", "0"]).output().unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("flange.json: image: resolution 0x480 is out of range"), "{err}");
+}
