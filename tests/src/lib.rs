@@ -36,17 +36,38 @@ pub fn random_mesh(rng: &mut SplitMix64, n: usize, r: f64) -> Mesh {
 
 /// A random motion: subluminal (up to 0.95c) unless `superluminal`.
 pub fn random_motion(rng: &mut SplitMix64, superluminal: bool) -> Motion {
-    let speed = if superluminal { rng.range(1.05, 3.0) } else { rng.range(0.0, 0.95) };
+    let speed = if superluminal {
+        rng.range(1.05, 3.0)
+    } else {
+        rng.range(0.0, 0.95)
+    };
     let v = unit(rng) * speed;
     let dt = rng.range(5.0, 60.0);
-    Motion::Extrusion { start: Event::new(rng.range(-40.0, -10.0), point(rng, 3.0)), extrusion: FourVector::new(dt, v * dt) }
+    Motion::Extrusion {
+        start: Event::new(rng.range(-40.0, -10.0), point(rng, 3.0)),
+        extrusion: FourVector::new(dt, v * dt),
+    }
 }
 
 /// A scene of the given objects under a light far above.
 pub fn scene(objects: Vec<SceneObject>) -> Scene {
-    Scene { objects, light: Light { position: DVec3::new(0.0, 100.0, 0.0), color: DVec3::ONE, ambient: 0.3 }, background: DVec3::ZERO }
+    Scene {
+        objects,
+        light: Light {
+            position: DVec3::new(0.0, 100.0, 0.0),
+            color: DVec3::ONE,
+            ambient: 0.3,
+        },
+        background: DVec3::ZERO,
+    }
 }
 
 pub fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> SceneObject {
-    SceneObject { name: name.into(), kind, mesh, motion, material: Material::matte(DVec3::new(0.8, 0.5, 0.2)) }
+    SceneObject {
+        name: name.into(),
+        kind,
+        mesh,
+        motion,
+        material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
+    }
 }

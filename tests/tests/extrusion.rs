@@ -38,7 +38,11 @@ fn bary(v: &[Event; 4], p: Event) -> [f64; 4] {
 fn three_tetrahedra_tile_the_prism() {
     let mut rng = SplitMix64::new(7);
     for _ in 0..500 {
-        let corners = [point(&mut rng, 2.0), point(&mut rng, 2.0), point(&mut rng, 2.0)];
+        let corners = [
+            point(&mut rng, 2.0),
+            point(&mut rng, 2.0),
+            point(&mut rng, 2.0),
+        ];
         let t0 = rng.range(-5.0, 5.0);
         let bottom = corners.map(|c| Event::new(t0, c));
         let dt = rng.range(0.5, 20.0);
@@ -46,16 +50,26 @@ fn three_tetrahedra_tile_the_prism() {
         let tets = split_prism(bottom, e, corner_order(corners));
         let sum: f64 = tets.iter().map(tetrahedron_volume).sum();
         let expected = prism_volume(bottom[1] - bottom[0], bottom[2] - bottom[0], e);
-        assert!((sum - expected).abs() <= 1e-9 * expected, "tets {sum} vs prism {expected}");
+        assert!(
+            (sum - expected).abs() <= 1e-9 * expected,
+            "tets {sum} vs prism {expected}"
+        );
         // Every interior point of the prism lies in exactly one tetrahedron.
         for _ in 0..20 {
             let (a, b) = (rng.range(0.02, 0.96), rng.range(0.02, 0.96));
-            let (a, b) = if a + b > 0.98 { (0.98 - a, 0.98 - b) } else { (a, b) };
+            let (a, b) = if a + b > 0.98 {
+                (0.98 - a, 0.98 - b)
+            } else {
+                (a, b)
+            };
             let (a, b) = (a.max(0.01), b.max(0.01));
             let lam = rng.range(0.01, 0.99);
             let base = bottom[0] + (bottom[1] - bottom[0]) * a + (bottom[2] - bottom[0]) * b;
             let p = base + e * lam;
-            let inside = tets.iter().filter(|t| bary(t, p).iter().all(|x| *x >= -1e-9)).count();
+            let inside = tets
+                .iter()
+                .filter(|t| bary(t, p).iter().all(|x| *x >= -1e-9))
+                .count();
             assert_eq!(inside, 1, "point {p:?} lies in {inside} tetrahedra");
         }
     }
@@ -108,7 +122,10 @@ fn neighbouring_prisms_cut_shared_faces_alike() {
             for (t, _) in mesh.triangles.iter().enumerate() {
                 let c = mesh.corners(t);
                 for (i, j) in [(0, 1), (1, 2), (2, 0)] {
-                    let (mut p, mut q) = (c[i].to_array().map(f64::to_bits), c[j].to_array().map(f64::to_bits));
+                    let (mut p, mut q) = (
+                        c[i].to_array().map(f64::to_bits),
+                        c[j].to_array().map(f64::to_bits),
+                    );
                     if p > q {
                         std::mem::swap(&mut p, &mut q);
                     }
@@ -123,10 +140,25 @@ fn neighbouring_prisms_cut_shared_faces_alike() {
                 let quad = [p0, q0, p0 + wl.extrusion, q0 + wl.extrusion];
                 let faces: Vec<_> = owners
                     .iter()
-                    .map(|t| faces_in(&tets[3 * t..3 * t + 3].iter().map(|x| x.vertices).collect::<Vec<_>>(), &quad))
+                    .map(|t| {
+                        faces_in(
+                            &tets[3 * t..3 * t + 3]
+                                .iter()
+                                .map(|x| x.vertices)
+                                .collect::<Vec<_>>(),
+                            &quad,
+                        )
+                    })
                     .collect();
-                assert_eq!(faces[0].len(), 2, "each prism cuts the quad into two triangles");
-                assert_eq!(faces[0], faces[1], "prisms sharing an edge cut its face differently");
+                assert_eq!(
+                    faces[0].len(),
+                    2,
+                    "each prism cuts the quad into two triangles"
+                );
+                assert_eq!(
+                    faces[0], faces[1],
+                    "prisms sharing an edge cut its face differently"
+                );
                 shared += 1;
             }
             assert_eq!(shared, 18);

@@ -20,7 +20,12 @@ fn error_of(text: &str) -> String {
 }
 
 fn flange_index(v: &serde_json::Value) -> usize {
-    v["objects"].as_array().unwrap().iter().position(|o| o["name"] == "flange").unwrap()
+    v["objects"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|o| o["name"] == "flange")
+        .unwrap()
 }
 
 #[test]
@@ -36,7 +41,10 @@ fn a_v_obj_at_or_above_light_speed_is_refused_by_name() {
             v["objects"][i]["worldline"]["extrusion"] = serde_json::json!([2000.0, dx, 0.0, 0.0]);
         }));
         assert!(e.starts_with("fixtures/bad.json: objects["), "{e}");
-        assert!(e.contains("worldline") && e.contains("\"flange\"") && e.contains("slower than light"), "{e}");
+        assert!(
+            e.contains("worldline") && e.contains("\"flange\"") && e.contains("slower than light"),
+            "{e}"
+        );
     }
 }
 
@@ -65,7 +73,10 @@ fn a_degenerate_triangle_is_refused() {
     let e = error_of(&flange_with(|v| {
         v["objects"][0]["mesh"] = serde_json::json!({"triangles": {"vertices": [[0,0,0],[1,0,0],[2,0,0]], "indices": [[0,1,2]]}});
     }));
-    assert!(e.contains("objects[0].mesh") && e.contains("degenerate"), "{e}");
+    assert!(
+        e.contains("objects[0].mesh") && e.contains("degenerate"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -74,14 +85,25 @@ fn zero_duration_and_absurd_resolution_and_unknown_fields_are_refused() {
         let i = flange_index(v);
         v["objects"][i]["worldline"]["extrusion"] = serde_json::json!([0.0, 0.0, 0.0, 0.0]);
     }));
-    assert!(e.contains("worldline") && e.contains("zero-duration"), "{e}");
+    assert!(
+        e.contains("worldline") && e.contains("zero-duration"),
+        "{e}"
+    );
     let e = error_of(&flange_with(|v| v["image"]["width"] = 100000.into()));
-    assert!(e.contains(": image: resolution 100000x480 is out of range"), "{e}");
+    assert!(
+        e.contains(": image: resolution 100000x480 is out of range"),
+        "{e}"
+    );
     let e = error_of(&flange_with(|v| v["image"]["height"] = 0.into()));
     assert!(e.contains(": image: resolution"), "{e}");
     let e = error_of(&flange_with(|v| v["camera"]["fov"] = 3.into()));
-    assert!(e.contains("camera.fov: unknown field `fov`, expected one of"), "{e}");
-    let e = error_of(&flange_with(|v| v["objects"][1]["material"]["color"] = "red".into()));
+    assert!(
+        e.contains("camera.fov: unknown field `fov`, expected one of"),
+        "{e}"
+    );
+    let e = error_of(&flange_with(|v| {
+        v["objects"][1]["material"]["color"] = "red".into()
+    }));
     assert!(e.contains("objects[1].material.color: invalid type"), "{e}");
     let e = error_of(&flange_with(|v| v["model"] = "newtonian".into()));
     assert!(e.contains("model: unknown model \"newtonian\""), "{e}");
@@ -108,9 +130,16 @@ fn obj_meshes_load_relative_to_the_fixture_and_report_bad_lines() {
         })
     };
     Fixture::parse(&with_obj("tri.obj"), &dir.join("ok.json")).unwrap();
-    let e = Fixture::parse(&with_obj("bad.obj"), &dir.join("x.json")).unwrap_err().to_string();
-    assert!(e.contains("objects[0].mesh.obj.path") && e.contains("OBJ line 2"), "{e}");
-    let e = Fixture::parse(&with_obj("missing.obj"), &dir.join("x.json")).unwrap_err().to_string();
+    let e = Fixture::parse(&with_obj("bad.obj"), &dir.join("x.json"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("objects[0].mesh.obj.path") && e.contains("OBJ line 2"),
+        "{e}"
+    );
+    let e = Fixture::parse(&with_obj("missing.obj"), &dir.join("x.json"))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("cannot read"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -15,7 +15,12 @@ use workspace_tests::{object, point, random_mesh, random_motion, scene, unit};
 /// line crosses the triangle's plane ahead of the ray's origin; the margin is
 /// the smallest distance to the triangle's edges (in barycentric units) or to
 /// the ends of the lifetime (as a fraction of it), negative outside.
-fn plane_crossing(ray: &Ray, tri: [DVec3; 3], start: Event, extrusion: renderer::FourVector) -> Option<(f64, f64)> {
+fn plane_crossing(
+    ray: &Ray,
+    tri: [DVec3; 3],
+    start: Event,
+    extrusion: renderer::FourVector,
+) -> Option<(f64, f64)> {
     let v = extrusion.velocity();
     let o = ray.origin.x - start.x - v * (ray.origin.t - start.t);
     let d = ray.direction.x - v * ray.direction.t;
@@ -37,27 +42,51 @@ fn plane_crossing(ray: &Ray, tri: [DVec3; 3], start: Event, extrusion: renderer:
 }
 
 /// The closed-form hit: a plane crossing inside the triangle and lifetime.
-fn comoving_hit(ray: &Ray, tri: [DVec3; 3], start: Event, extrusion: renderer::FourVector) -> Option<f64> {
-    plane_crossing(ray, tri, start, extrusion).filter(|(_, m)| *m >= 0.0).map(|(s, _)| s)
+fn comoving_hit(
+    ray: &Ray,
+    tri: [DVec3; 3],
+    start: Event,
+    extrusion: renderer::FourVector,
+) -> Option<f64> {
+    plane_crossing(ray, tri, start, extrusion)
+        .filter(|(_, m)| *m >= 0.0)
+        .map(|(s, _)| s)
 }
 
 fn random_ray(rng: &mut SplitMix64, light: LightSpeed) -> Ray {
-    Ray::backwards(Event::new(rng.range(-30.0, 40.0), point(rng, 8.0)), unit(rng), light)
+    Ray::backwards(
+        Event::new(rng.range(-30.0, 40.0), point(rng, 8.0)),
+        unit(rng),
+        light,
+    )
 }
 
 /// A ray from a camera event on the future light cone of a random event of
 /// the object, aimed at it: such rays hit often.
-fn aimed_ray(rng: &mut SplitMix64, mesh: &renderer::Mesh, start: Event, ext: renderer::FourVector) -> Ray {
+fn aimed_ray(
+    rng: &mut SplitMix64,
+    mesh: &renderer::Mesh,
+    start: Event,
+    ext: renderer::FourVector,
+) -> Ray {
     let t = rng.next_u64() as usize % mesh.triangles.len();
     let [a, b, c] = mesh.corners(t);
     let (u, w) = (rng.next_f64(), rng.next_f64());
-    let (u, w) = if u + w > 1.0 { (1.0 - u, 1.0 - w) } else { (u, w) };
+    let (u, w) = if u + w > 1.0 {
+        (1.0 - u, 1.0 - w)
+    } else {
+        (u, w)
+    };
     let lam = rng.next_f64();
     let e = start + ext * lam;
     let p = e.x + a + (b - a) * u + (c - a) * w;
     let cam = p + unit(rng) * rng.range(1.0, 15.0);
     let dist = (cam - p).length();
-    Ray::backwards(Event::new(e.t + dist, cam), (p - cam) / dist, LightSpeed::Finite)
+    Ray::backwards(
+        Event::new(e.t + dist, cam),
+        (p - cam) / dist,
+        LightSpeed::Finite,
+    )
 }
 
 #[test]
@@ -82,24 +111,49 @@ fn hits_lie_on_the_light_cone_inside_their_tetrahedron() {
             Motion::Extrusion { start, extrusion } => (start, extrusion),
             _ => unreachable!(),
         };
-        let db = Database::build(&scene(vec![object("o", ObjectKind::HObj, mesh.clone(), motion)]), false).unwrap();
+        let db = Database::build(
+            &scene(vec![object("o", ObjectKind::HObj, mesh.clone(), motion)]),
+            false,
+        )
+        .unwrap();
         for _ in 0..200 {
             let ray = aimed_ray(&mut rng, &mesh, start, ext);
-            let Some(hit) = db.closest_hit(&ray, (0.0, f64::INFINITY)) else { continue };
+            let Some(hit) = db.closest_hit(&ray, (0.0, f64::INFINITY)) else {
+                continue;
+            };
             hits += 1;
-            assert!(hit.bary.iter().all(|b| (0.0..=1.0).contains(b)), "{:?}", hit.bary);
+            assert!(
+                hit.bary.iter().all(|b| (0.0..=1.0).contains(b)),
+                "{:?}",
+                hit.bary
+            );
             assert!((hit.bary.iter().sum::<f64>() - 1.0).abs() < 1e-9);
             // Rebuild the event from the barycentric coordinates alone.
             let v = db.tetrahedra()[hit.tet as usize].vertices;
-            let from_bary = (0..4).fold(glam::DVec4::ZERO, |acc, i| acc + v[i].to_xyzt() * hit.bary[i]);
-            let scale = 1.0 + v.iter().map(|e| e.to_xyzt().abs().max_element()).fold(0.0, f64::max);
-            assert!((from_bary - hit.event.to_xyzt()).abs().max_element() < 1e-9 * scale, "event off its tetrahedron");
+            let from_bary = (0..4).fold(glam::DVec4::ZERO, |acc, i| {
+                acc + v[i].to_xyzt() * hit.bary[i]
+            });
+            let scale = 1.0
+                + v.iter()
+                    .map(|e| e.to_xyzt().abs().max_element())
+                    .fold(0.0, f64::max);
+            assert!(
+                (from_bary - hit.event.to_xyzt()).abs().max_element() < 1e-9 * scale,
+                "event off its tetrahedron"
+            );
             let d = Event::from_xyzt(from_bary) - ray.origin;
-            assert!(d.interval().abs() < 1e-9 * (d.t * d.t).max(1.0), "not null: {}", d.interval());
+            assert!(
+                d.interval().abs() < 1e-9 * (d.t * d.t).max(1.0),
+                "not null: {}",
+                d.interval()
+            );
             assert!(d.t <= 1e-12, "the hit is in the camera's future");
         }
     }
-    assert!(hits > 20_000, "only {hits} hits: the test rays miss too often to test anything");
+    assert!(
+        hits > 20_000,
+        "only {hits} hits: the test rays miss too often to test anything"
+    );
 }
 
 #[test]
@@ -113,10 +167,18 @@ fn tetrahedron_solve_agrees_with_comoving_closed_form() {
             Motion::Extrusion { start, extrusion } => (start, extrusion),
             _ => unreachable!(),
         };
-        let mut db = Database::build(&scene(vec![object("o", ObjectKind::HObj, mesh.clone(), motion)]), false).unwrap();
+        let mut db = Database::build(
+            &scene(vec![object("o", ObjectKind::HObj, mesh.clone(), motion)]),
+            false,
+        )
+        .unwrap();
         db.set_traversal(Traversal::BruteForce);
         for i in 0..400 {
-            let ray = if i % 2 == 0 { aimed_ray(&mut rng, &mesh, start, ext) } else { random_ray(&mut rng, LightSpeed::Finite) };
+            let ray = if i % 2 == 0 {
+                aimed_ray(&mut rng, &mesh, start, ext)
+            } else {
+                random_ray(&mut rng, LightSpeed::Finite)
+            };
             rays += 1;
             let closed = (0..mesh.triangles.len())
                 .filter_map(|t| comoving_hit(&ray, mesh.corners(t), start, ext))
@@ -127,7 +189,11 @@ fn tetrahedron_solve_agrees_with_comoving_closed_form() {
                     hits += 1;
                     let e = ray.at(s);
                     let scale = 1.0 + e.t.abs() + e.x.abs().max_element();
-                    assert!((e.to_xyzt() - h.event.to_xyzt()).abs().max_element() < 1e-9 * scale, "events differ: {e:?} vs {:?}", h.event);
+                    assert!(
+                        (e.to_xyzt() - h.event.to_xyzt()).abs().max_element() < 1e-9 * scale,
+                        "events differ: {e:?} vs {:?}",
+                        h.event
+                    );
                 }
                 (None, None) => {}
                 (c, s) => {
@@ -135,7 +201,10 @@ fn tetrahedron_solve_agrees_with_comoving_closed_form() {
                     let near_edge = (0..mesh.triangles.len())
                         .filter_map(|t| plane_crossing(&ray, mesh.corners(t), start, ext))
                         .any(|(_, m)| m.abs() < 1e-9);
-                    assert!(near_edge, "hit/miss disagree away from any edge: closed {c:?}, solved {s:?}");
+                    assert!(
+                        near_edge,
+                        "hit/miss disagree away from any edge: closed {c:?}, solved {s:?}"
+                    );
                     boundary += 1;
                 }
             }

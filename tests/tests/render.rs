@@ -5,17 +5,27 @@
 use glam::DVec3;
 use renderer::lightcone::{Attitude, LightSpeed, Ray};
 use renderer::rng::SplitMix64;
-use renderer::{Camera, Database, Event, Image, Mesh, Model, Motion, ObjectKind, RenderSettings, Traversal};
+use renderer::{
+    Camera, Database, Event, Image, Mesh, Model, Motion, ObjectKind, RenderSettings, Traversal,
+};
 use vstf::fixture::{Fixture, Overrides};
 use vstf::oracle::{retarded, PointWorldline};
 use workspace_tests::{object, scene, unit};
 
 fn small(model: Option<Model>) -> Overrides {
-    Overrides { model, width: Some(96), height: Some(72), ..Overrides::default() }
+    Overrides {
+        model,
+        width: Some(96),
+        height: Some(72),
+        ..Overrides::default()
+    }
 }
 
 fn bits(img: &Image) -> Vec<[u64; 3]> {
-    img.pixels.iter().map(|p| p.to_array().map(f64::to_bits)).collect()
+    img.pixels
+        .iter()
+        .map(|p| p.to_array().map(f64::to_bits))
+        .collect()
 }
 
 #[test]
@@ -29,10 +39,22 @@ fn a_static_scene_renders_the_same_in_all_three_models() {
         })
         .collect();
     let rgb: Vec<_> = images.iter().map(Image::to_rgb8).collect();
-    assert_eq!(rgb[0], rgb[1], "infinite and classical differ on a static scene");
-    assert_eq!(rgb[1], rgb[2], "classical and relativistic differ on a static scene");
+    assert_eq!(
+        rgb[0], rgb[1],
+        "infinite and classical differ on a static scene"
+    );
+    assert_eq!(
+        rgb[1], rgb[2],
+        "classical and relativistic differ on a static scene"
+    );
     // And the scene is not blank.
-    assert!(rgb[0].pixels().filter(|p| p.0 != rgb[0].get_pixel(0, 0).0).count() > 1000);
+    assert!(
+        rgb[0]
+            .pixels()
+            .filter(|p| p.0 != rgb[0].get_pixel(0, 0).0)
+            .count()
+            > 1000
+    );
 }
 
 #[test]
@@ -42,7 +64,9 @@ fn a_moving_scene_differs_between_models() {
     let f = Fixture::load("flange").unwrap();
     let render = |m| {
         let view = vstf::run::view(&f, &small(Some(m))).unwrap();
-        vstf::run::render(&f, &view, Traversal::Bvh).unwrap().to_rgb8()
+        vstf::run::render(&f, &view, Traversal::Bvh)
+            .unwrap()
+            .to_rgb8()
     };
     assert_ne!(render(Model::INFINITE), render(Model::CLASSICAL));
 }
@@ -55,7 +79,11 @@ fn images_do_not_depend_on_thread_count() {
     view.settings.shutter = 30.0;
     let db = vstf::run::database(&f, true, Traversal::Bvh).unwrap();
     let with = |threads| {
-        rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| vstf::run::render_with(&db, &f, &view))
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| vstf::run::render_with(&db, &f, &view))
     };
     assert_eq!(bits(&with(1)), bits(&with(2)));
     assert_eq!(bits(&with(2)), bits(&with(3)));
@@ -66,10 +94,23 @@ fn bvh_and_brute_force_give_identical_images() {
     for name in vstf::fixture::all_names() {
         let f = Fixture::load(&name).unwrap();
         for m in [Model::INFINITE, Model::CLASSICAL, Model::RELATIVISTIC] {
-            let view = vstf::run::view(&f, &Overrides { model: Some(m), width: Some(48), height: Some(36), ..Default::default() }).unwrap();
+            let view = vstf::run::view(
+                &f,
+                &Overrides {
+                    model: Some(m),
+                    width: Some(48),
+                    height: Some(36),
+                    ..Default::default()
+                },
+            )
+            .unwrap();
             let a = vstf::run::render(&f, &view, Traversal::Bvh).unwrap();
             let b = vstf::run::render(&f, &view, Traversal::BruteForce).unwrap();
-            assert_eq!(bits(&a), bits(&b), "{name} ({m}): BVH and brute force differ");
+            assert_eq!(
+                bits(&a),
+                bits(&b),
+                "{name} ({m}): BVH and brute force differ"
+            );
         }
     }
 }
@@ -87,21 +128,58 @@ fn a_moving_point_is_seen_at_its_retarded_position() {
     let mut rng = SplitMix64::new(23);
     for _ in 0..200 {
         let v = unit(&mut rng) * rng.range(0.0, 0.95);
-        let start = Event::new(-50.0, DVec3::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)));
-        let quad = Mesh::quad(DVec3::new(-1.0, -1.0, 0.3), DVec3::new(2.0, 0.2, 0.0), DVec3::new(0.1, 2.0, 0.4));
-        let motion = Motion::Velocity { start, velocity: v, proper_lifetime: 100.0 };
-        let db = Database::build(&scene(vec![object("q", ObjectKind::VObj, quad.clone(), motion)]), true).unwrap();
+        let start = Event::new(
+            -50.0,
+            DVec3::new(
+                rng.range(-3.0, 3.0),
+                rng.range(-3.0, 3.0),
+                rng.range(-3.0, 3.0),
+            ),
+        );
+        let quad = Mesh::quad(
+            DVec3::new(-1.0, -1.0, 0.3),
+            DVec3::new(2.0, 0.2, 0.0),
+            DVec3::new(0.1, 2.0, 0.4),
+        );
+        let motion = Motion::Velocity {
+            start,
+            velocity: v,
+            proper_lifetime: 100.0,
+        };
+        let db = Database::build(
+            &scene(vec![object("q", ObjectKind::VObj, quad.clone(), motion)]),
+            true,
+        )
+        .unwrap();
         // A point of the quad, by its rest-frame offset.
         let (a, b) = (rng.range(0.1, 0.9), rng.range(0.1, 0.9));
-        let r = quad.vertices[0] + (quad.vertices[1] - quad.vertices[0]) * a + (quad.vertices[3] - quad.vertices[0]) * b;
-        let point = PointWorldline { t0: start.t, x0: start.x + contracted(r, v), v };
+        let r = quad.vertices[0]
+            + (quad.vertices[1] - quad.vertices[0]) * a
+            + (quad.vertices[3] - quad.vertices[0]) * b;
+        let point = PointWorldline {
+            t0: start.t,
+            x0: start.x + contracted(r, v),
+            v,
+        };
         let camera = DVec3::new(rng.range(-5.0, 5.0), rng.range(-5.0, 5.0), 12.0);
         let tc = 0.0;
         let seen = retarded(&point, tc, camera).unwrap();
         let ray = Ray::backwards(Event::new(tc, camera), seen.direction, LightSpeed::Finite);
-        let hit = db.closest_hit(&ray, (0.0, f64::INFINITY)).expect("the ray towards the retarded position misses");
-        assert!((hit.event.t - seen.t).abs() < 1e-9 * seen.t.abs().max(1.0), "t {} vs {}", hit.event.t, seen.t);
-        assert!((hit.event.x - seen.x).length() < 1e-9 * seen.x.length().max(1.0), "x {} vs {}", hit.event.x, seen.x);
+        let hit = db
+            .closest_hit(&ray, (0.0, f64::INFINITY))
+            .expect("the ray towards the retarded position misses");
+        assert!(
+            (hit.event.t - seen.t).abs() < 1e-9 * seen.t.abs().max(1.0),
+            "t {} vs {}",
+            hit.event.t,
+            seen.t
+        );
+        assert!(
+            (hit.event.x - seen.x).length() < 1e-9 * seen.x.length().max(1.0),
+            "x {} vs {}",
+            hit.event.x,
+            seen.x
+        );
     }
 }
 
@@ -110,14 +188,44 @@ fn a_small_moving_marker_is_drawn_where_its_retarded_position_projects() {
     let v = DVec3::new(0.8, 0.0, 0.3);
     let start = Event::new(-40.0, DVec3::new(-20.0, 0.5, -10.0));
     let marker = Mesh::cuboid(DVec3::splat(-0.04), DVec3::splat(0.04));
-    let motion = Motion::Velocity { start, velocity: v, proper_lifetime: 60.0 };
+    let motion = Motion::Velocity {
+        start,
+        velocity: v,
+        proper_lifetime: 60.0,
+    };
     let s = scene(vec![object("marker", ObjectKind::VObj, marker, motion)]);
     let db = Database::build(&s, true).unwrap();
     let cam_x = DVec3::new(0.0, 2.0, 12.0);
     let tc = 5.0;
-    let centre = retarded(&PointWorldline { t0: start.t, x0: start.x, v }, tc, cam_x).unwrap();
-    let camera = Camera::new(Event::new(tc, cam_x), Attitude::LookAt { look_at: centre.x, up: DVec3::Y }, 6.0, 121, 121).unwrap();
-    let img = renderer::render(&db, &s, &camera, tc, Model::RELATIVISTIC, &RenderSettings::default());
+    let centre = retarded(
+        &PointWorldline {
+            t0: start.t,
+            x0: start.x,
+            v,
+        },
+        tc,
+        cam_x,
+    )
+    .unwrap();
+    let camera = Camera::new(
+        Event::new(tc, cam_x),
+        Attitude::LookAt {
+            look_at: centre.x,
+            up: DVec3::Y,
+        },
+        6.0,
+        121,
+        121,
+    )
+    .unwrap();
+    let img = renderer::render(
+        &db,
+        &s,
+        &camera,
+        tc,
+        Model::RELATIVISTIC,
+        &RenderSettings::default(),
+    );
     let (mut n, mut sx, mut sy) = (0.0, 0.0, 0.0);
     for (i, p) in img.pixels.iter().enumerate() {
         if p.length() > 0.0 {
@@ -130,5 +238,8 @@ fn a_small_moving_marker_is_drawn_where_its_retarded_position_projects() {
     let (px, py) = camera.pixel_of(centre.direction).unwrap();
     let (cx, cy) = (sx / n, sy / n);
     // The marker is ~8 px across; its silhouette's centroid sits within a pixel of its centre's image.
-    assert!((cx - px).abs() < 1.0 && (cy - py).abs() < 1.0, "centroid ({cx}, {cy}) vs retarded ({px}, {py})");
+    assert!(
+        (cx - px).abs() < 1.0 && (cy - py).abs() < 1.0,
+        "centroid ({cx}, {cy}) vs retarded ({px}, {py})"
+    );
 }

@@ -12,7 +12,16 @@ fn render_writes_a_png_of_the_requested_size() {
     let status = vstf()
         .args(["render", "flange", "--out"])
         .arg(&out)
-        .args(["--width", "64", "--height", "48", "--model", "classical", "--camera-t", "1171"])
+        .args([
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--model",
+            "classical",
+            "--camera-t",
+            "1171",
+        ])
         .status()
         .unwrap();
     assert!(status.success());
@@ -23,17 +32,29 @@ fn render_writes_a_png_of_the_requested_size() {
 
 #[test]
 fn a_missing_fixture_is_a_clear_error_not_a_panic() {
-    let out = vstf().args(["render", "no-such-scene", "--out", "/tmp/x.png"]).output().unwrap();
+    let out = vstf()
+        .args(["render", "no-such-scene", "--out", "/tmp/x.png"])
+        .output()
+        .unwrap();
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.starts_with("error: ") && err.contains("no fixture \"no-such-scene\""), "{err}");
+    assert!(
+        err.starts_with("error: ") && err.contains("no fixture \"no-such-scene\""),
+        "{err}"
+    );
     assert!(!err.contains("panicked"));
 }
 
 #[test]
 fn an_absurd_resolution_is_refused() {
-    let out = vstf().args(["render", "flange", "--out", "/tmp/x.png", "--width", "0"]).output().unwrap();
+    let out = vstf()
+        .args(["render", "flange", "--out", "/tmp/x.png", "--width", "0"])
+        .output()
+        .unwrap();
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("flange.json: image: resolution 0x480 is out of range"), "{err}");
+    assert!(
+        err.contains("flange.json: image: resolution 0x480 is out of range"),
+        "{err}"
+    );
 }
