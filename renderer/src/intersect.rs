@@ -95,7 +95,7 @@ impl PreparedTet {
             drop_axis(e3, drop),
         );
         let det = m.determinant();
-        if !(det.abs() > 0.0) || !det.is_finite() {
+        if det == 0.0 || !det.is_finite() {
             return None;
         }
         Some(PreparedTet {

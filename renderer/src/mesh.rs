@@ -85,7 +85,7 @@ impl Mesh {
                 .length_squared()
                 .max((c - b).length_squared())
                 .max((a - c).length_squared());
-            if !(area > 1e-12 * longest) {
+            if area.is_nan() || area <= 1e-12 * longest {
                 return Err(MeshError::DegenerateTriangle { triangle, area });
             }
         }
