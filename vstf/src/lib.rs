@@ -3,7 +3,10 @@
 //!
 //! fixture ([`fixture`]) -> scene -> 4D database -> image ([`output`]).
 
+pub mod check;
 pub mod fixture;
+pub mod measure;
 pub mod oracle;
 pub mod output;
+pub mod report;
 pub mod run;

@@ -55,6 +55,21 @@ enum Command {
         #[arg(long)]
         brute_force: bool,
     },
+    /// Render every fixture (or the named ones), measure the images and check
+    /// them against first-principles physics; exits non-zero if a row fails.
+    Check {
+        /// Fixture names (default: all checked fixtures).
+        fixtures: Vec<String>,
+        /// Also write the rows as a JSON array to this file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Also write a static HTML report (index.html and images) into this folder.
+        #[arg(long)]
+        report: Option<PathBuf>,
+        /// Smaller probes and fewer samples (what `cargo test` uses).
+        #[arg(long)]
+        quick: bool,
+    },
     /// List the fixtures in fixtures/.
     List,
 }
@@ -129,6 +144,39 @@ fn run(cli: Cli) -> Result<(), String> {
                 started.elapsed().as_secs_f64(),
                 out.display()
             );
+            Ok(())
+        }
+        Command::Check {
+            fixtures,
+            json,
+            report,
+            quick,
+        } => {
+            let effort = if quick {
+                vstf::check::Effort::QUICK
+            } else {
+                vstf::check::Effort::FULL
+            };
+            let started = Instant::now();
+            let reports = vstf::check::run(&fixtures, &effort)?;
+            let rows: Vec<vstf::check::Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
+            print!("{}", vstf::report::table(&rows));
+            eprintln!(
+                "checked {} fixtures in {:.1} s",
+                reports.len(),
+                started.elapsed().as_secs_f64()
+            );
+            if let Some(path) = json {
+                vstf::output::write_atomic(&path, vstf::report::json(&rows).as_bytes())
+                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            }
+            if let Some(dir) = report {
+                vstf::report::html(&dir, &reports)?;
+                eprintln!("report: {}", dir.join("index.html").display());
+            }
+            if rows.iter().any(|r| !r.pass) {
+                return Err("some checks failed".into());
+            }
             Ok(())
         }
         Command::List => {

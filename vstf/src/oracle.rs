@@ -109,3 +109,39 @@ mod tests {
         assert!(r.t < 40.0);
     }
 }
+
+/// Length contraction of a rest-frame offset `r` of a body moving with
+/// lab velocity `v`: its lab-simultaneous offset, the component along `v`
+/// divided by gamma (written out here, independently of the renderer's Boost).
+pub fn contract(r: DVec3, v: DVec3) -> DVec3 {
+    let speed = v.length();
+    if speed == 0.0 {
+        return r;
+    }
+    let n = v / speed;
+    let along = r.dot(n);
+    r + n * (along / gamma(speed) - along)
+}
+
+/// The worldline of a body point with rest-frame offset `r` from a reference
+/// point that is at `x0` at lab time `t0` and moves with `v`; contracted
+/// when `lorentz` (a V_obj with the Lorentz transform on).
+pub fn body_point(t0: f64, x0: DVec3, v: DVec3, r: DVec3, lorentz: bool) -> PointWorldline {
+    let offset = if lorentz { contract(r, v) } else { r };
+    PointWorldline {
+        t0,
+        x0: x0 + offset,
+        v,
+    }
+}
+
+/// Where a point would be seen with infinite light speed: its position at
+/// the camera's time.
+pub fn instantaneous(p: &PointWorldline, tc: f64, camera: DVec3) -> Retarded {
+    let x = p.at(tc);
+    Retarded {
+        t: tc,
+        x,
+        direction: (x - camera).normalize(),
+    }
+}

@@ -1,0 +1,370 @@
+//! The VSTF checks: each fixture is rendered, measured from its images, and
+//! compared with first-principles expectations ([`crate::oracle`]).
+//!
+//! Measurements are made on *probe* renders: the fixture's scene from the
+//! fixture's camera event, with only the measured objects kept (so that edges
+//! stand against the flat background) and the view turned and narrowed onto
+//! the measured feature (so that a pixel is small). A probe changes neither
+//! the camera event nor any worldline, so it sees exactly the events the full
+//! view sees; the full view is rendered for the report.
+
+use crate::fixture::{Fixture, Overrides, View};
+use crate::measure::{self, PolyFit, Scan};
+use glam::DVec3;
+use image::RgbImage;
+use renderer::{Attitude, Camera, Database, Event, Model, Traversal};
+use serde::Serialize;
+
+/// One checked quantity.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Row {
+    pub fixture: String,
+    pub quantity: String,
+    pub measured: f64,
+    pub expected: f64,
+    /// The paper's printed figure, where it gives one.
+    pub paper: Option<f64>,
+    pub tolerance: f64,
+    pub unit: String,
+    pub pass: bool,
+}
+
+impl Row {
+    pub fn new(
+        fixture: &str,
+        quantity: &str,
+        measured: f64,
+        expected: f64,
+        paper: Option<f64>,
+        tolerance: f64,
+        unit: &str,
+    ) -> Row {
+        let pass = measured.is_finite() && (measured - expected).abs() <= tolerance;
+        Row {
+            fixture: fixture.into(),
+            quantity: quantity.into(),
+            measured,
+            expected,
+            paper,
+            tolerance,
+            unit: unit.into(),
+            pass,
+        }
+    }
+
+    /// Whether the paper's figure lies outside the tolerance around the
+    /// first-principles value (explained in docs/physics.md).
+    pub fn paper_disagrees(&self) -> bool {
+        self.paper
+            .is_some_and(|p| (p - self.expected).abs() > self.tolerance)
+    }
+}
+
+/// A rendered view of a fixture for the report, with the expected points
+/// (from the oracle) to mark on a copy of it.
+pub struct ViewReport {
+    pub name: String,
+    pub image: RgbImage,
+    pub markers: Vec<(f64, f64)>,
+}
+
+/// All results for one fixture.
+pub struct FixtureReport {
+    pub fixture: String,
+    pub description: String,
+    pub views: Vec<ViewReport>,
+    pub rows: Vec<Row>,
+}
+
+/// How hard to look: probe size and samples per pixel. The default is the
+/// main job's; tests use a smaller one.
+#[derive(Clone, Copy, Debug)]
+pub struct Effort {
+    /// Probe image side, pixels.
+    pub probe: u32,
+    /// Samples per probe pixel (a square number: n x n strata).
+    pub spp: u32,
+    /// Width of the full views in the report (height by the fixture's aspect).
+    pub view_width: u32,
+}
+
+impl Effort {
+    pub const FULL: Effort = Effort {
+        probe: 400,
+        spp: 16,
+        view_width: 480,
+    };
+    pub const QUICK: Effort = Effort {
+        probe: 200,
+        spp: 9,
+        view_width: 160,
+    };
+
+    /// Strata per side.
+    pub fn strata(&self) -> f64 {
+        f64::from(self.spp).sqrt().floor()
+    }
+}
+
+/// A fixture with a model and camera time chosen.
+pub struct Setup<'a> {
+    pub fixture: &'a Fixture,
+    pub model: Model,
+    pub camera_t: f64,
+}
+
+impl Setup<'_> {
+    /// The camera position.
+    pub fn camera_x(&self) -> DVec3 {
+        self.fixture.spec.camera.position
+    }
+
+    fn view(&self, width: u32) -> Result<View, String> {
+        let im = &self.fixture.spec.image;
+        let height =
+            ((f64::from(width) * f64::from(im.height) / f64::from(im.width)).round() as u32).max(1);
+        let o = Overrides {
+            model: Some(self.model),
+            camera_t: Some(self.camera_t),
+            width: Some(width),
+            height: Some(height),
+            spp: Some(1),
+        };
+        crate::run::view(self.fixture, &o)
+    }
+
+    /// The full view at the report's size, with `markers` at the pixels of
+    /// the given lab directions.
+    pub fn full_view(
+        &self,
+        name: &str,
+        effort: &Effort,
+        directions: &[DVec3],
+    ) -> Result<ViewReport, String> {
+        let view = self.view(effort.view_width)?;
+        let image = crate::run::render(self.fixture, &view, Traversal::Bvh)?.to_rgb8();
+        let markers = directions
+            .iter()
+            .filter_map(|d| view.camera.pixel_of(*d))
+            .collect();
+        Ok(ViewReport {
+            name: name.into(),
+            image,
+            markers,
+        })
+    }
+
+    /// Renders only the objects named in `keep`, looking towards
+    /// `look_at` with vertical field of view `vfov_deg`, on a square image.
+    pub fn probe(
+        &self,
+        keep: &[&str],
+        look_at: DVec3,
+        vfov_deg: f64,
+        size: u32,
+        spp: u32,
+    ) -> Result<(RgbImage, Camera), String> {
+        let mut scene = self.fixture.scene.clone();
+        scene.objects.retain(|o| keep.contains(&o.name.as_str()));
+        if scene.objects.len() != keep.len() {
+            return Err(format!(
+                "{}: probe needs objects {keep:?}",
+                self.fixture.file.display()
+            ));
+        }
+        let db = Database::build(&scene, self.model.lorentz)
+            .map_err(|e| format!("{}: {e}", self.fixture.file.display()))?;
+        let camera = Camera::new(
+            Event::new(self.camera_t, self.camera_x()),
+            Attitude::LookAt {
+                look_at,
+                up: DVec3::Y,
+            },
+            vfov_deg,
+            size,
+            size,
+        )
+        .ok_or("degenerate probe camera")?;
+        let settings = renderer::RenderSettings {
+            spp,
+            shutter: 0.0,
+            seed: 1,
+            max_depth: 0,
+        };
+        let img = renderer::render(&db, &scene, &camera, self.camera_t, self.model, &settings);
+        Ok((img.to_rgb8(), camera))
+    }
+
+    /// Aims a probe at the kept objects: a coarse wide render finds their
+    /// bounding box in the image; returns the look-at point (one l.unit
+    /// along the central line of sight) and a field of view covering the box
+    /// with `margin` (fraction) to spare.
+    pub fn aim(&self, keep: &[&str], margin: f64) -> Result<(DVec3, f64), String> {
+        let wide = self.fixture.spec.camera.vfov_deg.max(30.0);
+        let look = self
+            .fixture
+            .spec
+            .camera
+            .look_at
+            .unwrap_or(self.camera_x() + DVec3::NEG_Z);
+        let (img, cam) = self.probe(keep, look, wide, 240, 1)?;
+        let bg = measure::color(&img, 0, 0);
+        let (mut x0, mut y0, mut x1, mut y1) = (u32::MAX, u32::MAX, 0, 0);
+        for (x, y, _) in img.enumerate_pixels() {
+            if !is_background(measure::color(&img, x, y), bg) {
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            }
+        }
+        if x0 > x1 {
+            return Err(format!("{}: {keep:?} not in view", self.fixture.name));
+        }
+        let (cx, cy) = (
+            (f64::from(x0) + f64::from(x1) + 1.0) / 2.0,
+            (f64::from(y0) + f64::from(y1) + 1.0) / 2.0,
+        );
+        let centre = cam.direction(cx, cy);
+        let corners = [(x0, y0), (x1 + 1, y0), (x0, y1 + 1), (x1 + 1, y1 + 1)];
+        let half = corners
+            .iter()
+            .map(|&(x, y)| {
+                cam.direction(f64::from(x), f64::from(y))
+                    .angle_between(centre)
+            })
+            .fold(0.0, f64::max);
+        Ok((
+            self.camera_x() + centre,
+            (2.0 * half.to_degrees() * (1.0 + margin)).min(170.0),
+        ))
+    }
+}
+
+/// Whether a colour is the (flat) background of a probe.
+pub fn is_background(c: DVec3, bg: DVec3) -> bool {
+    (c - bg).abs().max_element() < 12.0 / 255.0
+}
+
+/// An edge traced down the image: for every row, the sub-pixel boundary
+/// found by `find`, mapped onto `plane`, as (height coordinate, position
+/// coordinate) pairs selected by `coords`, kept where the height lies in `range`.
+pub struct EdgeTrace {
+    pub points: Vec<(f64, f64)>,
+    /// Mean footprint of a pixel across the edge on the plane, l.units.
+    pub footprint: f64,
+}
+
+pub fn trace_rows(
+    img: &RgbImage,
+    camera: &Camera,
+    plane: measure::Plane,
+    find: impl Fn(Scan) -> Option<f64>,
+    coords: impl Fn(DVec3) -> (f64, f64),
+    range: (f64, f64),
+) -> EdgeTrace {
+    let mut points = Vec::new();
+    let mut fp = Vec::new();
+    for y in 0..img.height() {
+        let scan = Scan {
+            horizontal: true,
+            at: y,
+        };
+        let Some(u) = find(scan) else { continue };
+        let (px, py) = scan.point(u);
+        let Some(p) = measure::on_plane(camera, px, py, plane) else {
+            continue;
+        };
+        let (h, x) = coords(p);
+        if h >= range.0 && h <= range.1 {
+            points.push((h, x));
+            if let Some(f) = measure::footprint(camera, px, py, true, plane) {
+                fp.push(f);
+            }
+        }
+    }
+    let footprint = if fp.is_empty() {
+        f64::NAN
+    } else {
+        fp.iter().sum::<f64>() / fp.len() as f64
+    };
+    EdgeTrace { points, footprint }
+}
+
+/// A value read off a fitted edge, with its 3-sigma uncertainty: the fit's
+/// prediction error, with the residual scatter floored at the area method's
+/// resolution (1/n pixel for n x n strata, as a uniform error: /sqrt(12)).
+pub struct Reading {
+    pub value: f64,
+    pub tolerance: f64,
+}
+
+pub fn read_fit(
+    trace: &EdgeTrace,
+    degree: usize,
+    at: f64,
+    effort: &Effort,
+) -> Result<(PolyFit, Reading), String> {
+    let fit = PolyFit::fit_robust(&trace.points, degree)
+        .ok_or_else(|| format!("too few edge points ({})", trace.points.len()))?;
+    let floor = trace.footprint / effort.strata() / 12f64.sqrt();
+    let scale = fit.sigma.max(floor) / fit.sigma.max(1e-300);
+    let tolerance = 3.0 * fit.stderr(at) * scale;
+    Ok((
+        fit.clone(),
+        Reading {
+            value: fit.eval(at),
+            tolerance,
+        },
+    ))
+}
+
+pub mod retarded;
+
+/// The start event, lab velocity and whether it is Lorentz-contracted under
+/// `model`, of the object named `name`, read from the fixture.
+pub fn motion_of(
+    fixture: &Fixture,
+    name: &str,
+    model: Model,
+) -> Result<(Event, DVec3, bool), String> {
+    let obj = fixture
+        .scene
+        .objects
+        .iter()
+        .find(|o| o.name == name)
+        .ok_or_else(|| format!("{}: no object {name:?}", fixture.file.display()))?;
+    let lorentz = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
+    match obj.motion {
+        renderer::Motion::Extrusion { start, extrusion } => {
+            Ok((start, extrusion.velocity(), lorentz))
+        }
+        renderer::Motion::Velocity {
+            start, velocity, ..
+        } => Ok((start, velocity, lorentz)),
+    }
+}
+
+/// The background colour of probes, as stored in 8 bits.
+pub fn background(fixture: &Fixture) -> DVec3 {
+    (fixture.scene.background.clamp(DVec3::ZERO, DVec3::ONE) * 255.0).round() / 255.0
+}
+
+/// Every check, by fixture name, in report order.
+pub const CHECKS: &[(&str, fn(&Effort) -> Result<FixtureReport, String>)] =
+    &[("flange", retarded::run)];
+
+/// Runs the checks of the named fixtures (all when empty).
+pub fn run(names: &[String], effort: &Effort) -> Result<Vec<FixtureReport>, String> {
+    for n in names {
+        if !CHECKS.iter().any(|(c, _)| c == n) {
+            let known: Vec<&str> = CHECKS.iter().map(|(c, _)| *c).collect();
+            return Err(format!(
+                "no check for fixture {n:?}; checked fixtures: {}",
+                known.join(", ")
+            ));
+        }
+    }
+    CHECKS
+        .iter()
+        .filter(|(c, _)| names.is_empty() || names.iter().any(|n| n == c))
+        .map(|(_, f)| f(effort))
+        .collect()
+}
