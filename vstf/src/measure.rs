@@ -6,7 +6,7 @@
 //! two colours (images are stored linearly), so the coverages summed across
 //! the transition give the boundary's position to a fraction of a pixel.
 
-use glam::{DMat3, DVec3};
+use glam::{DMat4, DVec3, DVec4};
 use image::RgbImage;
 use renderer::Camera;
 
@@ -173,45 +173,51 @@ pub fn angular_footprint(camera: &Camera, px: f64, py: f64, horizontal: bool) ->
         .angle_between(camera.direction(qx, qy))
 }
 
-/// A least-squares polynomial fit y = c0 + c1 x (+ c2 x^2).
+/// A least-squares polynomial fit y = c0 + c1 x + ... of degree 1 to 3.
 #[derive(Clone, Debug)]
 pub struct PolyFit {
     pub coef: Vec<f64>,
     /// Residual standard deviation.
     pub sigma: f64,
     /// Inverse of the normal matrix, for prediction errors.
-    cov: DMat3,
+    cov: DMat4,
     pub n: usize,
 }
 
+fn basis(x: f64, degree: usize) -> DVec4 {
+    let p = [1.0, x, x * x, x * x * x];
+    DVec4::from_array(std::array::from_fn(
+        |i| if i <= degree { p[i] } else { 0.0 },
+    ))
+}
+
 impl PolyFit {
-    /// Fits a polynomial of `degree` 1 or 2; `None` with too few points.
+    /// Fits a polynomial of `degree` 1..=3; `None` with too few points.
     pub fn fit(points: &[(f64, f64)], degree: usize) -> Option<PolyFit> {
         let k = degree + 1;
-        if points.len() < k + 3 || !(1..=2).contains(&degree) {
+        if points.len() < k + 3 || !(1..=3).contains(&degree) {
             return None;
         }
-        let basis = |x: f64| DVec3::new(1.0, x, if degree == 2 { x * x } else { 0.0 });
-        let mut ata = DMat3::ZERO;
-        let mut aty = DVec3::ZERO;
+        let mut ata = DMat4::ZERO;
+        let mut aty = DVec4::ZERO;
         for &(x, y) in points {
-            let b = basis(x);
-            ata += DMat3::from_cols(b * b.x, b * b.y, b * b.z);
+            let b = basis(x, degree);
+            ata += DMat4::from_cols(b * b.x, b * b.y, b * b.z, b * b.w);
             aty += b * y;
         }
-        if degree == 1 {
-            ata.z_axis.z = 1.0;
+        // Unused powers get a unit diagonal so that the matrix inverts.
+        for i in k..4 {
+            ata.col_mut(i)[i] = 1.0;
         }
         let cov = ata.inverse();
         let c = cov * aty;
         let resid: f64 = points
             .iter()
-            .map(|&(x, y)| (y - basis(x).dot(c)).powi(2))
+            .map(|&(x, y)| (y - basis(x, degree).dot(c)).powi(2))
             .sum();
         let sigma = (resid / (points.len() - k) as f64).sqrt();
-        let coef = c.to_array()[..k].to_vec();
         Some(PolyFit {
-            coef,
+            coef: c.to_array()[..k].to_vec(),
             sigma,
             cov,
             n: points.len(),
@@ -225,19 +231,30 @@ impl PolyFit {
         let keep: Vec<(f64, f64)> = points
             .iter()
             .copied()
-            .filter(|&(x, y)| (y - first.eval(x)).abs() <= 4.0 * first.sigma.max(1e-9))
+            .filter(|&(x, y)| (y - first.eval(x)).abs() <= 4.0 * first.sigma.max(1e-12))
             .collect();
         PolyFit::fit(&keep, degree)
+    }
+
+    pub fn degree(&self) -> usize {
+        self.coef.len() - 1
     }
 
     pub fn eval(&self, x: f64) -> f64 {
         self.coef.iter().rev().fold(0.0, |acc, c| acc * x + c)
     }
 
+    /// Standard error of a linear combination of fitted values, sum w_i f(x_i).
+    pub fn stderr_of(&self, terms: &[(f64, f64)]) -> f64 {
+        let b = terms.iter().fold(DVec4::ZERO, |acc, &(w, x)| {
+            acc + basis(x, self.degree()) * w
+        });
+        self.sigma * b.dot(self.cov * b).max(0.0).sqrt()
+    }
+
     /// Standard error of the fitted value at x.
     pub fn stderr(&self, x: f64) -> f64 {
-        let b = DVec3::new(1.0, x, if self.coef.len() == 3 { x * x } else { 0.0 });
-        self.sigma * b.dot(self.cov * b).max(0.0).sqrt()
+        self.stderr_of(&[(1.0, x)])
     }
 }
 

@@ -288,35 +288,55 @@ pub fn trace_rows(
     EdgeTrace { points, footprint }
 }
 
-/// A value read off a fitted edge, with its 3-sigma uncertainty: the fit's
-/// prediction error, with the residual scatter floored at the area method's
-/// resolution (1/n pixel for n x n strata, as a uniform error: /sqrt(12)).
+/// A value read off a fitted edge, with its 3-sigma uncertainty.
 pub struct Reading {
     pub value: f64,
     pub tolerance: f64,
 }
 
-pub fn read_fit(
-    trace: &EdgeTrace,
-    degree: usize,
-    at: f64,
-    effort: &Effort,
-) -> Result<(PolyFit, Reading), String> {
-    let fit = PolyFit::fit_robust(&trace.points, degree)
-        .ok_or_else(|| format!("too few edge points ({})", trace.points.len()))?;
-    let floor = trace.footprint / effort.strata() / 12f64.sqrt();
-    let scale = fit.sigma.max(floor) / fit.sigma.max(1e-300);
-    let tolerance = 3.0 * fit.stderr(at) * scale;
-    Ok((
-        fit.clone(),
+/// A fitted edge, able to read values and combinations of values off it
+/// with their uncertainty: the fit's prediction error (3 sigma), with the
+/// residual scatter floored at the area method's resolution (1/n pixel for
+/// n x n strata, taken as a uniform error: /sqrt(12)), so that a perfectly
+/// clean fit never claims more than the sampling can give.
+pub struct Edge {
+    pub fit: PolyFit,
+    floor_scale: f64,
+}
+
+impl Edge {
+    pub fn fit(trace: &EdgeTrace, degree: usize, effort: &Effort) -> Result<Edge, String> {
+        let fit = PolyFit::fit_robust(&trace.points, degree)
+            .ok_or_else(|| format!("too few edge points ({})", trace.points.len()))?;
+        let floor = trace.footprint / effort.strata() / 12f64.sqrt();
+        let floor_scale = fit.sigma.max(floor) / fit.sigma.max(1e-300);
+        Ok(Edge { fit, floor_scale })
+    }
+
+    /// The value sum w_i f(x_i) of weighted readings.
+    pub fn combine(&self, terms: &[(f64, f64)]) -> Reading {
+        let value = terms.iter().map(|&(w, x)| w * self.fit.eval(x)).sum();
         Reading {
-            value: fit.eval(at),
-            tolerance,
-        },
-    ))
+            value,
+            tolerance: 3.0 * self.fit.stderr_of(terms) * self.floor_scale,
+        }
+    }
+
+    pub fn at(&self, x: f64) -> Reading {
+        self.combine(&[(1.0, x)])
+    }
+}
+
+/// Two independent readings combined as a - b.
+pub fn difference(a: &Reading, b: &Reading) -> Reading {
+    Reading {
+        value: a.value - b.value,
+        tolerance: a.tolerance.hypot(b.tolerance),
+    }
 }
 
 pub mod retarded;
+pub mod terrell;
 
 /// The start event, lab velocity and whether it is Lorentz-contracted under
 /// `model`, of the object named `name`, read from the fixture.
@@ -348,8 +368,11 @@ pub fn background(fixture: &Fixture) -> DVec3 {
 }
 
 /// Every check, by fixture name, in report order.
-pub const CHECKS: &[(&str, fn(&Effort) -> Result<FixtureReport, String>)] =
-    &[("flange", retarded::run)];
+pub const CHECKS: &[(&str, fn(&Effort) -> Result<FixtureReport, String>)] = &[
+    ("flange", retarded::run),
+    ("terrell-decoupled", terrell::decoupled),
+    ("terrell-contracted", terrell::contracted),
+];
 
 /// Runs the checks of the named fixtures (all when empty).
 pub fn run(names: &[String], effort: &Effort) -> Result<Vec<FixtureReport>, String> {

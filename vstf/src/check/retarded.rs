@@ -5,7 +5,7 @@
 //! apparent velocity between them.
 
 use super::{
-    background, is_background, motion_of, read_fit, trace_rows, Effort, FixtureReport, Row, Setup,
+    background, is_background, motion_of, trace_rows, Edge, Effort, FixtureReport, Row, Setup,
 };
 use crate::fixture::{Fixture, Overrides};
 use crate::measure::{edge, Plane};
@@ -46,8 +46,9 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
             |p| (p.y - start.x.y, p.x),
             (0.05 * HEIGHT, 0.95 * HEIGHT),
         );
-        let (_, reading) =
-            read_fit(&trace, 2, 0.0, effort).map_err(|e| format!("{NAME} frame {frame}: {e}"))?;
+        let reading = Edge::fit(&trace, 2, effort)
+            .map_err(|e| format!("{NAME} frame {frame}: {e}"))?
+            .at(0.0);
         let foot = body_point(start.t, start.x, v, DVec3::new(WIDTH, 0.0, DEPTH), lorentz);
         let expected = retarded(&foot, tc, cam).ok_or("the right edge is never seen")?;
         rows.push(Row::new(
