@@ -2,9 +2,10 @@
 //! Built once per database; it only decides which tetrahedra a ray is tested
 //! against, never how (that is [`crate::intersect`]).
 //!
-//! Splits are spatial only (median along the widest of x, y, z of the
-//! centroids): static objects live for the whole scene, so splitting along t
-//! would separate the three pieces of each prism rather than cull anything.
+//! Splits are chosen by the surface area heuristic over binned centroids
+//! on x, y and z only: static objects live for the whole scene, so splitting
+//! along t would separate the three pieces of each prism rather than cull
+//! anything.
 
 use crate::extrude::Tetrahedron;
 use crate::intersect::{nearer, Hit, PreparedTet};
@@ -29,6 +30,104 @@ struct Node {
 pub struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
+}
+
+/// Half the surface area of the spatial part of a box (the SAH's measure of
+/// how likely a ray is to enter it).
+fn area(min: DVec4, max: DVec4) -> f64 {
+    let d = (max - min).max(DVec4::ZERO);
+    d.x * d.y + d.y * d.z + d.z * d.x
+}
+
+/// Chooses a split of `items` by the surface area heuristic over binned
+/// centroids on x, y and z, reorders `items` so that the left part comes
+/// first, and returns its length; `None` when no split beats a leaf.
+fn sah_split(
+    bounds: &[(DVec4, DVec4)],
+    items: &mut [u32],
+    cmin: DVec4,
+    extent: DVec4,
+) -> Option<usize> {
+    const BINS: usize = 16;
+    let centroid = |i: u32| {
+        let (lo, hi) = bounds[i as usize];
+        (lo + hi) * 0.5
+    };
+    let (mut pmin, mut pmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
+    for &i in items.iter() {
+        let (lo, hi) = bounds[i as usize];
+        pmin = pmin.min(lo);
+        pmax = pmax.max(hi);
+    }
+    let leaf_cost = items.len() as f64;
+    let parent = area(pmin, pmax).max(1e-300);
+    let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins on the left)
+    for axis in 0..3 {
+        if extent[axis] <= 0.0 {
+            continue;
+        }
+        let bin_of = |i: u32| {
+            (((centroid(i)[axis] - cmin[axis]) / extent[axis] * BINS as f64) as usize).min(BINS - 1)
+        };
+        let mut count = [0usize; BINS];
+        let mut bmin = [DVec4::splat(f64::INFINITY); BINS];
+        let mut bmax = [DVec4::splat(f64::NEG_INFINITY); BINS];
+        for &i in items.iter() {
+            let b = bin_of(i);
+            let (lo, hi) = bounds[i as usize];
+            count[b] += 1;
+            bmin[b] = bmin[b].min(lo);
+            bmax[b] = bmax[b].max(hi);
+        }
+        // Sweep from the right to know each right part's box.
+        let mut right_area = [0.0; BINS];
+        let (mut rmin, mut rmax, mut rcount) = (
+            DVec4::splat(f64::INFINITY),
+            DVec4::splat(f64::NEG_INFINITY),
+            [0usize; BINS],
+        );
+        let mut n = 0;
+        for b in (1..BINS).rev() {
+            rmin = rmin.min(bmin[b]);
+            rmax = rmax.max(bmax[b]);
+            n += count[b];
+            right_area[b] = area(rmin, rmax);
+            rcount[b] = n;
+        }
+        let (mut lmin, mut lmax, mut lcount) = (
+            DVec4::splat(f64::INFINITY),
+            DVec4::splat(f64::NEG_INFINITY),
+            0,
+        );
+        for split in 1..BINS {
+            lmin = lmin.min(bmin[split - 1]);
+            lmax = lmax.max(bmax[split - 1]);
+            lcount += count[split - 1];
+            if lcount == 0 || rcount[split] == 0 {
+                continue;
+            }
+            let cost = 1.0
+                + (area(lmin, lmax) * lcount as f64 + right_area[split] * rcount[split] as f64)
+                    / parent;
+            if best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, axis, split));
+            }
+        }
+    }
+    let (cost, axis, split) = best?;
+    if cost >= leaf_cost {
+        return None;
+    }
+    let bin_of = |i: u32| {
+        (((centroid(i)[axis] - cmin[axis]) / extent[axis] * BINS as f64) as usize).min(BINS - 1)
+    };
+    // Stable partition: deterministic, and keeps the input order within each side.
+    let (mut left, mut right): (Vec<u32>, Vec<u32>) =
+        items.iter().partition(|&&i| bin_of(i) < split);
+    let mid = left.len();
+    left.append(&mut right);
+    items.copy_from_slice(&left);
+    Some(mid)
 }
 
 /// Pads a box so that hits accepted with barycentric slack are never culled.
@@ -72,22 +171,14 @@ impl Bvh {
             count: items.len() as u32,
         });
         let extent = cmax - cmin;
-        let axis = if extent.x >= extent.y && extent.x >= extent.z {
-            0
-        } else if extent.y >= extent.z {
-            1
+        let split = if items.len() <= LEAF_SIZE {
+            None
         } else {
-            2
+            sah_split(bounds, items, cmin, extent)
         };
-        if items.len() <= LEAF_SIZE || extent[axis] <= 0.0 {
+        let Some(mid) = split else {
             return node;
-        }
-        let mid = items.len() / 2;
-        let key = |i: &u32| {
-            let (lo, hi) = bounds[*i as usize];
-            lo[axis] + hi[axis]
         };
-        items.select_nth_unstable_by(mid, |a, b| key(a).total_cmp(&key(b)).then(a.cmp(b)));
         let (left, right) = items.split_at_mut(mid);
         self.nodes[node].count = 0;
         self.build_node(bounds, left, first);

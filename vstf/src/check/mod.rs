@@ -128,7 +128,7 @@ impl Setup<'_> {
             camera_t: Some(self.camera_t),
             width: Some(width),
             height: Some(height),
-            spp: Some(1),
+            spp: None,
         };
         crate::run::view(self.fixture, &o)
     }
@@ -155,13 +155,14 @@ impl Setup<'_> {
     }
 
     /// Renders only the objects named in `keep`, looking towards
-    /// `look_at` with vertical field of view `vfov_deg`, on a square image.
+    /// `look_at` with horizontal field of view `hfov_deg`, at `width` x `height`.
     pub fn probe(
         &self,
         keep: &[&str],
         look_at: DVec3,
-        vfov_deg: f64,
-        size: u32,
+        hfov_deg: f64,
+        width: u32,
+        height: u32,
         spp: u32,
     ) -> Result<(RgbImage, Camera), String> {
         let mut scene = self.fixture.scene.clone();
@@ -174,6 +175,11 @@ impl Setup<'_> {
         }
         let db = Database::build(&scene, self.model.lorentz)
             .map_err(|e| format!("{}: {e}", self.fixture.file.display()))?;
+        let aspect = f64::from(width) / f64::from(height);
+        let vfov_deg = 2.0
+            * ((hfov_deg.to_radians() / 2.0).tan() / aspect)
+                .atan()
+                .to_degrees();
         let camera = Camera::new(
             Event::new(self.camera_t, self.camera_x()),
             Attitude::LookAt {
@@ -181,8 +187,8 @@ impl Setup<'_> {
                 up: DVec3::Y,
             },
             vfov_deg,
-            size,
-            size,
+            width,
+            height,
         )
         .ok_or("degenerate probe camera")?;
         let settings = renderer::RenderSettings {
@@ -207,7 +213,7 @@ impl Setup<'_> {
             .camera
             .look_at
             .unwrap_or(self.camera_x() + DVec3::NEG_Z);
-        let (img, cam) = self.probe(keep, look, wide, 240, 1)?;
+        let (img, cam) = self.probe(keep, look, wide, 240, 240, 1)?;
         let bg = measure::color(&img, 0, 0);
         let (mut x0, mut y0, mut x1, mut y1) = (u32::MAX, u32::MAX, 0, 0);
         for (x, y, _) in img.enumerate_pixels() {
@@ -335,6 +341,7 @@ pub fn difference(a: &Reading, b: &Reading) -> Reading {
     }
 }
 
+pub mod aberration;
 pub mod retarded;
 pub mod terrell;
 
@@ -372,6 +379,7 @@ pub const CHECKS: &[(&str, fn(&Effort) -> Result<FixtureReport, String>)] = &[
     ("flange", retarded::run),
     ("terrell-decoupled", terrell::decoupled),
     ("terrell-contracted", terrell::contracted),
+    ("aberration", aberration::run),
 ];
 
 /// Runs the checks of the named fixtures (all when empty).

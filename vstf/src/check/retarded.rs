@@ -36,7 +36,14 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
         };
         let cam = setup.camera_x();
         let (look, vfov) = setup.aim(&["flange"], 0.15)?;
-        let (img, camera) = setup.probe(&["flange"], look, vfov, effort.probe, effort.spp)?;
+        let (img, camera) = setup.probe(
+            &["flange"],
+            look,
+            vfov,
+            effort.probe,
+            effort.probe,
+            effort.spp,
+        )?;
         let w = i64::from(img.width());
         let trace = trace_rows(
             &img,

@@ -51,7 +51,7 @@ fn run(name: &str, effort: &Effort) -> Result<FixtureReport, String> {
     let (tc, cam) = (setup.camera_t, setup.camera_x());
     let keep = [FRONT, SIDE];
     let (look, vfov) = setup.aim(&keep, 0.1)?;
-    let (img, camera) = setup.probe(&keep, look, vfov, effort.probe, effort.spp)?;
+    let (img, camera) = setup.probe(&keep, look, vfov, effort.probe, effort.probe, effort.spp)?;
     let bg = background(&f);
     let w = i64::from(img.width());
     let (front_plane, far_plane) = (Plane::z(start.x.z + DEPTH), Plane::z(start.x.z));
