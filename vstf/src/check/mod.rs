@@ -343,6 +343,7 @@ pub fn difference(a: &Reading, b: &Reading) -> Reading {
 
 pub mod aberration;
 pub mod retarded;
+pub mod teaser;
 pub mod terrell;
 
 /// The start event, lab velocity and whether it is Lorentz-contracted under
@@ -380,6 +381,7 @@ pub const CHECKS: &[(&str, fn(&Effort) -> Result<FixtureReport, String>)] = &[
     ("terrell-decoupled", terrell::decoupled),
     ("terrell-contracted", terrell::contracted),
     ("aberration", aberration::run),
+    ("teaser", teaser::run),
 ];
 
 /// Runs the checks of the named fixtures (all when empty).
