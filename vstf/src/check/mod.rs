@@ -343,6 +343,7 @@ pub fn difference(a: &Reading, b: &Reading) -> Reading {
 
 pub mod aberration;
 pub mod retarded;
+pub mod stage;
 pub mod teaser;
 pub mod terrell;
 
@@ -377,6 +378,7 @@ pub fn background(fixture: &Fixture) -> DVec3 {
 
 /// Every check, by fixture name, in report order.
 pub const CHECKS: &[(&str, fn(&Effort) -> Result<FixtureReport, String>)] = &[
+    ("stage", stage::run),
     ("flange", retarded::run),
     ("terrell-decoupled", terrell::decoupled),
     ("terrell-contracted", terrell::contracted),

@@ -1,0 +1,196 @@
+//! The VSTF's checks, run at test resolution: every measured quantity must
+//! agree with first principles within its stated tolerance, and the table
+//! is snapshotted so that any change to a measured value shows in review.
+
+use std::sync::OnceLock;
+use vstf::check::{Effort, FixtureReport, Row};
+use vstf::fixture::{Fixture, Overrides};
+
+/// The quick run of every check, shared by the tests of this file.
+fn reports() -> &'static Vec<FixtureReport> {
+    static R: OnceLock<Vec<FixtureReport>> = OnceLock::new();
+    R.get_or_init(|| vstf::check::run(&[], &Effort::QUICK).unwrap_or_else(|e| panic!("{e}")))
+}
+
+fn rows() -> Vec<Row> {
+    reports().iter().flat_map(|r| r.rows.clone()).collect()
+}
+
+/// Six significant digits: enough to see any real change, stable against
+/// last-bit differences of libm.
+fn sig(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(5 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
+}
+
+#[test]
+fn every_checked_quantity_agrees_with_first_principles() {
+    let rows = rows();
+    let fixtures: Vec<&str> = reports().iter().map(|r| r.fixture.as_str()).collect();
+    for f in [
+        "stage",
+        "flange",
+        "terrell-decoupled",
+        "terrell-contracted",
+        "aberration",
+        "teaser",
+    ] {
+        assert!(fixtures.contains(&f), "no check ran for {f}");
+    }
+    assert!(rows.len() >= 90, "only {} rows", rows.len());
+    let failing: Vec<&Row> = rows.iter().filter(|r| !r.pass).collect();
+    assert!(
+        failing.is_empty(),
+        "failing rows:\n{}",
+        vstf::report::table(&rows)
+    );
+}
+
+/// Positions on the stage within 0.01 l.units, velocities within 0.1%,
+/// angles within 0.05 degrees.
+fn assert_targets(rows: &[Row]) {
+    for r in rows {
+        match r.unit.as_str() {
+            "l.units" => assert!(r.tolerance < 0.01, "{}: {}", r.quantity, r.tolerance),
+            "deg" => assert!(r.tolerance < 0.05, "{}: {}", r.quantity, r.tolerance),
+            "l.units/t.unit" => assert!(
+                r.tolerance < 1e-3 * r.expected.abs(),
+                "{}: {}",
+                r.quantity,
+                r.tolerance
+            ),
+            _ => assert!(r.tolerance > 0.0 && r.tolerance.is_finite()),
+        }
+    }
+}
+
+#[test]
+fn tolerances_meet_the_targets_at_the_default_check_resolution() {
+    let full = vstf::check::run(&[], &Effort::FULL).unwrap();
+    let rows: Vec<Row> = full.iter().flat_map(|r| r.rows.clone()).collect();
+    assert!(
+        rows.iter().all(|r| r.pass),
+        "{}",
+        vstf::report::table(&rows)
+    );
+    assert_targets(&rows);
+}
+
+#[test]
+fn measurement_table_snapshot() {
+    let rounded: Vec<serde_json::Value> = rows()
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "fixture": r.fixture, "quantity": r.quantity, "measured": sig(r.measured),
+                "expected": sig(r.expected), "paper": r.paper, "tolerance": sig(r.tolerance),
+                "unit": r.unit, "pass": r.pass,
+            })
+        })
+        .collect();
+    insta::assert_json_snapshot!("check_rows", rounded);
+}
+
+#[test]
+fn json_rows_have_exactly_the_documented_keys() {
+    let v: serde_json::Value = serde_json::from_str(&vstf::report::json(&rows())).unwrap();
+    let arr = v.as_array().unwrap();
+    assert!(!arr.is_empty());
+    for o in arr {
+        let mut keys: Vec<&str> = o.as_object().unwrap().keys().map(String::as_str).collect();
+        keys.sort();
+        assert_eq!(
+            keys,
+            [
+                "expected",
+                "fixture",
+                "measured",
+                "paper",
+                "pass",
+                "quantity",
+                "tolerance",
+                "unit"
+            ]
+        );
+        assert!(o["paper"].is_null() || o["paper"].is_number());
+    }
+}
+
+#[test]
+fn the_report_shows_images_markers_and_rows() {
+    let dir = std::env::temp_dir().join(format!("vstf-report-{}", std::process::id()));
+    vstf::report::html(&dir, reports()).unwrap();
+    let html = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    for r in reports() {
+        assert!(
+            html.contains(&format!("<h2>{}", r.fixture)),
+            "{} missing",
+            r.fixture
+        );
+        for v in &r.views {
+            assert!(
+                !v.markers.is_empty(),
+                "{} {} has no expected points",
+                r.fixture,
+                v.name
+            );
+            let (w, h) = (f64::from(v.image.width()), f64::from(v.image.height()));
+            let inside = v
+                .markers
+                .iter()
+                .filter(|(x, y)| (0.0..w).contains(x) && (0.0..h).contains(y))
+                .count();
+            let marked = vstf::report::with_markers(&v.image, &v.markers);
+            assert!(
+                inside == 0 || marked != v.image,
+                "{} {}: markers not drawn",
+                r.fixture,
+                v.name
+            );
+        }
+    }
+    let pngs = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "png")
+        })
+        .count();
+    assert!(pngs >= 2 * reports().iter().map(|r| r.views.len()).sum::<usize>());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_flange_shifted_by_a_hundredth_is_caught() {
+    let f = Fixture::load("flange").unwrap();
+    let model = f.model(&Overrides::default()).unwrap();
+    let mut shifted = f.clone();
+    let obj = shifted
+        .scene
+        .objects
+        .iter_mut()
+        .find(|o| o.name == "flange")
+        .unwrap();
+    if let renderer::Motion::Extrusion { start, .. } = &mut obj.motion {
+        start.x.x += 0.01;
+    }
+    let expected = vstf::check::retarded::expected_foot(&f, model, 940.0)
+        .unwrap()
+        .x;
+    let honest = vstf::check::retarded::measure_foot(&f, model, 940.0, &Effort::QUICK).unwrap();
+    let moved =
+        vstf::check::retarded::measure_foot(&shifted, model, 940.0, &Effort::QUICK).unwrap();
+    assert!((honest.value - expected).abs() <= honest.tolerance);
+    assert!(
+        (moved.value - expected).abs() > moved.tolerance,
+        "a 0.01 shift went unnoticed (tolerance {})",
+        moved.tolerance
+    );
+    assert!((moved.value - honest.value - 0.01).abs() < 2.0 * moved.tolerance);
+}
