@@ -80,35 +80,6 @@ pub fn gamma(beta: f64) -> f64 {
     1.0 / (1.0 - beta * beta).sqrt()
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use approx::assert_relative_eq;
-
-    #[test]
-    fn static_point_is_seen_one_light_time_ago() {
-        let p = PointWorldline {
-            t0: 0.0,
-            x0: DVec3::new(3.0, 4.0, 0.0),
-            v: DVec3::ZERO,
-        };
-        let r = retarded(&p, 10.0, DVec3::ZERO).unwrap();
-        assert_relative_eq!(r.t, 5.0, max_relative = 1e-14);
-    }
-
-    #[test]
-    fn retarded_event_is_on_the_light_cone() {
-        let p = PointWorldline {
-            t0: 2.0,
-            x0: DVec3::new(-5.0, 1.0, 2.0),
-            v: DVec3::new(0.866, 0.1, -0.2),
-        };
-        let c = DVec3::new(0.0, 9.0, 15.0);
-        let r = retarded(&p, 40.0, c).unwrap();
-        assert_relative_eq!((r.x - c).length(), 40.0 - r.t, max_relative = 1e-12);
-        assert!(r.t < 40.0);
-    }
-}
 
 /// Length contraction of a rest-frame offset `r` of a body moving with
 /// lab velocity `v`: its lab-simultaneous offset, the component along `v`
@@ -143,5 +114,35 @@ pub fn instantaneous(p: &PointWorldline, tc: f64, camera: DVec3) -> Retarded {
         t: tc,
         x,
         direction: (x - camera).normalize(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn static_point_is_seen_one_light_time_ago() {
+        let p = PointWorldline {
+            t0: 0.0,
+            x0: DVec3::new(3.0, 4.0, 0.0),
+            v: DVec3::ZERO,
+        };
+        let r = retarded(&p, 10.0, DVec3::ZERO).unwrap();
+        assert_relative_eq!(r.t, 5.0, max_relative = 1e-14);
+    }
+
+    #[test]
+    fn retarded_event_is_on_the_light_cone() {
+        let p = PointWorldline {
+            t0: 2.0,
+            x0: DVec3::new(-5.0, 1.0, 2.0),
+            v: DVec3::new(0.866, 0.1, -0.2),
+        };
+        let c = DVec3::new(0.0, 9.0, 15.0);
+        let r = retarded(&p, 40.0, c).unwrap();
+        assert_relative_eq!((r.x - c).length(), 40.0 - r.t, max_relative = 1e-12);
+        assert!(r.t < 40.0);
     }
 }

@@ -376,8 +376,11 @@ pub fn background(fixture: &Fixture) -> DVec3 {
     (fixture.scene.background.clamp(DVec3::ZERO, DVec3::ONE) * 255.0).round() / 255.0
 }
 
+/// A check: renders, measures and compares one fixture.
+pub type Check = fn(&Effort) -> Result<FixtureReport, String>;
+
 /// Every check, by fixture name, in report order.
-pub const CHECKS: &[(&str, fn(&Effort) -> Result<FixtureReport, String>)] = &[
+pub const CHECKS: &[(&str, Check)] = &[
     ("stage", stage::run),
     ("flange", retarded::run),
     ("terrell-decoupled", terrell::decoupled),
