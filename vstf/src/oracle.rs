@@ -80,7 +80,6 @@ pub fn gamma(beta: f64) -> f64 {
     1.0 / (1.0 - beta * beta).sqrt()
 }
 
-
 /// Length contraction of a rest-frame offset `r` of a body moving with
 /// lab velocity `v`: its lab-simultaneous offset, the component along `v`
 /// divided by gamma (written out here, independently of the renderer's Boost).

@@ -58,3 +58,60 @@ fn an_absurd_resolution_is_refused() {
         "{err}"
     );
 }
+
+#[test]
+fn check_prints_the_table_and_writes_json_rows() {
+    let json = std::env::temp_dir().join(format!("vstf-rows-{}.json", std::process::id()));
+    let out = vstf()
+        .args(["check", "stage", "--quick", "--json"])
+        .arg(&json)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let header = stdout.lines().next().unwrap();
+    for col in [
+        "fixture",
+        "quantity",
+        "measured",
+        "expected",
+        "paper",
+        "tolerance",
+        "unit",
+        "result",
+    ] {
+        assert!(header.contains(col), "{header}");
+    }
+    assert!(
+        stdout
+            .lines()
+            .any(|l| l.starts_with("check: ") && l.ends_with(" passed, 0 failed")),
+        "{stdout}"
+    );
+    let rows: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(rows
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|r| r["fixture"] == "stage"));
+    std::fs::remove_file(&json).ok();
+}
+
+#[test]
+fn check_of_an_unknown_fixture_fails_clearly() {
+    let out = vstf()
+        .args(["check", "nosuch", "--quick"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("no check for fixture \"nosuch\"") && err.contains("stage"),
+        "{err}"
+    );
+}
