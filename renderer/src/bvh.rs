@@ -213,7 +213,7 @@ impl Bvh {
         &self,
         ray: &Ray,
         range: (f64, f64),
-        test: impl Fn(u32, (f64, f64)) -> Option<Hit>,
+        mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         if self.nodes.is_empty() {
             return None;
@@ -251,15 +251,15 @@ impl Bvh {
         best
     }
 
-    /// Whether any tetrahedron is hit in `range`.
+    /// The first hit found in `range`, if any.
     pub fn any(
         &self,
         ray: &Ray,
         range: (f64, f64),
-        test: impl Fn(u32, (f64, f64)) -> bool,
-    ) -> bool {
+        mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
+    ) -> Option<Hit> {
         if self.nodes.is_empty() {
-            return false;
+            return None;
         }
         let (o, d) = (ray.origin.to_xyzt(), ray.direction.to_xyzt());
         let mut stack = vec![0usize];
@@ -270,16 +270,16 @@ impl Bvh {
             }
             if node.count > 0 {
                 let start = node.index as usize;
-                if self.order[start..start + node.count as usize]
+                if let Some(h) = self.order[start..start + node.count as usize]
                     .iter()
-                    .any(|&i| test(i, range))
+                    .find_map(|&i| test(i, range))
                 {
-                    return true;
+                    return Some(h);
                 }
             } else {
                 stack.extend([node.index as usize, n + 1]);
             }
         }
-        false
+        None
     }
 }

@@ -9,6 +9,7 @@ use crate::lightcone::Ray;
 use crate::scene::{Motion, ObjectKind, Scene};
 use crate::shade::Material;
 use crate::spacetime::{Event, FourVector, Worldline};
+use crate::trace::{NoTrace, Outcome, Step, Trace};
 use glam::DVec3;
 use std::fmt;
 
@@ -230,15 +231,49 @@ impl Database {
         self.prepared[tet as usize].intersect(ray, tet, range)
     }
 
+    /// The solve of `tet`, recorded as a candidate.
+    fn test_traced<T: Trace>(
+        &self,
+        ray: &Ray,
+        tet: u32,
+        range: (f64, f64),
+        trace: &mut T,
+    ) -> Result<Hit, Miss> {
+        let result = self.test(ray, tet, range);
+        if T::ENABLED {
+            let t = &self.tets[tet as usize];
+            let prism = &self.prisms[t.prism as usize];
+            trace.record(Step::Candidate {
+                tet,
+                object: self.objects[prism.object as usize].name.clone(),
+                triangle: prism.triangle,
+                prism: t.prism,
+                piece: t.piece,
+                outcome: Outcome::from(&result),
+            });
+        }
+        result
+    }
+
     /// The hit with the smallest ray parameter in `range`: on a light-cone
     /// ray, the most recent event (paper 3.2).
     pub fn closest_hit(&self, ray: &Ray, range: (f64, f64)) -> Option<Hit> {
+        self.closest_hit_traced(ray, range, &mut NoTrace)
+    }
+
+    /// [`Database::closest_hit`], recording every tetrahedron tested.
+    pub fn closest_hit_traced<T: Trace>(
+        &self,
+        ray: &Ray,
+        range: (f64, f64),
+        trace: &mut T,
+    ) -> Option<Hit> {
         match self.traversal {
             Traversal::BruteForce => {
                 let mut best: Option<Hit> = None;
                 for i in 0..self.tets.len() as u32 {
                     let hi = best.map_or(range.1, |b| b.s);
-                    if let Ok(h) = self.test(ray, i, (range.0, hi)) {
+                    if let Ok(h) = self.test_traced(ray, i, (range.0, hi), trace) {
                         best = Some(nearer(best, h));
                     }
                 }
@@ -246,19 +281,28 @@ impl Database {
             }
             Traversal::Bvh => self
                 .bvh
-                .closest(ray, range, |i, r| self.test(ray, i, r).ok()),
+                .closest(ray, range, |i, r| self.test_traced(ray, i, r, trace).ok()),
         }
     }
 
-    /// Whether anything is hit in `range` (shadow rays).
-    pub fn any_hit(&self, ray: &Ray, range: (f64, f64)) -> bool {
+    /// The first hit found in `range`, if any (shadow rays need no more).
+    pub fn any_hit(&self, ray: &Ray, range: (f64, f64)) -> Option<Hit> {
+        self.any_hit_traced(ray, range, &mut NoTrace)
+    }
+
+    /// [`Database::any_hit`], recording every tetrahedron tested.
+    pub fn any_hit_traced<T: Trace>(
+        &self,
+        ray: &Ray,
+        range: (f64, f64),
+        trace: &mut T,
+    ) -> Option<Hit> {
         match self.traversal {
-            Traversal::BruteForce => {
-                (0..self.tets.len() as u32).any(|i| self.test(ray, i, range).is_ok())
-            }
+            Traversal::BruteForce => (0..self.tets.len() as u32)
+                .find_map(|i| self.test_traced(ray, i, range, trace).ok()),
             Traversal::Bvh => self
                 .bvh
-                .any(ray, range, |i, r| self.test(ray, i, r).is_ok()),
+                .any(ray, range, |i, r| self.test_traced(ray, i, r, trace).ok()),
         }
     }
 }

@@ -24,6 +24,7 @@ pub mod rng;
 pub mod scene;
 pub mod shade;
 pub mod spacetime;
+pub mod trace;
 
 pub use boost::Boost;
 pub use database::{Database, SceneError, Traversal};

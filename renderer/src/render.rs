@@ -12,6 +12,7 @@ use crate::model::Model;
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
 use crate::shade::Shader;
+use crate::trace::{NoTrace, RayKind, Step, Trace};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -105,14 +106,44 @@ pub fn pixel(
     x: u32,
     y: u32,
 ) -> DVec3 {
+    pixel_traced(
+        shader,
+        camera,
+        camera_t,
+        model,
+        settings,
+        x,
+        y,
+        &mut NoTrace,
+    )
+}
+
+/// [`pixel`], recording every sample's variables.
+#[allow(clippy::too_many_arguments)]
+pub fn pixel_traced<T: Trace>(
+    shader: &Shader,
+    camera: &Camera,
+    camera_t: f64,
+    model: Model,
+    settings: &RenderSettings,
+    x: u32,
+    y: u32,
+    trace: &mut T,
+) -> DVec3 {
+    let sample = |index: u32, px: f64, py: f64, t: f64, trace: &mut T| {
+        if T::ENABLED {
+            trace.record(Step::Sample {
+                index,
+                px,
+                py,
+                camera_t: t,
+            });
+        }
+        let ray = camera.ray(px, py, t, model.light_speed);
+        shader.radiance_traced(&ray, 0, RayKind::Primary, trace)
+    };
     if settings.spp <= 1 {
-        let ray = camera.ray(
-            f64::from(x) + 0.5,
-            f64::from(y) + 0.5,
-            camera_t,
-            model.light_speed,
-        );
-        return shader.radiance(&ray, 0);
+        return sample(0, f64::from(x) + 0.5, f64::from(y) + 0.5, camera_t, trace);
     }
     let mut rng = SplitMix64::for_pixel(settings.seed, x, y);
     let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
@@ -122,8 +153,7 @@ pub fn pixel(
         let px = f64::from(x) + (f64::from(sx) + rng.next_f64()) / f64::from(n);
         let py = f64::from(y) + (f64::from(sy) + rng.next_f64()) / f64::from(n);
         let t = camera_t + (rng.next_f64() - 0.5) * settings.shutter;
-        let ray = camera.ray(px, py, t, model.light_speed);
-        sum += shader.radiance(&ray, 0);
+        sum += sample(k, px, py, t, trace);
     }
     sum / f64::from(settings.spp)
 }

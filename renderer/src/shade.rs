@@ -8,6 +8,7 @@ use crate::database::Database;
 use crate::intersect::Hit;
 use crate::lightcone::{LightSpeed, Ray};
 use crate::spacetime::Event;
+use crate::trace::{NoTrace, RayKind, Step, Trace};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -108,14 +109,58 @@ pub struct Shader<'a> {
 impl Shader<'_> {
     /// Colour of the light arriving along `ray` (towards its origin).
     pub fn radiance(&self, ray: &Ray, depth: u32) -> DVec3 {
+        self.radiance_traced(ray, depth, RayKind::Primary, &mut NoTrace)
+    }
+
+    /// [`Shader::radiance`], recording the variables along the way.
+    pub fn radiance_traced<T: Trace>(
+        &self,
+        ray: &Ray,
+        depth: u32,
+        kind: RayKind,
+        trace: &mut T,
+    ) -> DVec3 {
         let margin = if depth == 0 {
             0.0
         } else {
             self_hit_margin(ray.origin)
         };
-        match self.db.closest_hit(ray, (margin, f64::INFINITY)) {
-            None => self.background,
-            Some(hit) => self.shade(ray, &hit, depth),
+        let range = (margin, f64::INFINITY);
+        if T::ENABLED {
+            trace.record(ray_step(kind, depth, ray, range));
+        }
+        match self.db.closest_hit_traced(ray, range, trace) {
+            None => {
+                if T::ENABLED {
+                    trace.record(Step::Miss {
+                        kind,
+                        background: self.background,
+                    });
+                }
+                self.background
+            }
+            Some(hit) => {
+                if T::ENABLED {
+                    trace.record(self.hit_step(kind, ray, &hit));
+                }
+                self.shade_traced(ray, &hit, depth, trace)
+            }
+        }
+    }
+
+    fn hit_step(&self, kind: RayKind, ray: &Ray, hit: &Hit) -> Step {
+        let prism = self.db.prism_of(hit.tet);
+        let object = &self.db.objects()[prism.object as usize];
+        Step::Hit {
+            kind,
+            tet: hit.tet,
+            object: object.name.clone(),
+            triangle: prism.triangle,
+            event: hit.event,
+            surface_point: object.local_point(hit.event),
+            proper_time: object.proper_time(hit.event),
+            normal: prism.normal,
+            facing_normal: self.facing_normal(ray, hit),
         }
     }
 
@@ -133,38 +178,95 @@ impl Shader<'_> {
     /// of the event, towards the light's (static) position, meets an object
     /// before reaching it.
     pub fn in_shadow(&self, event: Event) -> bool {
+        self.in_shadow_traced(event, &mut NoTrace)
+    }
+
+    fn in_shadow_traced<T: Trace>(&self, event: Event, trace: &mut T) -> bool {
         let to_light = self.light.position - event.x;
         let dist = to_light.length();
         let shadow = Ray::backwards(event, to_light / dist, self.light_speed);
         let margin = self_hit_margin(event);
-        dist > 2.0 * margin && self.db.any_hit(&shadow, (margin, dist - margin))
+        if dist <= 2.0 * margin {
+            return false;
+        }
+        let range = (margin, dist - margin);
+        if T::ENABLED {
+            trace.record(ray_step(RayKind::Shadow, 0, &shadow, range));
+        }
+        let blocker = self.db.any_hit_traced(&shadow, range, trace);
+        if T::ENABLED {
+            if let Some(h) = &blocker {
+                trace.record(self.hit_step(RayKind::Shadow, &shadow, h));
+            }
+        }
+        blocker.is_some()
     }
 
     /// Lambert plus Phong at `hit`, plus the mirror term.
     pub fn shade(&self, ray: &Ray, hit: &Hit, depth: u32) -> DVec3 {
+        self.shade_traced(ray, hit, depth, &mut NoTrace)
+    }
+
+    fn shade_traced<T: Trace>(&self, ray: &Ray, hit: &Hit, depth: u32, trace: &mut T) -> DVec3 {
         let prism = self.db.prism_of(hit.tet);
         let object = &self.db.objects()[prism.object as usize];
         let m = &object.material;
         let albedo = m.color_at(object.proper_time(hit.event));
         let n = self.facing_normal(ray, hit);
         let view = -ray.direction.x;
-        let mut color = albedo * self.light.ambient;
-        let l = (self.light.position - hit.event.x).normalize_or_zero();
+        let ambient = albedo * self.light.ambient;
+        let to_light = self.light.position - hit.event.x;
+        let l = to_light.normalize_or_zero();
         let lambert = n.dot(l);
-        if lambert > 0.0 && !self.in_shadow(hit.event) {
-            let r = 2.0 * lambert * n - l;
-            let spec = if m.specular > 0.0 {
-                m.specular * r.dot(view).max(0.0).powf(m.shininess)
-            } else {
-                0.0
-            };
-            color += self.light.color * (albedo * (m.diffuse * lambert) + DVec3::splat(spec));
+        let (mut diffuse, mut specular, mut shadowed) = (DVec3::ZERO, 0.0, false);
+        if lambert > 0.0 {
+            shadowed = self.in_shadow_traced(hit.event, trace);
+            if !shadowed {
+                let r = 2.0 * lambert * n - l;
+                specular = if m.specular > 0.0 {
+                    m.specular * r.dot(view).max(0.0).powf(m.shininess)
+                } else {
+                    0.0
+                };
+                diffuse = albedo * (m.diffuse * lambert);
+            }
         }
+        let local = ambient + self.light.color * (diffuse + DVec3::splat(specular));
+        let mut color = local;
         if m.mirror > 0.0 && depth < self.max_depth {
             let d = ray.direction.x;
             let reflected = Ray::backwards(hit.event, d - 2.0 * d.dot(n) * n, self.light_speed);
-            color = color * (1.0 - m.mirror) + self.radiance(&reflected, depth + 1) * m.mirror;
+            color = local * (1.0 - m.mirror)
+                + self.radiance_traced(&reflected, depth + 1, RayKind::Reflection, trace)
+                    * m.mirror;
+        }
+        if T::ENABLED {
+            trace.record(Step::Shading {
+                depth,
+                albedo,
+                ambient,
+                light_vector: l,
+                light_distance: to_light.length(),
+                lambert,
+                in_shadow: shadowed,
+                diffuse,
+                specular,
+                mirror: m.mirror,
+                local,
+                color,
+            });
         }
         color
+    }
+}
+
+fn ray_step(kind: RayKind, depth: u32, ray: &Ray, range: (f64, f64)) -> Step {
+    Step::Ray {
+        kind,
+        depth,
+        origin: ray.origin,
+        direction: ray.direction,
+        normalized: ray.normalized_direction(),
+        range,
     }
 }

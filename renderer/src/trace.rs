@@ -1,0 +1,152 @@
+//! Recording the variables along a ray: the VSTF's debug mode (paper
+//! section 4: "a means to interactively examine variables or to log results
+//! for later comparison").
+//!
+//! The renderer's own functions take a [`Trace`]; rendering passes
+//! [`NoTrace`], whose recording compiles away, and the debug command passes a
+//! [`Recorder`]. There is no second implementation of the physics to drift.
+
+use crate::intersect::{Hit, Miss};
+use crate::spacetime::{Event, FourVector};
+use glam::DVec3;
+use serde::Serialize;
+
+/// What a ray is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RayKind {
+    Primary,
+    Shadow,
+    Reflection,
+}
+
+/// The outcome of one barycentric solve.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "result", rename_all = "snake_case")]
+pub enum Outcome {
+    Accepted {
+        s: f64,
+        event: Event,
+        bary: [f64; 4],
+    },
+    /// The ray is parallel to the tetrahedron's hyperplane.
+    Parallel,
+    /// The hyperplane is met outside the searched stretch of the ray
+    /// (behind the origin, or beyond a hit already found).
+    OutOfRange { s: f64 },
+    /// The hyperplane is met outside the tetrahedron.
+    Outside { s: f64, bary: [f64; 4] },
+}
+
+impl From<&Result<Hit, Miss>> for Outcome {
+    fn from(r: &Result<Hit, Miss>) -> Outcome {
+        match *r {
+            Ok(h) => Outcome::Accepted {
+                s: h.s,
+                event: h.event,
+                bary: h.bary,
+            },
+            Err(Miss::Parallel) => Outcome::Parallel,
+            Err(Miss::OutOfRange { s }) => Outcome::OutOfRange { s },
+            Err(Miss::Outside { s, bary }) => Outcome::Outside { s, bary },
+        }
+    }
+}
+
+/// One recorded step.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "step", rename_all = "snake_case")]
+pub enum Step {
+    /// A sample of the pixel: where in the pixel and at which camera time.
+    Sample {
+        index: u32,
+        px: f64,
+        py: f64,
+        camera_t: f64,
+    },
+    /// A ray about to be searched.
+    Ray {
+        kind: RayKind,
+        depth: u32,
+        origin: Event,
+        /// Spatial part a unit vector; t = -1 on a light cone, 0 for infinite light speed.
+        direction: FourVector,
+        /// The same direction with unit Euclidean length in 4D (t = -sqrt(2)/2 on a light cone).
+        normalized: FourVector,
+        range: (f64, f64),
+    },
+    /// A tetrahedron tested against the current ray.
+    Candidate {
+        tet: u32,
+        object: String,
+        triangle: u32,
+        prism: u32,
+        piece: u8,
+        outcome: Outcome,
+    },
+    /// The hit kept for the current ray (the most recent event), or the first
+    /// blocker of a shadow ray.
+    Hit {
+        kind: RayKind,
+        tet: u32,
+        object: String,
+        triangle: u32,
+        event: Event,
+        /// The hit in the object's frame: rest-frame offset from its reference point.
+        surface_point: DVec3,
+        /// The object's own time at the hit.
+        proper_time: f64,
+        /// Lab-frame unit normal of the triangle, and the same turned towards the ray's origin.
+        normal: DVec3,
+        facing_normal: DVec3,
+    },
+    /// The current ray met nothing.
+    Miss { kind: RayKind, background: DVec3 },
+    /// The shading terms at a hit.
+    Shading {
+        depth: u32,
+        albedo: DVec3,
+        ambient: DVec3,
+        /// Unit vector from the hit towards the light, and the distance.
+        light_vector: DVec3,
+        light_distance: f64,
+        /// n . l with the facing normal.
+        lambert: f64,
+        in_shadow: bool,
+        diffuse: DVec3,
+        specular: f64,
+        mirror: f64,
+        /// Colour before the mirror term, and the colour returned.
+        local: DVec3,
+        color: DVec3,
+    },
+}
+
+/// A sink for recorded steps.
+pub trait Trace {
+    /// Whether anything is recorded: when false, callers skip building steps.
+    const ENABLED: bool;
+    fn record(&mut self, step: Step);
+}
+
+/// Records nothing (rendering).
+pub struct NoTrace;
+
+impl Trace for NoTrace {
+    const ENABLED: bool = false;
+    #[inline(always)]
+    fn record(&mut self, _: Step) {}
+}
+
+/// Records every step, in order (debugging).
+#[derive(Default, Debug)]
+pub struct Recorder {
+    pub steps: Vec<Step>,
+}
+
+impl Trace for Recorder {
+    const ENABLED: bool = true;
+    fn record(&mut self, step: Step) {
+        self.steps.push(step);
+    }
+}
