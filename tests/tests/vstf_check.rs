@@ -5,11 +5,14 @@
 use std::sync::OnceLock;
 use vstf::check::{Effort, FixtureReport, Row};
 use vstf::fixture::{Fixture, Overrides};
+use vstf::golden::Store;
 
 /// The quick run of every check, shared by the tests of this file.
 fn reports() -> &'static Vec<FixtureReport> {
     static R: OnceLock<Vec<FixtureReport>> = OnceLock::new();
-    R.get_or_init(|| vstf::check::run(&[], &Effort::QUICK).unwrap_or_else(|e| panic!("{e}")))
+    R.get_or_init(|| {
+        vstf::check::run(&[], &Effort::QUICK, &Store::workspace()).unwrap_or_else(|e| panic!("{e}"))
+    })
 }
 
 fn rows() -> Vec<Row> {
@@ -69,7 +72,7 @@ fn assert_targets(rows: &[Row]) {
 
 #[test]
 fn tolerances_meet_the_targets_at_the_default_check_resolution() {
-    let full = vstf::check::run(&[], &Effort::FULL).unwrap();
+    let full = vstf::check::run(&[], &Effort::FULL, &Store::workspace()).unwrap();
     let rows: Vec<Row> = full.iter().flat_map(|r| r.rows.clone()).collect();
     assert!(
         rows.iter().all(|r| r.pass),
@@ -193,4 +196,56 @@ fn a_flange_shifted_by_a_hundredth_is_caught() {
         moved.tolerance
     );
     assert!((moved.value - honest.value - 0.01).abs() < 2.0 * moved.tolerance);
+}
+
+#[test]
+fn every_view_matches_its_golden_image() {
+    let goldens: Vec<_> = reports().iter().flat_map(|r| r.goldens.iter()).collect();
+    let views: usize = reports().iter().map(|r| r.views.len()).sum();
+    assert_eq!(goldens.len(), views);
+    let failing: Vec<String> = goldens
+        .iter()
+        .filter(|g| !g.pass)
+        .map(|g| g.to_string())
+        .collect();
+    assert!(failing.is_empty(), "{}", failing.join("\n"));
+}
+
+#[test]
+fn a_one_pixel_change_in_a_real_render_is_caught_without_touching_golden() {
+    let r = reports().iter().find(|r| r.fixture == "flange").unwrap();
+    let view = &r.views[0];
+    let real = Store::workspace();
+    let golden_path = real.golden_path(&r.fixture, &view.name);
+    let before = std::fs::read(&golden_path).unwrap();
+    let scratch = std::env::temp_dir().join(format!("vstf-pending-{}", std::process::id()));
+    let store = Store {
+        golden: real.golden.clone(),
+        pending: scratch.clone(),
+    };
+    let mut changed = view.image.clone();
+    let p = changed.get_pixel(10, 10).0;
+    changed.put_pixel(10, 10, image::Rgb([p[0] ^ 0x80, p[1], p[2]]));
+    let c = store
+        .check(&r.fixture, &view.name, &changed, Default::default())
+        .unwrap();
+    assert!(!c.pass);
+    assert_eq!((c.max_diff, c.differing), (Some(0x80), 1));
+    let line = c.to_string();
+    assert!(
+        line.starts_with(
+            "golden FAIL fixture=flange view=frame-920 max_diff=128 differing=1 allowed=fuzzy(0,0)"
+        ),
+        "{line}"
+    );
+    let dir = store.pending_dir(&r.fixture, &view.name);
+    for f in ["actual.png", "expected.png", "diff.png"] {
+        assert!(dir.join(f).is_file(), "{f} not written");
+    }
+    assert_eq!(
+        std::fs::read(&golden_path).unwrap(),
+        before,
+        "the golden was modified"
+    );
+    std::fs::remove_dir_all(&scratch).ok();
 }

@@ -193,6 +193,10 @@ pub struct FixtureSpec {
     /// Lab times [t0, t1] during which objects without a worldline exist.
     #[serde(default = "default_static_lifetime")]
     pub static_lifetime: [f64; 2],
+    /// How far the fixture's views may differ from their golden images
+    /// (default exact: the renderer is deterministic).
+    #[serde(default)]
+    pub fuzzy: crate::golden::Fuzzy,
     pub objects: Vec<ObjectSpec>,
 }
 
@@ -231,7 +235,8 @@ pub struct View {
 /// The fixtures folder of this workspace.
 pub fn fixtures_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("..")
+        .parent()
+        .expect("vstf lives in the workspace")
         .join("fixtures")
 }
 

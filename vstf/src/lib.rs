@@ -5,6 +5,7 @@
 
 pub mod check;
 pub mod fixture;
+pub mod golden;
 pub mod measure;
 pub mod oracle;
 pub mod output;

@@ -70,6 +70,18 @@ enum Command {
         #[arg(long)]
         quick: bool,
     },
+    /// Approve pending images (from failed or missing golden comparisons of
+    /// `vstf check`) as the new golden images. Refused when CI is set.
+    Approve {
+        /// Fixtures whose pending images to approve.
+        fixtures: Vec<String>,
+        /// Approve every pending image.
+        #[arg(long, conflicts_with = "fixtures")]
+        all: bool,
+        /// Only list what is pending.
+        #[arg(long, conflicts_with_all = ["fixtures", "all"])]
+        list: bool,
+    },
     /// List the fixtures in fixtures/.
     List,
 }
@@ -158,9 +170,20 @@ fn run(cli: Cli) -> Result<(), String> {
                 vstf::check::Effort::FULL
             };
             let started = Instant::now();
-            let reports = vstf::check::run(&fixtures, &effort)?;
+            let store = vstf::golden::Store::workspace();
+            let reports = vstf::check::run(&fixtures, &effort, &store)?;
             let rows: Vec<vstf::check::Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
             print!("{}", vstf::report::table(&rows));
+            let goldens: Vec<&vstf::golden::Comparison> =
+                reports.iter().flat_map(|r| &r.goldens).collect();
+            for g in &goldens {
+                println!("{g}");
+            }
+            let failed = goldens.iter().filter(|g| !g.pass).count();
+            println!("golden: {} passed, {failed} failed", goldens.len() - failed);
+            if failed > 0 {
+                eprintln!("golden images differ or are missing: look at the pending images under {}, then `vstf approve --list` and `vstf approve FIXTURE...` if the change is right", store.pending.display());
+            }
             eprintln!(
                 "checked {} fixtures in {:.1} s",
                 reports.len(),
@@ -174,8 +197,48 @@ fn run(cli: Cli) -> Result<(), String> {
                 vstf::report::html(&dir, &reports)?;
                 eprintln!("report: {}", dir.join("index.html").display());
             }
-            if rows.iter().any(|r| !r.pass) {
+            if rows.iter().any(|r| !r.pass) || failed > 0 {
                 return Err("some checks failed".into());
+            }
+            Ok(())
+        }
+        Command::Approve {
+            fixtures,
+            all,
+            list,
+        } => {
+            let store = vstf::golden::Store::workspace();
+            if list {
+                let pending = store.list_pending();
+                if pending.is_empty() {
+                    println!("nothing pending");
+                }
+                for p in pending {
+                    let what = if p.replaces { "changed" } else { "new" };
+                    println!(
+                        "{what:8} {} / {}  {}",
+                        p.fixture,
+                        p.view,
+                        p.actual.display()
+                    );
+                }
+                return Ok(());
+            }
+            if fixtures.is_empty() && !all {
+                return Err("name the fixtures to approve, or give --all (see --list)".into());
+            }
+            let ci = std::env::var_os("CI").is_some();
+            let chosen = if all { None } else { Some(fixtures.as_slice()) };
+            let done = store.approve(chosen, ci)?;
+            if done.is_empty() {
+                println!("nothing to approve");
+            }
+            for p in done {
+                let what = if p.replaces { "updated" } else { "created" };
+                println!(
+                    "{what} {}",
+                    store.golden_path(&p.fixture, &p.view).display()
+                );
             }
             Ok(())
         }

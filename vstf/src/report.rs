@@ -2,6 +2,7 @@
 //! the static HTML report with images and expected-point markers.
 
 use crate::check::{FixtureReport, Row};
+use crate::golden::{slug, Comparison};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -108,24 +109,12 @@ fn esc(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-fn slug(s: &str) -> String {
-    s.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '-'
-            }
-        })
-        .collect()
-}
-
 /// Writes `dir/index.html` with each fixture's views (plain and with the
 /// expected points marked) and its rows, failing fixtures and rows first.
 pub fn html(dir: &Path, reports: &[FixtureReport]) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let mut order: Vec<&FixtureReport> = reports.iter().collect();
-    order.sort_by_key(|r| r.rows.iter().all(|x| x.pass));
+    order.sort_by_key(|r| r.passed());
     let mut h = String::from(
         "<!doctype html><meta charset=utf-8><title>VSTF report</title><style>\
          body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{padding:2px 8px;border-bottom:1px solid #ccc;text-align:left}\
@@ -155,7 +144,7 @@ pub fn html(dir: &Path, reports: &[FixtureReport]) -> Result<(), String> {
             )?;
             let _ = write!(
                 h,
-                "<figure><img src=\"{base}.png\"><img src=\"{base}-markers.png\"><figcaption>{}</figcaption></figure>",
+                "<figure><img src=\"{base}.png\" width=480><img src=\"{base}-markers.png\" width=480><figcaption>{}</figcaption></figure>",
                 esc(&v.name)
             );
         }
@@ -179,7 +168,54 @@ pub fn html(dir: &Path, reports: &[FixtureReport]) -> Result<(), String> {
             );
         }
         h.push_str("</table>");
+        golden_section(&mut h, dir, &r.goldens)?;
     }
     crate::output::write_atomic(&dir.join("index.html"), h.as_bytes())
         .map_err(|e| format!("cannot write report: {e}"))
+}
+
+/// Each failing golden comparison: the actual and expected images side by
+/// side (hover or click either to swap them), and the diff; then one line
+/// per passing view.
+fn golden_section(h: &mut String, dir: &Path, goldens: &[Comparison]) -> Result<(), String> {
+    for g in goldens.iter().filter(|g| !g.pass) {
+        let _ = write!(h, "<p class=FAIL><code>{}</code></p>", esc(&g.to_string()));
+        let Some(pending) = &g.pending else { continue };
+        let base = format!("golden-{}-{}", slug(&g.fixture), slug(&g.view));
+        let mut figures = Vec::new();
+        for (file, caption) in [
+            ("actual.png", "actual"),
+            ("expected.png", "expected"),
+            ("diff.png", "diff"),
+        ] {
+            let src = pending.join(file);
+            if src.is_file() {
+                let name = format!("{base}-{file}");
+                std::fs::copy(&src, dir.join(&name))
+                    .map_err(|e| format!("cannot copy {}: {e}", src.display()))?;
+                figures.push((name, caption));
+            }
+        }
+        let other = |c: &str| {
+            figures
+                .iter()
+                .find(|(_, k)| *k == c)
+                .map(|(n, _)| n.clone())
+        };
+        for (name, caption) in &figures {
+            let swap = match *caption {
+                "actual" => other("expected"),
+                "expected" => other("actual"),
+                _ => None,
+            };
+            let js = swap.map_or(String::new(), |o| {
+                format!(" onmouseover=\"this.src='{o}'\" onmouseout=\"this.src='{name}'\" onclick=\"this.src=this.src.endsWith('{name}')?'{o}':'{name}'\"")
+            });
+            let _ = write!(h, "<figure><img src=\"{name}\" width=480{js}><figcaption>{caption}</figcaption></figure>");
+        }
+    }
+    for g in goldens.iter().filter(|g| g.pass) {
+        let _ = write!(h, "<p class=pass><code>{}</code></p>", esc(&g.to_string()));
+    }
+    Ok(())
 }

@@ -115,3 +115,22 @@ fn check_of_an_unknown_fixture_fails_clearly() {
         "{err}"
     );
 }
+
+#[test]
+fn approve_is_refused_under_ci_and_list_works() {
+    let out = vstf()
+        .args(["approve", "--all"])
+        .env("CI", "true")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr)
+        .contains("refusing to approve golden images with CI set"));
+    let out = vstf().args(["approve", "--list"]).output().unwrap();
+    assert!(out.status.success());
+    let out = vstf().args(["approve"]).output().unwrap();
+    assert!(
+        !out.status.success(),
+        "approve with neither fixtures nor --all must not approve everything"
+    );
+}

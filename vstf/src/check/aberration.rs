@@ -342,12 +342,12 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
             .iter()
             .map(|a| DVec3::new(a.to_radians().sin(), 0.0, -a.to_radians().cos()))
             .collect();
-        views.push(setup.full_view(&label, effort, &marks)?);
+        views.push(setup.full_view(&label, &marks)?);
     }
-    Ok(FixtureReport {
-        fixture: NAME.into(),
-        description: control.spec.description.clone(),
+    Ok(FixtureReport::new(
+        NAME,
+        &control.spec.description,
         views,
         rows,
-    })
+    ))
 }

@@ -9,6 +9,7 @@
 //! view sees; the full view is rendered for the report.
 
 use crate::fixture::{Fixture, Overrides, View};
+use crate::golden::{Comparison, Store};
 use crate::measure::{self, PolyFit, Scan};
 use glam::DVec3;
 use image::RgbImage;
@@ -74,7 +75,35 @@ pub struct FixtureReport {
     pub description: String,
     pub views: Vec<ViewReport>,
     pub rows: Vec<Row>,
+    /// Each view against its golden image (filled in by [`run`]).
+    pub goldens: Vec<Comparison>,
 }
+
+impl FixtureReport {
+    pub fn new(
+        fixture: &str,
+        description: &str,
+        views: Vec<ViewReport>,
+        rows: Vec<Row>,
+    ) -> FixtureReport {
+        FixtureReport {
+            fixture: fixture.into(),
+            description: description.into(),
+            views,
+            rows,
+            goldens: Vec::new(),
+        }
+    }
+
+    pub fn passed(&self) -> bool {
+        self.rows.iter().all(|r| r.pass) && self.goldens.iter().all(|g| g.pass)
+    }
+}
+
+/// Width of the full views: the report's images and the golden images,
+/// the same at every effort so that `cargo test` and `vstf check` compare
+/// the same pictures.
+pub const VIEW_WIDTH: u32 = 240;
 
 /// How hard to look: probe size and samples per pixel. The default is the
 /// main job's; tests use a smaller one.
@@ -84,21 +113,14 @@ pub struct Effort {
     pub probe: u32,
     /// Samples per probe pixel (a square number: n x n strata).
     pub spp: u32,
-    /// Width of the full views in the report (height by the fixture's aspect).
-    pub view_width: u32,
 }
 
 impl Effort {
     pub const FULL: Effort = Effort {
         probe: 400,
         spp: 16,
-        view_width: 480,
     };
-    pub const QUICK: Effort = Effort {
-        probe: 200,
-        spp: 9,
-        view_width: 160,
-    };
+    pub const QUICK: Effort = Effort { probe: 200, spp: 9 };
 
     /// Strata per side.
     pub fn strata(&self) -> f64 {
@@ -133,15 +155,10 @@ impl Setup<'_> {
         crate::run::view(self.fixture, &o)
     }
 
-    /// The full view at the report's size, with `markers` at the pixels of
+    /// The full view at [`VIEW_WIDTH`], with `markers` at the pixels of
     /// the given lab directions.
-    pub fn full_view(
-        &self,
-        name: &str,
-        effort: &Effort,
-        directions: &[DVec3],
-    ) -> Result<ViewReport, String> {
-        let view = self.view(effort.view_width)?;
+    pub fn full_view(&self, name: &str, directions: &[DVec3]) -> Result<ViewReport, String> {
+        let view = self.view(VIEW_WIDTH)?;
         let image = crate::run::render(self.fixture, &view, Traversal::Bvh)?.to_rgb8();
         let markers = directions
             .iter()
@@ -389,8 +406,9 @@ pub const CHECKS: &[(&str, Check)] = &[
     ("teaser", teaser::run),
 ];
 
-/// Runs the checks of the named fixtures (all when empty).
-pub fn run(names: &[String], effort: &Effort) -> Result<Vec<FixtureReport>, String> {
+/// Runs the checks of the named fixtures (all when empty), comparing
+/// every view with its golden image in `store`.
+pub fn run(names: &[String], effort: &Effort, store: &Store) -> Result<Vec<FixtureReport>, String> {
     for n in names {
         if !CHECKS.iter().any(|(c, _)| c == n) {
             let known: Vec<&str> = CHECKS.iter().map(|(c, _)| *c).collect();
@@ -400,9 +418,19 @@ pub fn run(names: &[String], effort: &Effort) -> Result<Vec<FixtureReport>, Stri
             ));
         }
     }
-    CHECKS
+    let mut reports = Vec::new();
+    let chosen = CHECKS
         .iter()
-        .filter(|(c, _)| names.is_empty() || names.iter().any(|n| n == c))
-        .map(|(_, f)| f(effort))
-        .collect()
+        .filter(|(c, _)| names.is_empty() || names.iter().any(|n| n == c));
+    for (name, check) in chosen {
+        let mut report = check(effort)?;
+        let fuzzy = Fixture::load(name).map_err(|e| e.to_string())?.spec.fuzzy;
+        for v in &report.views {
+            report
+                .goldens
+                .push(store.check(&report.fixture, &v.name, &v.image, fuzzy)?);
+        }
+        reports.push(report);
+    }
+    Ok(reports)
 }

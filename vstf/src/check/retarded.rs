@@ -114,7 +114,7 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
             })
             .map(|r| r.direction)
             .collect();
-        views.push(setup.full_view(&format!("frame {frame}"), effort, &marks)?);
+        views.push(setup.full_view(&format!("frame {frame}"), &marks)?);
     }
     let dt = 1171.0 - 940.0;
     let (a, b) = (&seen[0], &seen[1]);
@@ -127,10 +127,5 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
         (a.0.tolerance.powi(2) + b.0.tolerance.powi(2)).sqrt() / dt,
         "l.units/t.unit",
     ));
-    Ok(FixtureReport {
-        fixture: NAME.into(),
-        description: f.spec.description.clone(),
-        views,
-        rows,
-    })
+    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
 }

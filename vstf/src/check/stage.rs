@@ -163,11 +163,6 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
         .iter()
         .flat_map(|&x| [-6.0, 0.0, 6.0].map(|z| (DVec3::new(x, top, z) - cam).normalize()))
         .collect();
-    let views = vec![setup.full_view("view", effort, &marks)?];
-    Ok(FixtureReport {
-        fixture: NAME.into(),
-        description: f.spec.description.clone(),
-        views,
-        rows,
-    })
+    let views = vec![setup.full_view("view", &marks)?];
+    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
 }

@@ -154,12 +154,7 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
                 (e_lead.x - e_trail.x) * along,
             ));
         }
-        views.push(setup.full_view(band, effort, &marks)?);
+        views.push(setup.full_view(band, &marks)?);
     }
-    Ok(FixtureReport {
-        fixture: NAME.into(),
-        description: f.spec.description.clone(),
-        views,
-        rows,
-    })
+    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
 }

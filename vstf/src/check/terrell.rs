@@ -191,13 +191,8 @@ fn run(name: &str, effort: &Effort) -> Result<FixtureReport, String> {
         .filter_map(|&(x, y, z)| seen(x, y, z).ok())
         .map(|p| (p - cam).normalize())
         .collect();
-    let views = vec![setup.full_view("view", effort, &marks)?];
-    Ok(FixtureReport {
-        fixture: name.into(),
-        description: f.spec.description.clone(),
-        views,
-        rows,
-    })
+    let views = vec![setup.full_view("view", &marks)?];
+    Ok(FixtureReport::new(name, &f.spec.description, views, rows))
 }
 
 /// The lab length between the leading and trailing edges at one lab time,

@@ -1,0 +1,414 @@
+//! Approved images ("goldens") and the approve workflow.
+//!
+//! Like insta's snapshots, a check never writes an approved image: a
+//! mismatch or a missing golden leaves a *pending* actual image (with the
+//! expected image and a diff beside it) under `target/vstf/<fixture>/<view>/`,
+//! and only `vstf approve` copies pending images into `golden/`, atomically.
+//! Like WebRender's reftests, each fixture states its tolerance as
+//! `fuzzy(max_diff, max_pixels)`, comparing decoded pixels, never PNG bytes.
+
+use image::{Rgb, RgbImage};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// How far a render may stray from its golden: every pixel's difference
+/// (its largest channel difference) at most `max_diff`, and at most
+/// `max_pixels` pixels different at all.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Fuzzy {
+    pub max_diff: u8,
+    pub max_pixels: u64,
+}
+
+impl fmt::Display for Fuzzy {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "fuzzy({},{})", self.max_diff, self.max_pixels)
+    }
+}
+
+/// The result of comparing one view with its golden.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Comparison {
+    pub fixture: String,
+    pub view: String,
+    pub allowed: Fuzzy,
+    /// `None` when there is no golden (or it has another size).
+    pub max_diff: Option<u8>,
+    pub differing: u64,
+    pub missing: bool,
+    pub pass: bool,
+    /// Where the pending actual, expected and diff images were written.
+    pub pending: Option<PathBuf>,
+}
+
+impl fmt::Display for Comparison {
+    /// One greppable line per image.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let status = if self.pass {
+            "pass"
+        } else if self.missing {
+            "MISSING"
+        } else {
+            "FAIL"
+        };
+        write!(
+            f,
+            "golden {status} fixture={} view={}",
+            slug(&self.fixture),
+            slug(&self.view)
+        )?;
+        if let Some(d) = self.max_diff {
+            write!(f, " max_diff={d} differing={}", self.differing)?;
+        }
+        write!(f, " allowed={}", self.allowed)?;
+        if let Some(p) = &self.pending {
+            write!(f, " pending={}", p.display())?;
+        }
+        Ok(())
+    }
+}
+
+/// The largest channel difference and the number of differing pixels.
+pub fn compare(actual: &RgbImage, expected: &RgbImage) -> Option<(u8, u64)> {
+    if actual.dimensions() != expected.dimensions() {
+        return None;
+    }
+    let (mut max, mut n) = (0u8, 0u64);
+    for (a, e) in actual.pixels().zip(expected.pixels()) {
+        let d = (0..3).map(|i| a.0[i].abs_diff(e.0[i])).max().unwrap_or(0);
+        if d > 0 {
+            n += 1;
+            max = max.max(d);
+        }
+    }
+    Some((max, n))
+}
+
+/// A faded grey copy of `expected` with every differing pixel in red,
+/// brighter for larger differences (amplified x8, at least half bright).
+pub fn diff_image(actual: &RgbImage, expected: &RgbImage) -> RgbImage {
+    RgbImage::from_fn(actual.width(), actual.height(), |x, y| {
+        let a = actual.get_pixel(x, y).0;
+        let e = if x < expected.width() && y < expected.height() {
+            expected.get_pixel(x, y).0
+        } else {
+            [0, 0, 0]
+        };
+        let d = (0..3).map(|i| a[i].abs_diff(e[i])).max().unwrap_or(0);
+        if d > 0 {
+            Rgb([(128 + u16::from(d) * 8).min(255) as u8, 0, 0])
+        } else {
+            let grey = (u16::from(e[0]) + u16::from(e[1]) + u16::from(e[2])) / 3;
+            let faded = (64 + grey / 4) as u8;
+            Rgb([faded, faded, faded])
+        }
+    })
+}
+
+/// Makes a name safe as a file name: lowercase letters, digits and dashes.
+pub fn slug(s: &str) -> String {
+    let mut out = String::new();
+    for c in s.chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c.to_ascii_lowercase());
+        } else if !out.ends_with('-') {
+            out.push('-');
+        }
+    }
+    out.trim_matches('-').to_string()
+}
+
+/// A pending image waiting for approval.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pending {
+    pub fixture: String,
+    pub view: String,
+    pub actual: PathBuf,
+    /// Whether a golden exists (then this is a change, else a new image).
+    pub replaces: bool,
+}
+
+/// Where goldens and pending images live.
+#[derive(Clone, Debug)]
+pub struct Store {
+    pub golden: PathBuf,
+    pub pending: PathBuf,
+}
+
+impl Store {
+    /// `golden/` and `target/vstf/` of this workspace.
+    pub fn workspace() -> Store {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .parent()
+            .expect("vstf lives in the workspace");
+        Store {
+            golden: root.join("golden"),
+            pending: root.join("target").join("vstf"),
+        }
+    }
+
+    pub fn golden_path(&self, fixture: &str, view: &str) -> PathBuf {
+        self.golden
+            .join(slug(fixture))
+            .join(format!("{}.png", slug(view)))
+    }
+
+    pub fn pending_dir(&self, fixture: &str, view: &str) -> PathBuf {
+        self.pending.join(slug(fixture)).join(slug(view))
+    }
+
+    /// Compares `actual` with the golden of (`fixture`, `view`). On a
+    /// mismatch or a missing golden, writes `actual.png`, `expected.png` (if
+    /// any) and `diff.png` into the view's pending folder; on a match,
+    /// removes any stale pending images of the view.
+    pub fn check(
+        &self,
+        fixture: &str,
+        view: &str,
+        actual: &RgbImage,
+        allowed: Fuzzy,
+    ) -> Result<Comparison, String> {
+        let path = self.golden_path(fixture, view);
+        let expected = if path.exists() {
+            Some(
+                image::open(&path)
+                    .map_err(|e| format!("cannot read golden {}: {e}", path.display()))?
+                    .to_rgb8(),
+            )
+        } else {
+            None
+        };
+        let measured = expected.as_ref().and_then(|e| compare(actual, e));
+        let pass = measured.is_some_and(|(d, n)| d <= allowed.max_diff && n <= allowed.max_pixels);
+        let dir = self.pending_dir(fixture, view);
+        let pending = if pass {
+            if dir.exists() {
+                std::fs::remove_dir_all(&dir)
+                    .map_err(|e| format!("cannot clear {}: {e}", dir.display()))?;
+            }
+            None
+        } else {
+            crate::output::write_png(&dir.join("actual.png"), actual)?;
+            if let Some(e) = &expected {
+                crate::output::write_png(&dir.join("expected.png"), e)?;
+                crate::output::write_png(&dir.join("diff.png"), &diff_image(actual, e))?;
+            } else {
+                let _ = std::fs::remove_file(dir.join("expected.png"));
+                let _ = std::fs::remove_file(dir.join("diff.png"));
+            }
+            std::fs::write(dir.join("names"), format!("{fixture}\n{view}\n"))
+                .map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
+            Some(dir)
+        };
+        Ok(Comparison {
+            fixture: fixture.into(),
+            view: view.into(),
+            allowed,
+            max_diff: measured.map(|m| m.0),
+            differing: measured.map_or(0, |m| m.1),
+            missing: expected.is_none(),
+            pass,
+            pending,
+        })
+    }
+
+    /// Every pending image, sorted.
+    pub fn list_pending(&self) -> Vec<Pending> {
+        let mut out = Vec::new();
+        for fixture_dir in read_dirs(&self.pending) {
+            for view_dir in read_dirs(&fixture_dir) {
+                let actual = view_dir.join("actual.png");
+                let Ok(names) = std::fs::read_to_string(view_dir.join("names")) else {
+                    continue;
+                };
+                let mut lines = names.lines();
+                let (Some(fixture), Some(view)) = (lines.next(), lines.next()) else {
+                    continue;
+                };
+                if actual.is_file() {
+                    let replaces = self.golden_path(fixture, view).exists();
+                    out.push(Pending {
+                        fixture: fixture.into(),
+                        view: view.into(),
+                        actual,
+                        replaces,
+                    });
+                }
+            }
+        }
+        out.sort_by(|a, b| (&a.fixture, &a.view).cmp(&(&b.fixture, &b.view)));
+        out
+    }
+
+    /// Copies the pending images of `fixtures` (all when `None`) into the
+    /// golden folder, each write atomic, and clears them from pending.
+    /// Refused when `ci` is set: CI never approves or creates goldens.
+    pub fn approve(&self, fixtures: Option<&[String]>, ci: bool) -> Result<Vec<Pending>, String> {
+        if ci {
+            return Err("refusing to approve golden images with CI set: approve locally and commit the images".into());
+        }
+        let chosen: Vec<Pending> = self
+            .list_pending()
+            .into_iter()
+            .filter(|p| fixtures.is_none_or(|f| f.iter().any(|n| slug(n) == slug(&p.fixture))))
+            .collect();
+        for p in &chosen {
+            let bytes = std::fs::read(&p.actual)
+                .map_err(|e| format!("cannot read {}: {e}", p.actual.display()))?;
+            image::load_from_memory(&bytes)
+                .map_err(|e| format!("{} is not a valid PNG: {e}", p.actual.display()))?;
+            let dest = self.golden_path(&p.fixture, &p.view);
+            crate::output::write_atomic(&dest, &bytes)
+                .map_err(|e| format!("cannot write {}: {e}", dest.display()))?;
+            let dir = p.actual.parent().expect("pending images live in a folder");
+            std::fs::remove_dir_all(dir)
+                .map_err(|e| format!("cannot clear {}: {e}", dir.display()))?;
+        }
+        Ok(chosen)
+    }
+}
+
+fn read_dirs(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.is_dir())
+        .collect();
+    v.sort();
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn temp_store(name: &str) -> Store {
+        let root = std::env::temp_dir().join(format!("vstf-golden-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        Store {
+            golden: root.join("golden"),
+            pending: root.join("pending"),
+        }
+    }
+
+    fn picture() -> RgbImage {
+        RgbImage::from_fn(32, 24, |x, y| Rgb([(x * 7) as u8, (y * 9) as u8, 100]))
+    }
+
+    #[test]
+    fn a_missing_golden_fails_and_leaves_a_pending_image() {
+        let s = temp_store("missing");
+        let c = s
+            .check("flange", "frame 920", &picture(), Fuzzy::default())
+            .unwrap();
+        assert!(!c.pass && c.missing);
+        assert!(
+            c.to_string()
+                .starts_with("golden MISSING fixture=flange view=frame-920"),
+            "{c}"
+        );
+        assert!(s
+            .pending_dir("flange", "frame 920")
+            .join("actual.png")
+            .is_file());
+        assert!(!s.golden.exists(), "a check wrote into golden/");
+    }
+
+    #[test]
+    fn a_one_pixel_change_is_caught_with_a_diff() {
+        let s = temp_store("onepixel");
+        s.check("stage", "view", &picture(), Fuzzy::default())
+            .unwrap();
+        s.approve(None, false).unwrap();
+        assert!(
+            s.check("stage", "view", &picture(), Fuzzy::default())
+                .unwrap()
+                .pass
+        );
+        let mut changed = picture();
+        changed.put_pixel(5, 6, Rgb([255, 255, 255]));
+        let c = s
+            .check("stage", "view", &changed, Fuzzy::default())
+            .unwrap();
+        assert!(!c.pass && !c.missing);
+        assert_eq!((c.max_diff, c.differing), (Some(255 - 35), 1));
+        assert!(
+            c.to_string().starts_with(
+                "golden FAIL fixture=stage view=view max_diff=220 differing=1 allowed=fuzzy(0,0)"
+            ),
+            "{c}"
+        );
+        let dir = s.pending_dir("stage", "view");
+        let diff = image::open(dir.join("diff.png")).unwrap().to_rgb8();
+        assert_eq!(diff.get_pixel(5, 6).0, [255, 0, 0]);
+        assert_ne!(diff.get_pixel(0, 0).0, [255, 0, 0]);
+        assert!(dir.join("expected.png").is_file() && dir.join("actual.png").is_file());
+        // A fuzzy allowance that covers the change lets it pass, and clears the pending images.
+        assert!(
+            s.check(
+                "stage",
+                "view",
+                &changed,
+                Fuzzy {
+                    max_diff: 255,
+                    max_pixels: 1
+                }
+            )
+            .unwrap()
+            .pass
+        );
+        assert!(!dir.exists());
+        assert!(
+            !s.check(
+                "stage",
+                "view",
+                &changed,
+                Fuzzy {
+                    max_diff: 219,
+                    max_pixels: 1
+                }
+            )
+            .unwrap()
+            .pass
+        );
+    }
+
+    #[test]
+    fn approve_copies_only_pending_views_atomically_and_never_under_ci() {
+        let s = temp_store("approve");
+        s.check("a", "one", &picture(), Fuzzy::default()).unwrap();
+        s.check("b", "two", &picture(), Fuzzy::default()).unwrap();
+        assert_eq!(s.list_pending().len(), 2);
+        assert!(s.approve(None, true).unwrap_err().contains("CI"));
+        assert!(!s.golden.exists(), "approve under CI wrote a golden");
+        let done = s.approve(Some(&["a".to_string()]), false).unwrap();
+        assert_eq!(done.len(), 1);
+        assert_eq!(done[0].fixture, "a");
+        assert!(s.golden_path("a", "one").is_file() && !s.golden_path("b", "two").exists());
+        assert_eq!(s.list_pending().len(), 1);
+        // The golden is the pending image, and no temporary file is left beside it.
+        assert_eq!(
+            image::open(s.golden_path("a", "one")).unwrap().to_rgb8(),
+            picture()
+        );
+        let names: Vec<String> = std::fs::read_dir(s.golden.join("a"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into())
+            .collect();
+        assert_eq!(names, ["one.png"]);
+        // A passing view has nothing pending, so approve leaves its golden alone.
+        assert!(
+            s.check("a", "one", &picture(), Fuzzy::default())
+                .unwrap()
+                .pass
+        );
+        assert!(s
+            .approve(Some(&["a".to_string()]), false)
+            .unwrap()
+            .is_empty());
+    }
+}
