@@ -250,36 +250,4 @@ impl Bvh {
         }
         best
     }
-
-    /// The first hit found in `range`, if any.
-    pub fn any(
-        &self,
-        ray: &Ray,
-        range: (f64, f64),
-        mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
-    ) -> Option<Hit> {
-        if self.nodes.is_empty() {
-            return None;
-        }
-        let (o, d) = (ray.origin.to_xyzt(), ray.direction.to_xyzt());
-        let mut stack = vec![0usize];
-        while let Some(n) = stack.pop() {
-            let node = &self.nodes[n];
-            if Self::enter(node, o, d, range).is_none() {
-                continue;
-            }
-            if node.count > 0 {
-                let start = node.index as usize;
-                if let Some(h) = self.order[start..start + node.count as usize]
-                    .iter()
-                    .find_map(|&i| test(i, range))
-                {
-                    return Some(h);
-                }
-            } else {
-                stack.extend([node.index as usize, n + 1]);
-            }
-        }
-        None
-    }
 }

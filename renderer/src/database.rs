@@ -284,25 +284,4 @@ impl Database {
                 .closest(ray, range, |i, r| self.test_traced(ray, i, r, trace).ok()),
         }
     }
-
-    /// The first hit found in `range`, if any (shadow rays need no more).
-    pub fn any_hit(&self, ray: &Ray, range: (f64, f64)) -> Option<Hit> {
-        self.any_hit_traced(ray, range, &mut NoTrace)
-    }
-
-    /// [`Database::any_hit`], recording every tetrahedron tested.
-    pub fn any_hit_traced<T: Trace>(
-        &self,
-        ray: &Ray,
-        range: (f64, f64),
-        trace: &mut T,
-    ) -> Option<Hit> {
-        match self.traversal {
-            Traversal::BruteForce => (0..self.tets.len() as u32)
-                .find_map(|i| self.test_traced(ray, i, range, trace).ok()),
-            Traversal::Bvh => self
-                .bvh
-                .any(ray, range, |i, r| self.test_traced(ray, i, r, trace).ok()),
-        }
-    }
 }

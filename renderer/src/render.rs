@@ -60,6 +60,23 @@ impl Image {
     }
 }
 
+/// The shader for one render: the database, the scene's light and
+/// background, the model's light speed and the settings' bounce limit.
+pub fn shader<'a>(
+    db: &'a Database,
+    scene: &'a Scene,
+    model: Model,
+    settings: &RenderSettings,
+) -> Shader<'a> {
+    Shader {
+        db,
+        light: &scene.light,
+        background: scene.background,
+        light_speed: model.light_speed,
+        max_depth: settings.max_depth,
+    }
+}
+
 /// Renders the view from `camera` at lab time `camera_t`.
 pub fn render(
     db: &Database,
@@ -69,13 +86,7 @@ pub fn render(
     model: Model,
     settings: &RenderSettings,
 ) -> Image {
-    let shader = Shader {
-        db,
-        light: &scene.light,
-        background: scene.background,
-        light_speed: model.light_speed,
-        max_depth: settings.max_depth,
-    };
+    let shader = shader(db, scene, model, settings);
     let (w, h) = (camera.width, camera.height);
     let mut pixels = vec![DVec3::ZERO; w as usize * h as usize];
     pixels

@@ -176,7 +176,8 @@ impl Shader<'_> {
 
     /// Whether the light source is hidden from `event`: the past light cone
     /// of the event, towards the light's (static) position, meets an object
-    /// before reaching it.
+    /// before reaching it. The blocker kept is the nearest (the most recent
+    /// blocking event), so that it does not depend on the traversal.
     pub fn in_shadow(&self, event: Event) -> bool {
         self.in_shadow_traced(event, &mut NoTrace)
     }
@@ -193,7 +194,7 @@ impl Shader<'_> {
         if T::ENABLED {
             trace.record(ray_step(RayKind::Shadow, 0, &shadow, range));
         }
-        let blocker = self.db.any_hit_traced(&shadow, range, trace);
+        let blocker = self.db.closest_hit_traced(&shadow, range, trace);
         if T::ENABLED {
             if let Some(h) = &blocker {
                 trace.record(self.hit_step(RayKind::Shadow, &shadow, h));

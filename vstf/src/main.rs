@@ -82,6 +82,50 @@ enum Command {
         #[arg(long, conflicts_with_all = ["fixtures", "all"])]
         list: bool,
     },
+    /// Print every variable along one pixel's rays, or log a region's pixels
+    /// as JSON lines.
+    Debug {
+        /// A fixture JSON file, or the name of one in fixtures/.
+        fixture: String,
+        /// The pixel to trace, X,Y (from the top left).
+        #[arg(long, value_parser = parse_pair, required_unless_present = "region", conflicts_with = "region")]
+        pixel: Option<(u32, u32)>,
+        /// A region to log, X0,Y0,X1,Y1 (inclusive).
+        #[arg(long, value_parser = parse_region, requires = "log")]
+        region: Option<(u32, u32, u32, u32)>,
+        /// Write one JSON object per pixel to this file.
+        #[arg(long)]
+        log: Option<PathBuf>,
+        #[arg(long, value_enum)]
+        model: Option<ModelArg>,
+        #[arg(long)]
+        lorentz: bool,
+        #[arg(long, allow_hyphen_values = true)]
+        camera_t: Option<f64>,
+        #[arg(long)]
+        width: Option<u32>,
+        #[arg(long)]
+        height: Option<u32>,
+        #[arg(long)]
+        spp: Option<u32>,
+        /// Test every tetrahedron for every ray (no acceleration structure).
+        #[arg(long)]
+        brute_force: bool,
+    },
+    /// Compare two debug logs; exits non-zero when they differ beyond the tolerance.
+    DebugDiff {
+        a: PathBuf,
+        b: PathBuf,
+        /// Relative tolerance on numbers: |a - b| <= tol * max(1, |a|, |b|).
+        #[arg(long, default_value_t = 0.0)]
+        tol: f64,
+        /// Skip steps of this kind (e.g. candidate, which a change of traversal changes).
+        #[arg(long)]
+        ignore: Vec<String>,
+        /// How many differing pixels to print.
+        #[arg(long, default_value_t = 10)]
+        show: usize,
+    },
     /// List the fixtures in fixtures/.
     List,
 }
@@ -106,6 +150,38 @@ fn model_of(
         lorentz: m.lorentz || lorentz,
         ..m
     }))
+}
+
+fn parse_pair(s: &str) -> Result<(u32, u32), String> {
+    let v: Vec<u32> = s
+        .split(',')
+        .map(|p| {
+            p.trim()
+                .parse::<u32>()
+                .map_err(|_| format!("{s:?}: expected X,Y"))
+        })
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [x, y] => Ok((x, y)),
+        _ => Err(format!("{s:?}: expected X,Y")),
+    }
+}
+
+fn parse_region(s: &str) -> Result<(u32, u32, u32, u32), String> {
+    let v: Vec<u32> = s
+        .split(',')
+        .map(|p| {
+            p.trim()
+                .parse::<u32>()
+                .map_err(|_| format!("{s:?}: expected X0,Y0,X1,Y1"))
+        })
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [x0, y0, x1, y1] if x0 <= x1 && y0 <= y1 => Ok((x0, y0, x1, y1)),
+        _ => Err(format!(
+            "{s:?}: expected X0,Y0,X1,Y1 with X0 <= X1 and Y0 <= Y1"
+        )),
+    }
 }
 
 fn run(cli: Cli) -> Result<(), String> {
@@ -241,6 +317,85 @@ fn run(cli: Cli) -> Result<(), String> {
                 );
             }
             Ok(())
+        }
+        Command::Debug {
+            fixture,
+            pixel,
+            region,
+            log,
+            model,
+            lorentz,
+            camera_t,
+            width,
+            height,
+            spp,
+            brute_force,
+        } => {
+            let fixture = Fixture::load(&fixture).map_err(|e| e.to_string())?;
+            let overrides = Overrides {
+                model: model_of(model, lorentz, &fixture)?,
+                camera_t,
+                width,
+                height,
+                spp,
+            };
+            let view = vstf::run::view(&fixture, &overrides)?;
+            let traversal = if brute_force {
+                Traversal::BruteForce
+            } else {
+                Traversal::Bvh
+            };
+            let db = vstf::run::database(&fixture, view.model.lorentz, traversal)?;
+            let (x0, y0, x1, y1) = match (pixel, region) {
+                (Some((x, y)), _) => (x, y, x, y),
+                (None, Some(r)) => r,
+                (None, None) => unreachable!("clap requires --pixel or --region"),
+            };
+            let mut lines = String::new();
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let entry = vstf::debug::trace_pixel(&fixture, &view, &db, x, y)?;
+                    if pixel.is_some() {
+                        print!("{}", vstf::debug::describe(&entry));
+                    }
+                    lines.push_str(&serde_json::to_string(&entry).map_err(|e| e.to_string())?);
+                    lines.push('\n');
+                }
+            }
+            if let Some(path) = log {
+                vstf::output::write_atomic(&path, lines.as_bytes())
+                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                eprintln!(
+                    "logged {} pixels to {}",
+                    lines.lines().count(),
+                    path.display()
+                );
+            }
+            Ok(())
+        }
+        Command::DebugDiff {
+            a,
+            b,
+            tol,
+            ignore,
+            show,
+        } => {
+            let read = |p: &PathBuf| {
+                std::fs::read_to_string(p).map_err(|e| format!("cannot read {}: {e}", p.display()))
+            };
+            let diffs = vstf::debug::diff_logs(&read(&a)?, &read(&b)?, tol, &ignore)?;
+            for d in diffs.iter().take(show) {
+                println!(
+                    "line {} pixel {}: {}: {} vs {}",
+                    d.line, d.pixel, d.path, d.a, d.b
+                );
+            }
+            if diffs.is_empty() {
+                println!("the logs agree (tolerance {tol})");
+                Ok(())
+            } else {
+                Err(format!("{} pixels differ", diffs.len()))
+            }
         }
         Command::List => {
             for name in vstf::fixture::all_names() {

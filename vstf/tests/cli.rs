@@ -134,3 +134,68 @@ fn approve_is_refused_under_ci_and_list_works() {
         "approve with neither fixtures nor --all must not approve everything"
     );
 }
+
+#[test]
+fn debug_prints_a_pixel_and_logs_a_region_that_debug_diff_compares() {
+    let out = vstf()
+        .args(["debug", "flange", "--pixel", "300,200"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.starts_with("pixel (300, 200) of flange, relativistic model")
+            && text.contains("Primary ray"),
+        "{text}"
+    );
+    let dir = std::env::temp_dir().join(format!("vstf-debug-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (a, b) = (dir.join("a.jsonl"), dir.join("b.jsonl"));
+    for (path, extra) in [(&a, None), (&b, Some("--brute-force"))] {
+        let mut cmd = vstf();
+        cmd.args([
+            "debug",
+            "flange",
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--region",
+            "10,10,13,12",
+            "--log",
+        ])
+        .arg(path);
+        if let Some(e) = extra {
+            cmd.arg(e);
+        }
+        assert!(cmd.status().unwrap().success());
+    }
+    assert_eq!(std::fs::read_to_string(&a).unwrap().lines().count(), 12);
+    let same = vstf()
+        .args(["debug-diff", "--ignore", "candidate"])
+        .arg(&a)
+        .arg(&b)
+        .output()
+        .unwrap();
+    assert!(
+        same.status.success(),
+        "{}",
+        String::from_utf8_lossy(&same.stdout)
+    );
+    let differ = vstf().arg("debug-diff").arg(&a).arg(&b).output().unwrap();
+    assert!(!differ.status.success());
+    assert!(String::from_utf8_lossy(&differ.stdout).contains("steps["));
+    let outside = vstf()
+        .args(["debug", "flange", "--pixel", "5000,1"])
+        .output()
+        .unwrap();
+    assert!(
+        !outside.status.success()
+            && String::from_utf8_lossy(&outside.stderr).contains("outside the 640x480 image")
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -1,0 +1,220 @@
+//! Debug mode records what rendering computes, and debug-diff tells two
+//! logs apart.
+
+use renderer::trace::{RayKind, Step};
+use renderer::{LightSpeed, Traversal};
+use vstf::debug::{diff_logs, trace_pixel};
+use vstf::fixture::{Fixture, Overrides, View};
+
+fn setup(name: &str, w: u32, h: u32) -> (Fixture, View) {
+    let f = Fixture::load(name).unwrap();
+    let view = vstf::run::view(
+        &f,
+        &Overrides {
+            width: Some(w),
+            height: Some(h),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    (f, view)
+}
+
+#[test]
+fn the_debugged_colour_is_the_rendered_colour() {
+    for name in ["teaser", "terrell-contracted", "flange"] {
+        let (f, view) = setup(name, 64, 36);
+        let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+        let image = vstf::run::render_with(&db, &f, &view);
+        for (x, y) in [(0, 0), (31, 18), (30, 5), (20, 25), (45, 10), (63, 35)] {
+            let log = trace_pixel(&f, &view, &db, x, y).unwrap();
+            let rendered = image.pixels[(y * 64 + x) as usize];
+            assert_eq!(
+                log.color.to_array().map(f64::to_bits),
+                rendered.to_array().map(f64::to_bits),
+                "{name} ({x}, {y})"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_log_holds_the_variables_along_the_ray() {
+    let (f, view) = setup("teaser", 640, 360);
+    let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+    // A pixel on the mirror (see the teaser view): a primary hit, a shadow ray, a reflection ray.
+    let log = trace_pixel(&f, &view, &db, 300, 60).unwrap();
+    let kinds: Vec<RayKind> = log
+        .steps
+        .iter()
+        .filter_map(|s| {
+            if let Step::Ray { kind, .. } = s {
+                Some(*kind)
+            } else {
+                None
+            }
+        })
+        .collect();
+    assert!(
+        kinds.contains(&RayKind::Primary)
+            && kinds.contains(&RayKind::Shadow)
+            && kinds.contains(&RayKind::Reflection),
+        "{kinds:?}"
+    );
+    assert!(log
+        .steps
+        .iter()
+        .any(|s| matches!(s, Step::Hit { object, .. } if object == "mirror")));
+    assert!(log
+        .steps
+        .iter()
+        .any(|s| matches!(s, Step::Candidate { .. })));
+    for s in &log.steps {
+        if let Step::Ray {
+            normalized,
+            direction,
+            origin,
+            ..
+        } = s
+        {
+            assert!(
+                (normalized.t + std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-12,
+                "not on a light cone"
+            );
+            assert_eq!(direction.t, -1.0);
+            assert!(origin.t <= view.camera_t);
+        }
+        if let Step::Hit {
+            event,
+            kind: RayKind::Primary,
+            ..
+        } = s
+        {
+            let d = *event - view.camera.event;
+            assert!(
+                d.interval().abs() < 1e-9 * d.t * d.t,
+                "the primary hit is off the light cone"
+            );
+        }
+    }
+    let text = vstf::debug::describe(&log);
+    for word in [
+        "Primary ray",
+        "HIT \"mirror\"",
+        "Shadow ray",
+        "Reflection ray",
+        "shading",
+        "n.l =",
+        "8-bit",
+    ] {
+        assert!(text.contains(word), "{word} missing from:\n{text}");
+    }
+}
+
+#[test]
+fn infinite_light_speed_rays_stay_in_the_slice() {
+    let f = Fixture::load("flange").unwrap();
+    let view = vstf::run::view(
+        &f,
+        &Overrides {
+            model: Some(renderer::Model::INFINITE),
+            width: Some(64),
+            height: Some(48),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(view.model.light_speed, LightSpeed::Infinite);
+    let db = vstf::run::database(&f, false, Traversal::Bvh).unwrap();
+    let log = trace_pixel(&f, &view, &db, 32, 30).unwrap();
+    for s in &log.steps {
+        if let Step::Ray { direction, .. } = s {
+            assert_eq!(direction.t, 0.0);
+        }
+        if let Step::Hit { event, .. } = s {
+            assert_eq!(event.t, view.camera_t);
+        }
+    }
+}
+
+/// A 16x9 teaser log at one sample per pixel (a brute-force log holds every
+/// tetrahedron of the scene for every ray, so it is kept small).
+fn region_log(traversal: Traversal) -> String {
+    let f = Fixture::load("teaser").unwrap();
+    let view = vstf::run::view(
+        &f,
+        &Overrides {
+            width: Some(16),
+            height: Some(9),
+            spp: Some(1),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let db = vstf::run::database(&f, view.model.lorentz, traversal).unwrap();
+    let mut out = String::new();
+    for y in 0..9 {
+        for x in 0..16 {
+            out.push_str(
+                &serde_json::to_string(&trace_pixel(&f, &view, &db, x, y).unwrap()).unwrap(),
+            );
+            out.push('\n');
+        }
+    }
+    out
+}
+
+#[test]
+fn a_log_taken_after_changing_the_traversal_matches_except_for_candidates() {
+    let (bvh, brute) = (
+        region_log(Traversal::Bvh),
+        region_log(Traversal::BruteForce),
+    );
+    assert!(diff_logs(&bvh, &bvh, 0.0, &[]).unwrap().is_empty());
+    let same = diff_logs(&bvh, &brute, 0.0, &["candidate".to_string()]).unwrap();
+    assert!(same.is_empty(), "{same:?}");
+    // The candidates tested do differ: the BVH culls.
+    assert!(!diff_logs(&bvh, &brute, 0.0, &[]).unwrap().is_empty());
+}
+
+#[test]
+fn debug_diff_reports_the_first_differing_field() {
+    let log = region_log(Traversal::Bvh);
+    let mut lines: Vec<serde_json::Value> = log
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let k = lines
+        .iter()
+        .position(|l| {
+            l["steps"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|s| s["step"] == "hit")
+        })
+        .unwrap()
+        + 3;
+    let hit = lines[k]["steps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|s| s["step"] == "hit")
+        .expect("a pixel with a hit");
+    let t = lines[k]["steps"][hit]["event"]["t"].as_f64().unwrap();
+    lines[k]["steps"][hit]["event"]["t"] = (t + 1e-6).into();
+    let edited: String = lines.iter().map(|l| format!("{l}\n")).collect();
+    let d = diff_logs(&log, &edited, 1e-12, &[]).unwrap();
+    assert_eq!(d.len(), 1);
+    assert_eq!(d[0].line, k + 1);
+    assert_eq!(d[0].path, format!("steps[{hit}].event.t"));
+    assert!(
+        diff_logs(&log, &edited, 1e-3, &[]).unwrap().is_empty(),
+        "within tolerance"
+    );
+    let shorter: String = log.lines().take(10).map(|l| format!("{l}\n")).collect();
+    assert!(diff_logs(&log, &shorter, 0.0, &[])
+        .unwrap()
+        .iter()
+        .any(|d| d.path == "(number of pixels)"));
+}

@@ -1,0 +1,281 @@
+//! Debug mode (paper section 4): every variable along a pixel's rays, for a
+//! person to read or as JSON lines to compare later. The variables come from
+//! the renderer's own functions with recording switched on
+//! ([`renderer::trace`]), so what is logged is what is rendered.
+
+use crate::fixture::{Fixture, View};
+use glam::DVec3;
+use renderer::trace::{Outcome, Recorder, Step};
+use renderer::Database;
+use serde::Serialize;
+use serde_json::Value;
+use std::fmt::Write as _;
+
+/// Everything recorded for one pixel.
+#[derive(Clone, Debug, Serialize)]
+pub struct PixelLog {
+    pub fixture: String,
+    pub model: String,
+    pub camera_t: f64,
+    pub camera: DVec3,
+    pub pixel: [u32; 2],
+    pub steps: Vec<Step>,
+    /// Linear colour, and as stored in the 8-bit image.
+    pub color: DVec3,
+    pub rgb8: [u8; 3],
+}
+
+/// Traces pixel (x, y) of `view`, with the database built for it.
+pub fn trace_pixel(
+    f: &Fixture,
+    view: &View,
+    db: &Database,
+    x: u32,
+    y: u32,
+) -> Result<PixelLog, String> {
+    if x >= view.camera.width || y >= view.camera.height {
+        return Err(format!(
+            "pixel {x},{y} is outside the {}x{} image",
+            view.camera.width, view.camera.height
+        ));
+    }
+    let shader = renderer::render::shader(db, &f.scene, view.model, &view.settings);
+    let mut rec = Recorder::default();
+    let color = renderer::render::pixel_traced(
+        &shader,
+        &view.camera,
+        view.camera_t,
+        view.model,
+        &view.settings,
+        x,
+        y,
+        &mut rec,
+    );
+    let one = renderer::Image {
+        width: 1,
+        height: 1,
+        pixels: vec![color],
+    }
+    .to_rgb8();
+    Ok(PixelLog {
+        fixture: f.name.clone(),
+        model: view.model.to_string(),
+        camera_t: view.camera_t,
+        camera: view.camera.event.x,
+        pixel: [x, y],
+        steps: rec.steps,
+        color,
+        rgb8: one.get_pixel(0, 0).0,
+    })
+}
+
+fn v3(v: DVec3) -> String {
+    format!("({:.9}, {:.9}, {:.9})", v.x, v.y, v.z)
+}
+
+fn ev(e: renderer::Event) -> String {
+    format!("t = {:.9}, x = {}", e.t, v3(e.x))
+}
+
+fn bary(b: &[f64; 4]) -> String {
+    format!("[{:.6}, {:.6}, {:.6}, {:.6}]", b[0], b[1], b[2], b[3])
+}
+
+/// The log as text for a person, one line per step, indented by ray.
+pub fn describe(log: &PixelLog) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "pixel ({}, {}) of {}, {} model, camera at {} at t = {}",
+        log.pixel[0],
+        log.pixel[1],
+        log.fixture,
+        log.model,
+        v3(log.camera),
+        log.camera_t
+    );
+    let mut indent = "";
+    for step in &log.steps {
+        let line = match step {
+            Step::Sample { index, px, py, camera_t } => {
+                indent = "";
+                format!("sample {index} at image ({px:.4}, {py:.4}), camera t = {camera_t}")
+            }
+            Step::Ray { kind, depth, origin, direction, normalized, range } => {
+                indent = match kind {
+                    renderer::trace::RayKind::Shadow => "      ",
+                    _ => "  ",
+                };
+                format!(
+                    "{kind:?} ray (depth {depth}): origin {}; direction t = {}, x = {}; normalized t = {:.9}, x = {}; s in [{:e}, {:e}]",
+                    ev(*origin),
+                    direction.t,
+                    v3(direction.x),
+                    normalized.t,
+                    v3(normalized.x),
+                    range.0,
+                    range.1
+                )
+            }
+            Step::Candidate { tet, object, triangle, prism, piece, outcome } => {
+                let what = match outcome {
+                    Outcome::Accepted { s, event, bary: b } => format!("ACCEPTED s = {s:.9}, event {}, bary {}", ev(*event), bary(b)),
+                    Outcome::Parallel => "rejected: parallel to the tetrahedron's hyperplane".into(),
+                    Outcome::OutOfRange { s } => format!("rejected: hyperplane met at s = {s:.6}, outside the searched range"),
+                    Outcome::Outside { s, bary: b } => format!("rejected: outside the tetrahedron (s = {s:.6}, bary {})", bary(b)),
+                };
+                format!("  tet {tet} ({object:?} triangle {triangle}, prism {prism}, piece {piece}): {what}")
+            }
+            Step::Hit { kind, tet, object, triangle, event, surface_point, proper_time, normal, facing_normal } => format!(
+                "{} {object:?} (tet {tet}, triangle {triangle}) at {}; in the object's frame {}; proper time {proper_time:.9}; normal {}, facing {}",
+                if *kind == renderer::trace::RayKind::Shadow { "BLOCKED by" } else { "HIT" },
+                ev(*event),
+                v3(*surface_point),
+                v3(*normal),
+                v3(*facing_normal)
+            ),
+            Step::Miss { kind, background } => format!("{kind:?} ray met nothing: background {}", v3(*background)),
+            Step::Shading { depth, albedo, ambient, light_vector, light_distance, lambert, in_shadow, diffuse, specular, mirror, local, color } => format!(
+                "shading (depth {depth}): albedo {}; ambient {}; light vector {} at {light_distance:.6}; n.l = {lambert:.9}; in shadow: {in_shadow}; diffuse {}; specular {specular:.9}; mirror {mirror}; local {}; colour {}",
+                v3(*albedo),
+                v3(*ambient),
+                v3(*light_vector),
+                v3(*diffuse),
+                v3(*local),
+                v3(*color)
+            ),
+        };
+        let _ = writeln!(out, "{indent}{line}");
+    }
+    let _ = writeln!(out, "colour {} -> 8-bit {:?}", v3(log.color), log.rgb8);
+    out
+}
+
+/// One field that differs between two logs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Difference {
+    /// Line number (1-based) in the logs.
+    pub line: usize,
+    pub pixel: String,
+    /// JSON path of the field, e.g. `steps[4].event.t`.
+    pub path: String,
+    pub a: String,
+    pub b: String,
+}
+
+/// Compares two JSON-lines logs pixel by pixel. Numbers agree when
+/// |a - b| <= tol * max(1, |a|, |b|); steps whose kind is listed in `ignore`
+/// (e.g. `candidate`, which a change of traversal changes) are skipped.
+/// Returns the first differing field of every differing pixel.
+pub fn diff_logs(a: &str, b: &str, tol: f64, ignore: &[String]) -> Result<Vec<Difference>, String> {
+    let parse = |text: &str, which: &str| -> Result<Vec<Value>, String> {
+        text.lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty())
+            .map(|(i, l)| {
+                serde_json::from_str(l).map_err(|e| format!("{which} line {}: {e}", i + 1))
+            })
+            .collect()
+    };
+    let (la, lb) = (parse(a, "first log")?, parse(b, "second log")?);
+    let mut out = Vec::new();
+    for (i, (x, y)) in la.iter().zip(&lb).enumerate() {
+        let (x, y) = (strip(x, ignore), strip(y, ignore));
+        if let Some((path, va, vb)) = first_difference(&x, &y, "", tol) {
+            out.push(Difference {
+                line: i + 1,
+                pixel: x["pixel"].to_string(),
+                path,
+                a: va,
+                b: vb,
+            });
+        }
+    }
+    if la.len() != lb.len() {
+        out.push(Difference {
+            line: la.len().min(lb.len()) + 1,
+            pixel: "-".into(),
+            path: "(number of pixels)".into(),
+            a: la.len().to_string(),
+            b: lb.len().to_string(),
+        });
+    }
+    Ok(out)
+}
+
+fn strip(v: &Value, ignore: &[String]) -> Value {
+    let mut v = v.clone();
+    if let Some(steps) = v.get_mut("steps").and_then(Value::as_array_mut) {
+        steps.retain(|s| {
+            !s["step"]
+                .as_str()
+                .is_some_and(|k| ignore.iter().any(|i| i == k))
+        });
+    }
+    v
+}
+
+fn first_difference(
+    a: &Value,
+    b: &Value,
+    path: &str,
+    tol: f64,
+) -> Option<(String, String, String)> {
+    let here = || {
+        Some((
+            if path.is_empty() {
+                ".".into()
+            } else {
+                path.to_string()
+            },
+            a.to_string(),
+            b.to_string(),
+        ))
+    };
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            let (x, y) = (x.as_f64()?, y.as_f64()?);
+            if (x - y).abs() <= tol * 1f64.max(x.abs()).max(y.abs()) {
+                None
+            } else {
+                here()
+            }
+        }
+        (Value::Array(x), Value::Array(y)) => {
+            if let Some(d) = x
+                .iter()
+                .zip(y)
+                .enumerate()
+                .find_map(|(i, (p, q))| first_difference(p, q, &format!("{path}[{i}]"), tol))
+            {
+                return Some(d);
+            }
+            if x.len() != y.len() {
+                return Some((
+                    format!("{path} (length)"),
+                    x.len().to_string(),
+                    y.len().to_string(),
+                ));
+            }
+            None
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            let mut keys: Vec<&String> = x.keys().chain(y.keys()).collect();
+            keys.sort();
+            keys.dedup();
+            keys.into_iter().find_map(|k| {
+                let sub = if path.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{path}.{k}")
+                };
+                match (x.get(k), y.get(k)) {
+                    (Some(p), Some(q)) => first_difference(p, q, &sub, tol),
+                    (p, q) => Some((sub, format!("{p:?}"), format!("{q:?}"))),
+                }
+            })
+        }
+        _ if a == b => None,
+        _ => here(),
+    }
+}
