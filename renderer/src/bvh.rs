@@ -2,17 +2,21 @@
 //! Built once per database; it only decides which tetrahedra a ray is tested
 //! against, never how (that is [`crate::intersect`]).
 //!
+//! Items are anything with 4D bounds: the database uses one hierarchy over
+//! objects (lab frame) and one per object over its prisms (in the object's
+//! comoving coordinates).
+//!
 //! Splits are chosen by the surface area heuristic over binned centroids
 //! on x, y and z only: static objects live for the whole scene, so splitting
 //! along t would separate the three pieces of each prism rather than cull
 //! anything.
 
-use crate::extrude::Tetrahedron;
-use crate::intersect::{nearer, Hit, PreparedTet};
-use crate::lightcone::Ray;
+use crate::intersect::{nearer, Hit};
 use glam::DVec4;
 
 const LEAF_SIZE: usize = 4;
+/// Deeper subtrees become leaves, so that the traversal stack (64) never overflows.
+const MAX_DEPTH: usize = 48;
 
 #[derive(Clone, Copy, Debug)]
 struct Node {
@@ -137,21 +141,27 @@ fn pad(min: DVec4, max: DVec4) -> (DVec4, DVec4) {
 }
 
 impl Bvh {
-    pub fn build(tets: &[Tetrahedron]) -> Bvh {
-        let bounds: Vec<(DVec4, DVec4)> = tets.iter().map(PreparedTet::bounds).collect();
+    /// Builds the hierarchy over items given by their 4D bounds (x, y, z, t).
+    pub fn build(bounds: &[(DVec4, DVec4)]) -> Bvh {
         let mut bvh = Bvh {
             nodes: Vec::new(),
-            order: (0..tets.len() as u32).collect(),
+            order: (0..bounds.len() as u32).collect(),
         };
-        if !tets.is_empty() {
+        if !bounds.is_empty() {
             let mut order = std::mem::take(&mut bvh.order);
-            bvh.build_node(&bounds, &mut order, 0);
+            bvh.build_node(bounds, &mut order, 0, 0);
             bvh.order = order;
         }
         bvh
     }
 
-    fn build_node(&mut self, bounds: &[(DVec4, DVec4)], items: &mut [u32], first: usize) -> usize {
+    fn build_node(
+        &mut self,
+        bounds: &[(DVec4, DVec4)],
+        items: &mut [u32],
+        first: usize,
+        depth: usize,
+    ) -> usize {
         let (mut min, mut max) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
         let (mut cmin, mut cmax) = (min, max);
         for &i in items.iter() {
@@ -171,7 +181,7 @@ impl Bvh {
             count: items.len() as u32,
         });
         let extent = cmax - cmin;
-        let split = if items.len() <= LEAF_SIZE {
+        let split = if items.len() <= LEAF_SIZE || depth >= MAX_DEPTH {
             None
         } else {
             sah_split(bounds, items, cmin, extent)
@@ -181,70 +191,86 @@ impl Bvh {
         };
         let (left, right) = items.split_at_mut(mid);
         self.nodes[node].count = 0;
-        self.build_node(bounds, left, first);
-        let second = self.build_node(bounds, right, first + mid);
+        self.build_node(bounds, left, first, depth + 1);
+        let second = self.build_node(bounds, right, first + mid, depth + 1);
         self.nodes[node].index = second as u32;
         node
     }
 
     /// Entry parameter of the ray into a node's box within `range`, if any.
-    fn enter(node: &Node, o: DVec4, d: DVec4, range: (f64, f64)) -> Option<f64> {
-        let (mut lo, mut hi) = range;
-        for axis in 0..4 {
-            if d[axis] == 0.0 {
-                if o[axis] < node.min[axis] || o[axis] > node.max[axis] {
-                    return None;
-                }
-            } else {
-                let inv = 1.0 / d[axis];
-                let (a, b) = (
-                    (node.min[axis] - o[axis]) * inv,
-                    (node.max[axis] - o[axis]) * inv,
-                );
-                lo = lo.max(a.min(b));
-                hi = hi.min(a.max(b));
-            }
-        }
+    /// `inv` holds 1/d per axis (infinite for d = 0: such an axis constrains
+    /// nothing unless the origin lies outside the slab).
+    #[inline]
+    fn enter(node: &Node, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
+        let a = (node.min - o) * inv;
+        let b = (node.max - o) * inv;
+        // NaN (0 * inf: the origin on a slab face of a parallel axis) is
+        // dropped by f64::min/max, which keeps the test conservative.
+        let near = a.min(b);
+        let far = a.max(b);
+        let lo = range.0.max(near.x).max(near.y).max(near.z).max(near.w);
+        let hi = range.1.min(far.x).min(far.y).min(far.z).min(far.w);
         (lo <= hi).then_some(lo)
     }
 
-    /// Closest hit; `test(tet, range)` is the barycentric solve.
+    /// The closest hit along the ray `o + s d` (both (x, y, z, t), in the
+    /// coordinates the bounds were built in) within `range`: `test(item,
+    /// range)` is called for every item whose box the ray enters, with the
+    /// range shrunk to the best hit so far. Ties go to the lower tetrahedron.
     pub fn closest(
         &self,
-        ray: &Ray,
+        o: DVec4,
+        d: DVec4,
         range: (f64, f64),
         mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         if self.nodes.is_empty() {
             return None;
         }
-        let (o, d) = (ray.origin.to_xyzt(), ray.direction.to_xyzt());
+        let inv = DVec4::ONE / d;
         let mut best: Option<Hit> = None;
-        let mut stack = vec![0usize];
-        while let Some(n) = stack.pop() {
-            let hi = best.map_or(range.1, |b| b.s);
-            let node = &self.nodes[n];
-            if Self::enter(node, o, d, (range.0, hi)).is_none() {
+        let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
+        let mut stack = [(0u32, 0.0f64); 64];
+        let Some(e) = Self::enter(&self.nodes[0], o, inv, range) else {
+            return None;
+        };
+        stack[0] = (0, e);
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (n, entry) = stack[top];
+            if entry > hi(&best) {
                 continue;
             }
+            let node = &self.nodes[n as usize];
             if node.count > 0 {
                 let start = node.index as usize;
                 for &i in &self.order[start..start + node.count as usize] {
-                    let hi = best.map_or(range.1, |b| b.s);
-                    if let Some(h) = test(i, (range.0, hi)) {
+                    if let Some(h) = test(i, (range.0, hi(&best))) {
                         best = Some(nearer(best, h));
                     }
                 }
-            } else {
-                let (a, b) = (n + 1, node.index as usize);
-                let ea = Self::enter(&self.nodes[a], o, d, (range.0, hi));
-                let eb = Self::enter(&self.nodes[b], o, d, (range.0, hi));
-                match (ea, eb) {
-                    (Some(x), Some(y)) if x <= y => stack.extend([b, a]),
-                    (Some(_), Some(_)) => stack.extend([a, b]),
-                    (Some(_), None) => stack.push(a),
-                    (None, Some(_)) => stack.push(b),
-                    (None, None) => {}
+                continue;
+            }
+            let (a, b) = (n + 1, node.index);
+            let r = (range.0, hi(&best));
+            let ea = Self::enter(&self.nodes[a as usize], o, inv, r);
+            let eb = Self::enter(&self.nodes[b as usize], o, inv, r);
+            // Push the farther child first so the nearer is searched first.
+            let mut push = |n: u32, e: Option<f64>| {
+                if let Some(e) = e {
+                    stack[top] = (n, e);
+                    top += 1;
+                }
+            };
+            match (ea, eb) {
+                (Some(x), Some(y)) if x <= y => {
+                    push(b, eb);
+                    push(a, ea);
+                }
+                _ => {
+                    push(a, ea);
+                    push(b, eb);
                 }
             }
         }

@@ -10,7 +10,7 @@ use crate::scene::{Motion, ObjectKind, Scene};
 use crate::shade::Material;
 use crate::spacetime::{Event, FourVector, Worldline};
 use crate::trace::{NoTrace, Outcome, Step, Trace};
-use glam::DVec3;
+use glam::{DVec3, DVec4};
 use std::fmt;
 
 /// A scene that cannot be inserted, with the field at fault.
@@ -65,13 +65,36 @@ pub enum Traversal {
     Bvh,
 }
 
+/// One object's acceleration structure: a hierarchy over its prisms in its
+/// comoving (sheared) coordinates x' = x - v (t - t0) - x0, where a
+/// constant-velocity object is static, so its bounds stay tight however
+/// fast or long-lived it is (instancing with a per-object transform).
+struct Instance {
+    origin: Event,
+    velocity: DVec3,
+    first_prism: u32,
+    bvh: Bvh,
+}
+
+impl Instance {
+    /// The ray `o + s d` in comoving coordinates, with the same parameter s.
+    #[inline]
+    fn to_comoving(&self, o: DVec4, d: DVec4) -> (DVec4, DVec4) {
+        let x = o.truncate() - self.velocity * (o.w - self.origin.t) - self.origin.x;
+        let dx = d.truncate() - self.velocity * d.w;
+        (x.extend(o.w), dx.extend(d.w))
+    }
+}
+
 /// The static 4D database.
 pub struct Database {
     objects: Vec<ObjectRecord>,
     prisms: Vec<Prism>,
     tets: Vec<Tetrahedron>,
     prepared: Vec<PreparedTet>,
-    bvh: Bvh,
+    /// Over the objects' lab-frame 4D bounds.
+    top: Bvh,
+    instances: Vec<Instance>,
     traversal: Traversal,
 }
 
@@ -190,13 +213,14 @@ impl Database {
             })?;
             prepared.push(p);
         }
-        let bvh = Bvh::build(&tets);
+        let (top, instances) = accelerate(&objects, &prisms, &tets);
         Ok(Database {
             objects,
             prisms,
             tets,
             prepared,
-            bvh,
+            top,
+            instances,
             traversal: Traversal::Bvh,
         })
     }
@@ -279,9 +303,72 @@ impl Database {
                 }
                 best
             }
-            Traversal::Bvh => self
-                .bvh
-                .closest(ray, range, |i, r| self.test_traced(ray, i, r, trace).ok()),
+            Traversal::Bvh => {
+                let (o, d) = (ray.origin.to_xyzt(), ray.direction.to_xyzt());
+                self.top.closest(o, d, range, |k, r| {
+                    let inst = &self.instances[k as usize];
+                    let (oc, dc) = inst.to_comoving(o, d);
+                    inst.bvh.closest(oc, dc, r, |p, r| {
+                        let first = 3 * (inst.first_prism + p);
+                        let mut best: Option<Hit> = None;
+                        for tet in first..first + 3 {
+                            let hi = best.map_or(r.1, |b| b.s);
+                            if let Ok(h) = self.test_traced(ray, tet, (r.0, hi), trace) {
+                                best = Some(nearer(best, h));
+                            }
+                        }
+                        best
+                    })
+                })
+            }
         }
     }
+}
+
+/// The two-level structure: per object, a hierarchy over its prisms'
+/// comoving bounds (the triangle's box at the start, times the lifetime);
+/// over all objects, a hierarchy of their lab-frame 4D bounds.
+fn accelerate(
+    objects: &[ObjectRecord],
+    prisms: &[Prism],
+    tets: &[Tetrahedron],
+) -> (Bvh, Vec<Instance>) {
+    let mut instances = Vec::new();
+    let mut lab_bounds = Vec::new();
+    let mut first = 0usize;
+    for (i, obj) in objects.iter().enumerate() {
+        let end = first
+            + prisms[first..]
+                .iter()
+                .take_while(|p| p.object == i as u32)
+                .count();
+        let wl = obj.worldline;
+        let (t0, t1) = (wl.start.t, wl.end().t);
+        let mut comoving = Vec::with_capacity(end - first);
+        let (mut lo, mut hi) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
+        for p in first..end {
+            // The first piece (a0 b0 c0 c1) holds the three start corners.
+            let start = &tets[3 * p].vertices[..3];
+            let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+            for e in start {
+                a = a.min(e.x - wl.start.x);
+                b = b.max(e.x - wl.start.x);
+            }
+            comoving.push((a.extend(t0), b.extend(t1)));
+            for t in &tets[3 * p..3 * p + 3] {
+                let (l, h) = PreparedTet::bounds(t);
+                lo = lo.min(l);
+                hi = hi.max(h);
+            }
+        }
+        instances.push(Instance {
+            origin: wl.start,
+            velocity: wl.velocity(),
+            first_prism: first as u32,
+            bvh: Bvh::build(&comoving),
+        });
+        lab_bounds.push((lo, hi));
+        first = end;
+    }
+    (Bvh::build(&lab_bounds), instances)
 }
