@@ -231,9 +231,7 @@ impl Bvh {
         let mut best: Option<Hit> = None;
         let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
         let mut stack = [(0u32, 0.0f64); 64];
-        let Some(e) = Self::enter(&self.nodes[0], o, inv, range) else {
-            return None;
-        };
+        let e = Self::enter(&self.nodes[0], o, inv, range)?;
         stack[0] = (0, e);
         let mut top = 1;
         while top > 0 {

@@ -22,8 +22,23 @@ pub const BARY_EPS: f64 = 1e-12;
 pub struct PreparedTet {
     v0: DVec4,
     normal: DVec4,
-    drop: usize,
-    inv: DMat3,
+    /// The rows of the inverse of the projected 3x3 edge matrix, spread back
+    /// over (x, y, z, t) with a zero at the dropped axis: b_k = rows[k] . (p - v0).
+    rows: [DVec4; 3],
+}
+
+/// Inserts a zero at `axis`, the inverse of [`drop_axis`].
+fn spread(v: DVec3, axis: usize) -> DVec4 {
+    let a = v.to_array();
+    let mut out = [0.0; 4];
+    let mut k = 0;
+    for (i, o) in out.iter_mut().enumerate() {
+        if i != axis {
+            *o = a[k];
+            k += 1;
+        }
+    }
+    DVec4::from_array(out)
 }
 
 /// A ray meeting a tetrahedron.
@@ -98,11 +113,15 @@ impl PreparedTet {
         if det == 0.0 || !det.is_finite() {
             return None;
         }
+        let inv = m.inverse().transpose();
         Some(PreparedTet {
             v0: v[0],
             normal,
-            drop,
-            inv: m.inverse(),
+            rows: [
+                spread(inv.x_axis, drop),
+                spread(inv.y_axis, drop),
+                spread(inv.z_axis, drop),
+            ],
         })
     }
 
@@ -120,7 +139,12 @@ impl PreparedTet {
             return Err(Miss::OutOfRange { s });
         }
         let p = o + d * s;
-        let b = self.inv * drop_axis(p - self.v0, self.drop);
+        let r = p - self.v0;
+        let b = DVec3::new(
+            self.rows[0].dot(r),
+            self.rows[1].dot(r),
+            self.rows[2].dot(r),
+        );
         let bary = [1.0 - b.x - b.y - b.z, b.x, b.y, b.z];
         if bary.iter().any(|x| *x < -BARY_EPS) {
             return Err(Miss::Outside { s, bary });

@@ -26,6 +26,8 @@ pub struct RenderSettings {
     pub seed: u64,
     /// Mirror bounces followed.
     pub max_depth: u32,
+    /// Whether shadow rays are traced (off: every lit-facing surface is lit).
+    pub shadows: bool,
 }
 
 impl Default for RenderSettings {
@@ -35,6 +37,7 @@ impl Default for RenderSettings {
             shutter: 0.0,
             seed: 1,
             max_depth: 4,
+            shadows: true,
         }
     }
 }
@@ -74,6 +77,7 @@ pub fn shader<'a>(
         background: scene.background,
         light_speed: model.light_speed,
         max_depth: settings.max_depth,
+        shadows: settings.shadows,
     }
 }
 

@@ -104,6 +104,8 @@ pub struct Shader<'a> {
     pub light_speed: LightSpeed,
     /// Number of mirror bounces followed.
     pub max_depth: u32,
+    /// Whether shadow rays are traced.
+    pub shadows: bool,
 }
 
 impl Shader<'_> {
@@ -221,7 +223,7 @@ impl Shader<'_> {
         let lambert = n.dot(l);
         let (mut diffuse, mut specular, mut shadowed) = (DVec3::ZERO, 0.0, false);
         if lambert > 0.0 {
-            shadowed = self.in_shadow_traced(hit.event, trace);
+            shadowed = self.shadows && self.in_shadow_traced(hit.event, trace);
             if !shadowed {
                 let r = 2.0 * lambert * n - l;
                 specular = if m.specular > 0.0 {

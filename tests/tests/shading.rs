@@ -52,6 +52,7 @@ fn shadows_are_cast_where_the_light_was_blocked_earlier() {
         background: DVec3::ZERO,
         light_speed,
         max_depth: 0,
+        shadows: true,
     };
     let (enter, leave) = (-4.5 / 0.9, -0.5 / 0.9);
     let finite = shader(LightSpeed::Finite);
@@ -128,6 +129,7 @@ fn a_mirror_shows_a_moving_object_retarded_over_the_reflected_path() {
         background: DVec3::ZERO,
         light_speed: LightSpeed::Finite,
         max_depth: 2,
+        shadows: true,
     };
     let cam = DVec3::new(0.0, 0.0, 10.0);
     let tc = 20.0;
@@ -213,6 +215,7 @@ fn the_shutter_blurs_a_moving_edge_over_its_travel() {
                 shutter,
                 seed: 9,
                 max_depth: 0,
+                shadows: true,
             },
         );
         (0..200)

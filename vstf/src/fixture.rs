@@ -94,6 +94,9 @@ pub struct ImageSpec {
     pub seed: u64,
     #[serde(default = "four")]
     pub max_depth: u32,
+    /// Trace shadow rays (default true).
+    #[serde(default = "yes")]
+    pub shadows: bool,
 }
 
 fn one() -> u32 {
@@ -101,6 +104,9 @@ fn one() -> u32 {
 }
 fn one_u64() -> u64 {
     1
+}
+fn yes() -> bool {
+    true
 }
 fn four() -> u32 {
     4
@@ -425,6 +431,7 @@ impl Fixture {
             shutter: im.shutter,
             seed: im.seed,
             max_depth: im.max_depth,
+            shadows: im.shadows,
         };
         Ok(View {
             camera,

@@ -213,6 +213,7 @@ impl Setup<'_> {
             shutter: 0.0,
             seed: 1,
             max_depth: 0,
+            shadows: false,
         };
         let img = renderer::render(&db, &scene, &camera, self.camera_t, self.model, &settings);
         Ok((img.to_rgb8(), camera))
