@@ -3,6 +3,7 @@
 //!
 //! fixture ([`fixture`]) -> scene -> 4D database -> image ([`output`]).
 
+pub mod animate;
 pub mod check;
 pub mod debug;
 pub mod fixture;

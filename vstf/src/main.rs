@@ -126,6 +126,34 @@ enum Command {
         #[arg(long, default_value_t = 10)]
         show: usize,
     },
+    /// Render an animation: frames differ only by the camera's t, and the 4D
+    /// database is built once.
+    Animate {
+        /// A fixture JSON file, or the name of one in fixtures/.
+        fixture: String,
+        /// Camera times A..B (inclusive).
+        #[arg(long, value_parser = vstf::animate::parse_range, allow_hyphen_values = true)]
+        frames: (f64, f64),
+        /// Camera time between frames, t.units.
+        #[arg(long, default_value_t = 1.0)]
+        step: f64,
+        /// A folder (PNG sequence), FILE.gif (animated GIF) or FILE.png (APNG).
+        #[arg(long)]
+        out: PathBuf,
+        /// Frames per second of the GIF or APNG.
+        #[arg(long, default_value_t = 10)]
+        fps: u32,
+        #[arg(long, value_enum)]
+        model: Option<ModelArg>,
+        #[arg(long)]
+        lorentz: bool,
+        #[arg(long)]
+        width: Option<u32>,
+        #[arg(long)]
+        height: Option<u32>,
+        #[arg(long)]
+        spp: Option<u32>,
+    },
     /// List the fixtures in fixtures/.
     List,
 }
@@ -396,6 +424,73 @@ fn run(cli: Cli) -> Result<(), String> {
             } else {
                 Err(format!("{} pixels differ", diffs.len()))
             }
+        }
+        Command::Animate {
+            fixture,
+            frames,
+            step,
+            out,
+            fps,
+            model,
+            lorentz,
+            width,
+            height,
+            spp,
+        } => {
+            use std::sync::atomic::{AtomicBool, Ordering};
+            use std::sync::Arc;
+            let times = vstf::animate::frame_times(frames.0, frames.1, step)?;
+            let fixture = Fixture::load(&fixture).map_err(|e| e.to_string())?;
+            let overrides = Overrides {
+                model: model_of(model, lorentz, &fixture)?,
+                camera_t: Some(times[0]),
+                width,
+                height,
+                spp,
+            };
+            let view = vstf::run::view(&fixture, &overrides)?;
+            let output = vstf::animate::Output::from_path(&out);
+            let stop = Arc::new(AtomicBool::new(false));
+            let flag = stop.clone();
+            ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))
+                .map_err(|e| format!("cannot handle Ctrl-C: {e}"))?;
+            let started = Instant::now();
+            let db = vstf::run::database(&fixture, view.model.lorentz, Traversal::Bvh)?;
+            let build = started.elapsed().as_secs_f64();
+            let bar = indicatif::ProgressBar::new(times.len() as u64);
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{bar:40} {pos}/{len} frames  {per_sec}  {elapsed} elapsed, {eta} left",
+                )
+                .expect("a valid template"),
+            );
+            let done =
+                vstf::animate::render_frames(&fixture, &view, &db, &times, &output, &stop, |n| {
+                    bar.set_position(n as u64)
+                })?;
+            bar.finish_and_clear();
+            let dir = output.frames_dir();
+            if done < times.len() {
+                return Err(format!(
+                    "interrupted: {done} of {} frames finished, in {}",
+                    times.len(),
+                    dir.display()
+                ));
+            }
+            vstf::animate::finish(&output, done, fps)?;
+            eprintln!(
+                "animated {} ({} frames, t = {}..{} step {step}, {} model, {}x{}): database built once in {build:.2} s, {:.2} s in all -> {}",
+                fixture.name,
+                done,
+                frames.0,
+                frames.1,
+                view.model,
+                view.camera.width,
+                view.camera.height,
+                started.elapsed().as_secs_f64(),
+                out.display()
+            );
+            Ok(())
         }
         Command::List => {
             for name in vstf::fixture::all_names() {

@@ -199,3 +199,115 @@ fn debug_prints_a_pixel_and_logs_a_region_that_debug_diff_compares() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn animate_writes_a_sequence_a_gif_and_an_apng() {
+    let dir = std::env::temp_dir().join(format!("vstf-anim-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = |out: &std::path::Path| {
+        let o = vstf()
+            .args([
+                "animate", "teaser", "--frames", "10..20", "--step", "5", "--width", "48",
+                "--height", "27", "--out",
+            ])
+            .arg(out)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).to_string()
+    };
+    let msg = run(&dir.join("seq"));
+    assert!(
+        msg.contains("3 frames") && msg.contains("database built once"),
+        "{msg}"
+    );
+    let frames: Vec<_> = (0..3)
+        .map(|i| {
+            image::open(dir.join("seq").join(format!("frame-{i:05}.png")))
+                .unwrap()
+                .to_rgb8()
+        })
+        .collect();
+    assert_ne!(
+        frames[0].as_raw(),
+        frames[2].as_raw(),
+        "the flanges should move between frames"
+    );
+    run(&dir.join("a.gif"));
+    let gif = std::fs::File::open(dir.join("a.gif")).unwrap();
+    let decoder = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(gif)).unwrap();
+    use image::AnimationDecoder;
+    assert_eq!(decoder.into_frames().count(), 3);
+    assert!(
+        !dir.join("a.gif.frames").exists(),
+        "the frames folder is removed once the GIF is written"
+    );
+    run(&dir.join("a.png"));
+    let apng = std::fs::read(dir.join("a.png")).unwrap();
+    assert!(apng.windows(4).any(|w| w == b"acTL"));
+    assert_eq!(apng.windows(4).filter(|w| *w == b"fcTL").count(), 3);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn animate_refuses_bad_ranges() {
+    let o = vstf()
+        .args(["animate", "teaser", "--frames", "20..10", "--out", "/tmp/x"])
+        .output()
+        .unwrap();
+    assert!(
+        !o.status.success()
+            && String::from_utf8_lossy(&o.stderr).contains("the end is before the start")
+    );
+    let o = vstf()
+        .args([
+            "animate", "teaser", "--frames", "0..1", "--step", "0", "--out", "/tmp/x",
+        ])
+        .output()
+        .unwrap();
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("must be positive"));
+}
+
+#[test]
+fn ctrl_c_leaves_every_finished_frame() {
+    let dir = std::env::temp_dir().join(format!("vstf-int-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let gif = dir.join("long.gif");
+    let mut child = vstf()
+        .args([
+            "animate", "flange", "--frames", "0..50000", "--step", "1", "--width", "64",
+            "--height", "48", "--out",
+        ])
+        .arg(&gif)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let frames = dir.join("long.gif.frames");
+    let started = std::time::Instant::now();
+    while std::fs::read_dir(&frames).map_or(0, |d| d.count()) < 3 {
+        assert!(started.elapsed().as_secs() < 60, "no frames appeared");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("interrupted:"), "{err}");
+    let names: Vec<_> = std::fs::read_dir(&frames)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert!(names.len() >= 3);
+    for p in &names {
+        assert!(
+            p.extension().is_some_and(|e| e == "png"),
+            "a partial file was left: {}",
+            p.display()
+        );
+        image::open(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

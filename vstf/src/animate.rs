@@ -1,0 +1,225 @@
+//! Animations (paper 3, item 6): frames differ only by the camera's t; the
+//! 4D database is built once and never touched between frames.
+
+use crate::fixture::{Fixture, View};
+use crate::output::{write_atomic, write_png};
+use image::RgbImage;
+use renderer::Database;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Most frames one animation may have.
+pub const MAX_FRAMES: usize = 100_000;
+
+/// The camera times t = a, a + step, ... up to b (inclusive, within 1e-9 of a step).
+pub fn frame_times(a: f64, b: f64, step: f64) -> Result<Vec<f64>, String> {
+    if !(a.is_finite() && b.is_finite() && step.is_finite()) {
+        return Err("--frames and --step must be finite numbers".into());
+    }
+    if step <= 0.0 {
+        return Err(format!("--step {step}: must be positive"));
+    }
+    if b < a {
+        return Err(format!("--frames {a}..{b}: the end is before the start"));
+    }
+    let n = ((b - a) / step + 1e-9).floor() + 1.0;
+    if n > MAX_FRAMES as f64 {
+        return Err(format!("{n} frames: at most {MAX_FRAMES} (raise --step)"));
+    }
+    Ok((0..n as usize).map(|i| a + step * i as f64).collect())
+}
+
+/// Parses `A..B`.
+pub fn parse_range(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s
+        .split_once("..")
+        .ok_or_else(|| format!("{s:?}: expected A..B"))?;
+    let num = |x: &str| {
+        x.trim()
+            .parse::<f64>()
+            .map_err(|_| format!("{s:?}: expected A..B with numbers"))
+    };
+    Ok((num(a)?, num(b)?))
+}
+
+/// Where frames go.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Output {
+    /// A folder of `frame-NNNNN.png`.
+    Sequence(PathBuf),
+    /// An animated GIF.
+    Gif(PathBuf),
+    /// An animated PNG.
+    Apng(PathBuf),
+}
+
+impl Output {
+    pub fn from_path(p: &Path) -> Output {
+        match p
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
+            Some("gif") => Output::Gif(p.into()),
+            Some("png") | Some("apng") => Output::Apng(p.into()),
+            _ => Output::Sequence(p.into()),
+        }
+    }
+
+    /// The folder where finished frames are written as PNGs as they are
+    /// done: the sequence itself, or `<file>.frames/` beside an animation
+    /// file (removed once the file is written), so that an interrupted run
+    /// leaves every finished frame on disk.
+    pub fn frames_dir(&self) -> PathBuf {
+        match self {
+            Output::Sequence(d) => d.clone(),
+            Output::Gif(f) | Output::Apng(f) => {
+                let mut name = f.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+                name.push(".frames");
+                f.with_file_name(name)
+            }
+        }
+    }
+}
+
+pub fn frame_path(dir: &Path, i: usize) -> PathBuf {
+    dir.join(format!("frame-{i:05}.png"))
+}
+
+/// Renders every frame with one database, calling `done` after each; stops
+/// early (returning how many frames were finished) when `stop` is raised.
+pub fn render_frames(
+    f: &Fixture,
+    view: &View,
+    db: &Database,
+    times: &[f64],
+    out: &Output,
+    stop: &AtomicBool,
+    mut done: impl FnMut(usize),
+) -> Result<usize, String> {
+    let dir = out.frames_dir();
+    std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    for (i, &t) in times.iter().enumerate() {
+        if stop.load(Ordering::SeqCst) {
+            return Ok(i);
+        }
+        let frame = View {
+            camera_t: t,
+            ..*view
+        };
+        let img = crate::run::render_with(db, f, &frame).to_rgb8();
+        write_png(&frame_path(&dir, i), &img)?;
+        done(i + 1);
+    }
+    Ok(times.len())
+}
+
+fn load_frames(dir: &Path, n: usize) -> Result<Vec<RgbImage>, String> {
+    (0..n)
+        .map(|i| {
+            let p = frame_path(dir, i);
+            image::open(&p)
+                .map(|im| im.to_rgb8())
+                .map_err(|e| format!("cannot read {}: {e}", p.display()))
+        })
+        .collect()
+}
+
+/// Assembles the finished frames into the GIF or APNG file (atomically),
+/// then removes the frames folder. A sequence needs nothing more.
+pub fn finish(out: &Output, n: usize, fps: u32) -> Result<(), String> {
+    let (file, bytes) = match out {
+        Output::Sequence(_) => return Ok(()),
+        Output::Gif(file) => (file, encode_gif(&load_frames(&out.frames_dir(), n)?, fps)?),
+        Output::Apng(file) => (file, encode_apng(&load_frames(&out.frames_dir(), n)?, fps)?),
+    };
+    write_atomic(file, &bytes).map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+    std::fs::remove_dir_all(out.frames_dir())
+        .map_err(|e| format!("cannot remove {}: {e}", out.frames_dir().display()))
+}
+
+fn encode_gif(frames: &[RgbImage], fps: u32) -> Result<Vec<u8>, String> {
+    use image::codecs::gif::{GifEncoder, Repeat};
+    let mut bytes = Vec::new();
+    {
+        let mut enc = GifEncoder::new_with_speed(&mut bytes, 10);
+        enc.set_repeat(Repeat::Infinite)
+            .map_err(|e| e.to_string())?;
+        let delay = image::Delay::from_numer_denom_ms(1000, fps.max(1));
+        for f in frames {
+            let rgba = image::DynamicImage::ImageRgb8(f.clone()).to_rgba8();
+            enc.encode_frame(image::Frame::from_parts(rgba, 0, 0, delay))
+                .map_err(|e| format!("cannot encode GIF: {e}"))?;
+        }
+    }
+    Ok(bytes)
+}
+
+fn encode_apng(frames: &[RgbImage], fps: u32) -> Result<Vec<u8>, String> {
+    let first = frames.first().ok_or("no frames to encode")?;
+    let mut bytes = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut bytes, first.width(), first.height());
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_animated(frames.len() as u32, 0)
+            .map_err(|e| format!("cannot encode APNG: {e}"))?;
+        enc.set_frame_delay(1, fps.clamp(1, u16::MAX as u32) as u16)
+            .map_err(|e| format!("cannot encode APNG: {e}"))?;
+        let mut w = enc
+            .write_header()
+            .map_err(|e| format!("cannot encode APNG: {e}"))?;
+        for f in frames {
+            w.write_image_data(f.as_raw())
+                .map_err(|e| format!("cannot encode APNG: {e}"))?;
+        }
+        w.finish().map_err(|e| format!("cannot encode APNG: {e}"))?;
+    }
+    Ok(bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_times_are_inclusive_and_checked() {
+        assert_eq!(
+            frame_times(940.0, 942.0, 1.0).unwrap(),
+            vec![940.0, 941.0, 942.0]
+        );
+        assert_eq!(frame_times(0.0, 1.0, 0.3).unwrap().len(), 4);
+        assert_eq!(
+            frame_times(0.0, 0.9, 0.3).unwrap().len(),
+            4,
+            "0.9/0.3 is 3 steps despite rounding"
+        );
+        assert!(frame_times(2.0, 1.0, 1.0).is_err());
+        assert!(frame_times(0.0, 1.0, 0.0).is_err());
+        assert!(frame_times(0.0, 1e9, 1.0).is_err());
+        assert_eq!(parse_range("940..1171").unwrap(), (940.0, 1171.0));
+        assert_eq!(parse_range("-5..5").unwrap(), (-5.0, 5.0));
+        assert!(parse_range("940-1171").is_err());
+    }
+
+    #[test]
+    fn outputs_by_extension() {
+        assert_eq!(
+            Output::from_path(Path::new("a.gif")),
+            Output::Gif("a.gif".into())
+        );
+        assert_eq!(
+            Output::from_path(Path::new("a.PNG")),
+            Output::Apng("a.PNG".into())
+        );
+        assert_eq!(
+            Output::from_path(Path::new("frames")),
+            Output::Sequence("frames".into())
+        );
+        assert_eq!(
+            Output::Gif("x/a.gif".into()).frames_dir(),
+            PathBuf::from("x/a.gif.frames")
+        );
+    }
+}
