@@ -92,9 +92,10 @@ pub struct Database {
     prisms: Vec<Prism>,
     tets: Vec<Tetrahedron>,
     prepared: Vec<PreparedTet>,
-    /// Over the objects' lab-frame 4D bounds.
+    /// Over the lab-frame 4D bounds of the objects' time segments.
     top: Bvh,
     instances: Vec<Instance>,
+    segments: Vec<Segment>,
     traversal: Traversal,
 }
 
@@ -213,7 +214,7 @@ impl Database {
             })?;
             prepared.push(p);
         }
-        let (top, instances) = accelerate(&objects, &prisms, &tets);
+        let (top, instances, segments) = accelerate(&objects, &prisms, &tets);
         Ok(Database {
             objects,
             prisms,
@@ -221,6 +222,7 @@ impl Database {
             prepared,
             top,
             instances,
+            segments,
             traversal: Traversal::Bvh,
         })
     }
@@ -306,7 +308,9 @@ impl Database {
             Traversal::Bvh => {
                 let (o, d) = (ray.origin.to_xyzt(), ray.direction.to_xyzt());
                 self.top.closest(o, d, range, |k, r| {
-                    let inst = &self.instances[k as usize];
+                    let seg = &self.segments[k as usize];
+                    let r = seg.window(o, d, r)?;
+                    let inst = &self.instances[seg.instance as usize];
                     let (oc, dc) = inst.to_comoving(o, d);
                     inst.bvh.closest(oc, dc, r, |p, r| {
                         let first = 3 * (inst.first_prism + p);
@@ -325,16 +329,46 @@ impl Database {
     }
 }
 
+/// Most time segments one object is cut into in the top-level hierarchy.
+const MAX_SEGMENTS: usize = 64;
+
+/// One entry of the top-level hierarchy: an object over a stretch of its
+/// lifetime, bounded by its sweep over that stretch only (so a fast or
+/// long-lived object does not cover the whole scene; cf. STBVH).
+struct Segment {
+    instance: u32,
+    /// Lab times of the stretch.
+    t0: f64,
+    t1: f64,
+}
+
+impl Segment {
+    /// The part of `range` where the ray `o + s d` is within the stretch's
+    /// lab times; `None` if it never is.
+    #[inline]
+    fn window(&self, o: DVec4, d: DVec4, range: (f64, f64)) -> Option<(f64, f64)> {
+        if d.w == 0.0 {
+            return (self.t0 <= o.w && o.w <= self.t1).then_some(range);
+        }
+        let (a, b) = ((self.t0 - o.w) / d.w, (self.t1 - o.w) / d.w);
+        let (lo, hi) = (range.0.max(a.min(b)), range.1.min(a.max(b)));
+        (lo <= hi).then_some((lo, hi))
+    }
+}
+
 /// The two-level structure: per object, a hierarchy over its prisms'
 /// comoving bounds (the triangle's box at the start, times the lifetime);
-/// over all objects, a hierarchy of their lab-frame 4D bounds.
+/// over all objects, a hierarchy of the lab-frame 4D bounds of each
+/// object's time segments. An object is cut into as many segments as it
+/// takes for each to sweep about its own size (at most [`MAX_SEGMENTS`]).
 fn accelerate(
     objects: &[ObjectRecord],
     prisms: &[Prism],
     tets: &[Tetrahedron],
-) -> (Bvh, Vec<Instance>) {
+) -> (Bvh, Vec<Instance>, Vec<Segment>) {
     let mut instances = Vec::new();
-    let mut lab_bounds = Vec::new();
+    let mut segments = Vec::new();
+    let mut seg_bounds = Vec::new();
     let mut first = 0usize;
     for (i, obj) in objects.iter().enumerate() {
         let end = first
@@ -344,31 +378,50 @@ fn accelerate(
                 .count();
         let wl = obj.worldline;
         let (t0, t1) = (wl.start.t, wl.end().t);
+        let v = wl.velocity();
         let mut comoving = Vec::with_capacity(end - first);
-        let (mut lo, mut hi) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
         for p in first..end {
             // The first piece (a0 b0 c0 c1) holds the three start corners.
-            let start = &tets[3 * p].vertices[..3];
             let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-            for e in start {
+            for e in &tets[3 * p].vertices[..3] {
                 a = a.min(e.x - wl.start.x);
                 b = b.max(e.x - wl.start.x);
             }
             comoving.push((a.extend(t0), b.extend(t1)));
-            for t in &tets[3 * p..3 * p + 3] {
-                let (l, h) = PreparedTet::bounds(t);
-                lo = lo.min(l);
-                hi = hi.max(h);
-            }
+            lo = lo.min(a);
+            hi = hi.max(b);
+        }
+        let size = (hi - lo).max_element().max(1e-9);
+        let sweep = (v * (t1 - t0)).length();
+        let count = ((sweep / size).ceil() as usize).clamp(1, MAX_SEGMENTS);
+        for k in 0..count {
+            let (ta, tb) = (
+                t0 + (t1 - t0) * k as f64 / count as f64,
+                if k + 1 == count {
+                    t1
+                } else {
+                    t0 + (t1 - t0) * (k + 1) as f64 / count as f64
+                },
+            );
+            let (pa, pb) = (wl.start.x + v * (ta - t0), wl.start.x + v * (tb - t0));
+            let (bl, bh) = ((lo + pa).min(lo + pb), (hi + pa).max(hi + pb));
+            // Pad for the rounding of positions computed along the worldline.
+            let pad = (bh - bl) * 1e-9 + (bl.abs() + bh.abs()) * 1e-12 + DVec3::splat(1e-300);
+            seg_bounds.push(((bl - pad).extend(ta), (bh + pad).extend(tb)));
+            segments.push(Segment {
+                instance: i as u32,
+                t0: ta,
+                t1: tb,
+            });
         }
         instances.push(Instance {
             origin: wl.start,
-            velocity: wl.velocity(),
+            velocity: v,
             first_prism: first as u32,
             bvh: Bvh::build(&comoving),
         });
-        lab_bounds.push((lo, hi));
         first = end;
     }
-    (Bvh::build(&lab_bounds), instances)
+    (Bvh::build(&seg_bounds), instances, segments)
 }

@@ -4,6 +4,7 @@
 //! fixture ([`fixture`]) -> scene -> 4D database -> image ([`output`]).
 
 pub mod animate;
+pub mod bench;
 pub mod check;
 pub mod debug;
 pub mod fixture;

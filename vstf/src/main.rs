@@ -154,6 +154,14 @@ enum Command {
         #[arg(long)]
         spp: Option<u32>,
     },
+    /// Measure rendering speed: rays per second, relativistic against
+    /// infinite light speed, BVH against brute force, growth with scene size,
+    /// build time and memory.
+    Bench {
+        /// Small images and scenes (a smoke test, not figures to quote).
+        #[arg(long)]
+        quick: bool,
+    },
     /// List the fixtures in fixtures/.
     List,
 }
@@ -490,6 +498,10 @@ fn run(cli: Cli) -> Result<(), String> {
                 started.elapsed().as_secs_f64(),
                 out.display()
             );
+            Ok(())
+        }
+        Command::Bench { quick } => {
+            print!("{}", vstf::bench::run(quick)?);
             Ok(())
         }
         Command::List => {

@@ -273,7 +273,7 @@ fn ctrl_c_leaves_every_finished_frame() {
     let dir = std::env::temp_dir().join(format!("vstf-int-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let gif = dir.join("long.gif");
-    let mut child = vstf()
+    let child = vstf()
         .args([
             "animate", "flange", "--frames", "0..50000", "--step", "1", "--width", "64",
             "--height", "48", "--out",

@@ -145,13 +145,14 @@ fn measure_edge(
 ) -> Result<Reading, String> {
     let a = near_deg.to_radians();
     let look = DVec3::new(a.sin(), 0.0, -a.cos());
-    // A strip 3 degrees wide and 0.75 tall across the horizon.
+    // A strip 3 degrees wide and 0.6 tall across the horizon, half the
+    // probe's width: the angle targets (0.05 deg) are met ~100x over.
     let (img, camera) = setup.probe(
         &[CUBE],
         look,
         3.0,
-        effort.probe,
-        effort.probe / 4,
+        effort.probe / 2,
+        effort.probe / 10,
         effort.spp,
     )?;
     let bg = background(setup.fixture);
@@ -165,7 +166,7 @@ fn measure_edge(
         sphere,
         |s| edge(&img, s, from, step, |c| is_background(c, bg)),
         |p| (p.y.atan2(p.x.hypot(p.z)).to_degrees(), azimuth_deg(p)),
-        (-0.3, 0.3),
+        (-0.25, 0.25),
     );
     let trace = super::EdgeTrace {
         footprint: measure_angular(&camera),

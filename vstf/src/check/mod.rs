@@ -116,10 +116,7 @@ pub struct Effort {
 }
 
 impl Effort {
-    pub const FULL: Effort = Effort {
-        probe: 400,
-        spp: 16,
-    };
+    pub const FULL: Effort = Effort { probe: 400, spp: 9 };
     pub const QUICK: Effort = Effort { probe: 200, spp: 9 };
 
     /// Strata per side.

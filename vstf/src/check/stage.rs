@@ -20,6 +20,7 @@ const NAME: &str = "stage";
 const AXES: &str = "x and z axis bars";
 const GRID: &str = "grid bars";
 /// Depth on the stage around which edges are measured, between the bars z = 2 and z = 3.
+/// Probes are 2:1 strips across it: only depths within 0.35 of it are used.
 const Z: f64 = 2.5;
 
 /// The x extent and top height of the bar of `object` that runs along z
@@ -69,7 +70,7 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
         DVec3::new(0.0, top, Z),
         4.0,
         effort.probe,
-        effort.probe,
+        effort.probe / 2,
         effort.spp,
     )?;
     let w = i64::from(img.width());
@@ -107,7 +108,7 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
         DVec3::new(1.5, top, Z),
         5.0,
         effort.probe,
-        effort.probe,
+        effort.probe / 2,
         effort.spp,
     )?;
     let mut right_edges = Vec::new();

@@ -1,0 +1,250 @@
+//! `vstf bench`: the speed figures of the README, measured side by side in
+//! one run. Times are the best of several runs of the same work, on this
+//! machine; what is quoted elsewhere are ratios between them.
+
+use crate::fixture::{Fixture, Overrides, View};
+use glam::DVec3;
+use renderer::rng::SplitMix64;
+use renderer::{
+    Attitude, Camera, Database, Event, FourVector, Light, Material, Mesh, Model, Motion,
+    ObjectKind, RenderSettings, Scene, SceneObject, Traversal,
+};
+use std::fmt::Write as _;
+use std::time::Instant;
+
+/// The best of `runs` timings of `work`, in seconds.
+fn best_of(runs: usize, mut work: impl FnMut()) -> f64 {
+    (0..runs)
+        .map(|_| {
+            let t = Instant::now();
+            work();
+            t.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn fixture_view(name: &str, w: u32, h: u32, model: Model) -> Result<(Fixture, View), String> {
+    let f = Fixture::load(name).map_err(|e| e.to_string())?;
+    let view = crate::run::view(
+        &f,
+        &Overrides {
+            model: Some(model),
+            width: Some(w),
+            height: Some(h),
+            spp: Some(1),
+            ..Default::default()
+        },
+    )?;
+    Ok((f, view))
+}
+
+/// A scene of `n` boxes (12 triangles, 36 tetrahedra each) scattered over
+/// a 100-unit cube, each moving at up to 0.6c for 400 t.units.
+pub fn boxes(n: usize, seed: u64) -> Scene {
+    let mut rng = SplitMix64::new(seed);
+    let objects = (0..n)
+        .map(|i| {
+            let half = DVec3::splat(rng.range(0.3, 0.8));
+            let at = DVec3::new(
+                rng.range(-50.0, 50.0),
+                rng.range(-50.0, 50.0),
+                rng.range(-50.0, 50.0),
+            );
+            let dir = DVec3::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+            )
+            .normalize_or_zero();
+            let v = dir * rng.range(0.0, 0.6);
+            let color = DVec3::new(
+                rng.range(0.2, 1.0),
+                rng.range(0.2, 1.0),
+                rng.range(0.2, 1.0),
+            );
+            SceneObject {
+                name: format!("box {i}"),
+                kind: ObjectKind::HObj,
+                mesh: Mesh::cuboid(-half, half),
+                motion: Motion::Extrusion {
+                    start: Event::new(-300.0, at - v * 300.0),
+                    extrusion: FourVector::new(400.0, v * 400.0),
+                },
+                material: Material::matte(color),
+            }
+        })
+        .collect();
+    Scene {
+        objects,
+        light: Light {
+            position: DVec3::new(60.0, 200.0, 150.0),
+            color: DVec3::ONE,
+            ambient: 0.3,
+        },
+        background: DVec3::ZERO,
+    }
+}
+
+fn boxes_camera(w: u32, h: u32) -> Camera {
+    Camera::new(
+        Event::new(0.0, DVec3::new(0.0, 0.0, 160.0)),
+        Attitude::LookAt {
+            look_at: DVec3::ZERO,
+            up: DVec3::Y,
+        },
+        45.0,
+        w,
+        h,
+    )
+    .expect("a valid camera")
+}
+
+fn render_boxes(db: &Database, scene: &Scene, cam: &Camera) -> renderer::Image {
+    renderer::render(
+        db,
+        scene,
+        cam,
+        0.0,
+        Model::CLASSICAL,
+        &RenderSettings::default(),
+    )
+}
+
+/// Resident and peak memory of this process, bytes (Linux; zero elsewhere).
+fn memory() -> (u64, u64) {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    let field = |name: &str| {
+        status
+            .lines()
+            .find(|l| l.starts_with(name))
+            .and_then(|l| l.split_whitespace().nth(1))
+            .and_then(|kb| kb.parse::<u64>().ok())
+            .map_or(0, |kb| kb * 1024)
+    };
+    (field("VmRSS:"), field("VmHWM:"))
+}
+
+/// Runs the benchmark and returns the report. `quick` uses smaller images
+/// and scenes (for a smoke test); the README quotes a full run.
+pub fn run(quick: bool) -> Result<String, String> {
+    let mut out = String::new();
+    let (w, h) = if quick { (160, 90) } else { (640, 360) };
+    let runs = if quick { 1 } else { 3 };
+    let threads = rayon::current_num_threads();
+    let _ = writeln!(
+        out,
+        "vstf bench ({} run, {threads} threads; best of {runs})",
+        if quick { "quick" } else { "full" }
+    );
+
+    // 5 first, while the process is small: peak memory per million tetrahedra.
+    let n_mem = if quick { 2_800 } else { 27_778 };
+    let (rss0, _) = memory();
+    let scene = boxes(n_mem, 5);
+    let db = Database::build(&scene, false).map_err(|e| e.to_string())?;
+    let tets = db.tetrahedra().len();
+    let (_, peak) = memory();
+    drop(db);
+    let per_million = (peak.saturating_sub(rss0)) as f64 / 1e6 / (tets as f64 / 1e6);
+    let _ = writeln!(out, "\n5. memory: building {tets} tetrahedra raised the peak by {:.0} MB: {per_million:.0} MB per million tetrahedra", (peak.saturating_sub(rss0)) as f64 / 1e6);
+
+    // 1. Rays per second; 2. relativistic against infinite.
+    let _ = writeln!(
+        out,
+        "\n1. primary rays per second at {w}x{h}, 1 sample per pixel"
+    );
+    let _ = writeln!(
+        out,
+        "   {:10} {:>16} {:>28}",
+        "scene", "primary only", "with shadows + reflections"
+    );
+    let mut ratios = Vec::new();
+    for name in ["flange", "teaser"] {
+        let (f, view) = fixture_view(name, w, h, Model::RELATIVISTIC)?;
+        let db = crate::run::database(&f, true, Traversal::Bvh)?;
+        let mut primary = view;
+        primary.settings.shadows = false;
+        primary.settings.max_depth = 0;
+        let t_primary = best_of(runs, || drop(crate::run::render_with(&db, &f, &primary)));
+        let t_full = best_of(runs, || drop(crate::run::render_with(&db, &f, &view)));
+        let rays = f64::from(w * h);
+        let _ = writeln!(
+            out,
+            "   {name:10} {:>16.0} {:>28.0}",
+            rays / t_primary,
+            rays / t_full
+        );
+        let (fi, vi) = fixture_view(name, w, h, Model::INFINITE)?;
+        let dbi = crate::run::database(&fi, false, Traversal::Bvh)?;
+        let t_inf = best_of(runs, || drop(crate::run::render_with(&dbi, &fi, &vi)));
+        ratios.push((name, t_full / t_inf));
+    }
+    let _ = writeln!(out, "\n2. relativistic render time / infinite (3D slice) render time, same scene and size (goal <= 1.3)");
+    for (name, r) in ratios {
+        let _ = writeln!(out, "   {name:10} {r:.2}x");
+    }
+
+    // 3. Accelerated against brute force; 4. growth with the tetrahedron count.
+    let counts: &[usize] = if quick {
+        &[28, 278]
+    } else {
+        &[28, 278, 2_778, 27_778]
+    };
+    let (bw, bh) = if quick { (24, 18) } else { (48, 36) };
+    let _ = writeln!(
+        out,
+        "\n3. accelerated against brute force, moving boxes, {bw}x{bh} (goal >= 100x at 10k)"
+    );
+    let _ = writeln!(
+        out,
+        "4. frame time against tetrahedra at {w}x{h} (goal: about logarithmic), and build time"
+    );
+    let _ = writeln!(
+        out,
+        "   {:>9} {:>14} {:>14} {:>9} {:>12} {:>12} {:>12}",
+        "tets", "brute (s)", "bvh (s)", "speedup", "build (s)", "frame (s)", "frame/build"
+    );
+    let mut previous: Option<f64> = None;
+    for &n in counts {
+        let scene = boxes(n, 11);
+        let t = Instant::now();
+        let mut db = Database::build(&scene, false).map_err(|e| e.to_string())?;
+        let build = t.elapsed().as_secs_f64();
+        let small = boxes_camera(bw, bh);
+        let brute = if n <= 2_778 {
+            db.set_traversal(Traversal::BruteForce);
+            let b = best_of(1, || drop(render_boxes(&db, &scene, &small)));
+            db.set_traversal(Traversal::Bvh);
+            Some(b)
+        } else {
+            None
+        };
+        let reps = 20;
+        let bvh_small = best_of(runs, || {
+            (0..reps).for_each(|_| drop(render_boxes(&db, &scene, &small)))
+        }) / reps as f64;
+        let frame = best_of(runs, || {
+            drop(render_boxes(&db, &scene, &boxes_camera(w, h)))
+        });
+        let growth = previous.map_or(String::new(), |p| {
+            format!("  (x{:.2} for 10x tets)", frame / p)
+        });
+        previous = Some(frame);
+        let _ = writeln!(
+            out,
+            "   {:>9} {:>14} {:>14.6} {:>9} {:>12.4} {:>12.4} {:>12.1}{growth}",
+            db.tetrahedra().len(),
+            brute.map_or("-".into(), |b| format!("{b:.4}")),
+            bvh_small,
+            brute.map_or("-".into(), |b| format!("{:.0}x", b / bvh_small)),
+            build,
+            frame,
+            frame / build
+        );
+    }
+    let _ = writeln!(
+        out,
+        "\n(brute force is skipped above 10^5 tetrahedra: it would take minutes)"
+    );
+    Ok(out)
+}
