@@ -243,3 +243,39 @@ fn a_small_moving_marker_is_drawn_where_its_retarded_position_projects() {
         "centroid ({cx}, {cy}) vs retarded ({px}, {py})"
     );
 }
+
+#[test]
+fn bvh_and_brute_force_agree_on_many_moving_boxes() {
+    // Fast, long-lived objects: many time segments per object in the top level.
+    for (scene, lorentz) in [
+        (vstf::bench::boxes(120, 3), false),
+        (vstf::bench::tessellated_boxes(20, 3, 4), false),
+        (vstf::bench::boxes(40, 5), true),
+    ] {
+        let mut db = Database::build(&scene, lorentz).unwrap();
+        let cam = Camera::new(
+            Event::new(0.0, DVec3::new(0.0, 0.0, 160.0)),
+            Attitude::LookAt {
+                look_at: DVec3::ZERO,
+                up: DVec3::Y,
+            },
+            45.0,
+            80,
+            60,
+        )
+        .unwrap();
+        for model in [Model::INFINITE, Model::CLASSICAL, Model::RELATIVISTIC] {
+            let model = Model { lorentz, ..model };
+            db.set_traversal(Traversal::Bvh);
+            let a = renderer::render(&db, &scene, &cam, 0.0, model, &RenderSettings::default());
+            db.set_traversal(Traversal::BruteForce);
+            let b = renderer::render(&db, &scene, &cam, 0.0, model, &RenderSettings::default());
+            assert_eq!(bits(&a), bits(&b), "{model}: BVH and brute force differ");
+            let lit = a.pixels.iter().filter(|p| p.length() > 0.0).count();
+            assert!(
+                lit > 5,
+                "the boxes are out of view: {lit} lit pixels ({model})"
+            );
+        }
+    }
+}
