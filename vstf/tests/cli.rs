@@ -311,3 +311,24 @@ fn ctrl_c_leaves_every_finished_frame() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn bench_quick_prints_every_figure() {
+    let out = vstf().args(["bench", "--quick"]).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    for section in [
+        "\n1. primary rays per second",
+        "\n2. relativistic render time",
+        "\n3. accelerated against brute force",
+        "\n4. the same 28 moving boxes",
+        "\n5. memory",
+        "\n6. one 480x270 teaser frame",
+    ] {
+        assert!(text.contains(section), "{section:?} missing from:\n{text}");
+    }
+}
