@@ -147,3 +147,83 @@ impl Camera {
         Ray::backwards(Event::new(t, self.event.x), self.direction(px, py), light)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cam(attitude: Attitude) -> Camera {
+        Camera::new(
+            Event::new(0.0, DVec3::new(1.0, 2.0, 3.0)),
+            attitude,
+            60.0,
+            64,
+            48,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn yaw_and_pitch_turn_the_view_as_documented() {
+        let close = |a: DVec3, b: DVec3| (a - b).length() < 1e-12;
+        assert!(close(
+            cam(Attitude::YawPitch {
+                yaw_deg: 0.0,
+                pitch_deg: 0.0
+            })
+            .forward,
+            DVec3::NEG_Z
+        ));
+        assert!(close(
+            cam(Attitude::YawPitch {
+                yaw_deg: 90.0,
+                pitch_deg: 0.0
+            })
+            .forward,
+            DVec3::NEG_X
+        ));
+        let up = cam(Attitude::YawPitch {
+            yaw_deg: 0.0,
+            pitch_deg: 30.0,
+        });
+        assert!(close(up.forward, DVec3::new(0.0, 0.5, -(0.75f64).sqrt())));
+        assert!(up.up.y > 0.0 && close(up.right, DVec3::X));
+        // The same view by look-at.
+        let look = cam(Attitude::LookAt {
+            look_at: DVec3::new(1.0, 2.0, 3.0) + DVec3::NEG_X,
+            up: DVec3::Y,
+        });
+        assert!(close(
+            look.forward,
+            cam(Attitude::YawPitch {
+                yaw_deg: 90.0,
+                pitch_deg: 0.0
+            })
+            .forward
+        ));
+    }
+
+    #[test]
+    fn pixel_of_inverts_direction() {
+        let c = cam(Attitude::LookAt {
+            look_at: DVec3::ZERO,
+            up: DVec3::Y,
+        });
+        for (px, py) in [(0.5, 0.5), (32.0, 24.0), (63.2, 10.7)] {
+            let (x, y) = c.pixel_of(c.direction(px, py)).unwrap();
+            assert!((x - px).abs() < 1e-9 && (y - py).abs() < 1e-9);
+        }
+        assert!(c.pixel_of(-c.forward).is_none());
+        assert!(Camera::new(
+            Event::new(0.0, DVec3::ZERO),
+            Attitude::LookAt {
+                look_at: DVec3::Y,
+                up: DVec3::Y
+            },
+            60.0,
+            8,
+            8
+        )
+        .is_none());
+    }
+}
