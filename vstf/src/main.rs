@@ -25,6 +25,42 @@ enum ModelArg {
     Relativistic,
 }
 
+/// Flags that override a fixture's view.
+#[derive(clap::Args, Clone, Debug)]
+struct ViewArgs {
+    /// Light-speed model (default: the fixture's).
+    #[arg(long, value_enum)]
+    model: Option<ModelArg>,
+    /// Insert V_obj objects Lorentz-transformed (with --model infinite: the
+    /// contracted objects as they are at t_c).
+    #[arg(long)]
+    lorentz: bool,
+    /// Camera lab time, t.units.
+    #[arg(long, allow_hyphen_values = true)]
+    camera_t: Option<f64>,
+    /// Image width, pixels.
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height, pixels.
+    #[arg(long)]
+    height: Option<u32>,
+    /// Samples per pixel (4D anti-aliasing).
+    #[arg(long)]
+    spp: Option<u32>,
+}
+
+impl ViewArgs {
+    fn overrides(&self, fixture: &Fixture) -> Result<Overrides, String> {
+        Ok(Overrides {
+            model: model_of(self.model, self.lorentz, fixture)?,
+            camera_t: self.camera_t,
+            width: self.width,
+            height: self.height,
+            spp: self.spp,
+        })
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Render one view of a fixture to a PNG.
@@ -34,23 +70,8 @@ enum Command {
         /// Output PNG.
         #[arg(long)]
         out: PathBuf,
-        /// Light-speed model (default: the fixture's).
-        #[arg(long, value_enum)]
-        model: Option<ModelArg>,
-        /// Insert V_obj objects Lorentz-transformed (with --model infinite: the
-        /// contracted objects as they are at t_c).
-        #[arg(long)]
-        lorentz: bool,
-        /// Camera lab time, t.units.
-        #[arg(long, allow_hyphen_values = true)]
-        camera_t: Option<f64>,
-        #[arg(long)]
-        width: Option<u32>,
-        #[arg(long)]
-        height: Option<u32>,
-        /// Samples per pixel (4D anti-aliasing).
-        #[arg(long)]
-        spp: Option<u32>,
+        #[command(flatten)]
+        view: ViewArgs,
         /// Test every tetrahedron for every ray (no acceleration structure).
         #[arg(long)]
         brute_force: bool,
@@ -96,18 +117,8 @@ enum Command {
         /// Write one JSON object per pixel to this file.
         #[arg(long)]
         log: Option<PathBuf>,
-        #[arg(long, value_enum)]
-        model: Option<ModelArg>,
-        #[arg(long)]
-        lorentz: bool,
-        #[arg(long, allow_hyphen_values = true)]
-        camera_t: Option<f64>,
-        #[arg(long)]
-        width: Option<u32>,
-        #[arg(long)]
-        height: Option<u32>,
-        #[arg(long)]
-        spp: Option<u32>,
+        #[command(flatten)]
+        view: ViewArgs,
         /// Test every tetrahedron for every ray (no acceleration structure).
         #[arg(long)]
         brute_force: bool,
@@ -143,16 +154,8 @@ enum Command {
         /// Frames per second of the GIF or APNG.
         #[arg(long, default_value_t = 10)]
         fps: u32,
-        #[arg(long, value_enum)]
-        model: Option<ModelArg>,
-        #[arg(long)]
-        lorentz: bool,
-        #[arg(long)]
-        width: Option<u32>,
-        #[arg(long)]
-        height: Option<u32>,
-        #[arg(long)]
-        spp: Option<u32>,
+        #[command(flatten)]
+        view: ViewArgs,
     },
     /// Measure rendering speed: rays per second, relativistic against
     /// infinite light speed, BVH against brute force, growth with scene size,
@@ -225,22 +228,11 @@ fn run(cli: Cli) -> Result<(), String> {
         Command::Render {
             fixture,
             out,
-            model,
-            lorentz,
-            camera_t,
-            width,
-            height,
-            spp,
+            view,
             brute_force,
         } => {
             let fixture = Fixture::load(&fixture).map_err(|e| e.to_string())?;
-            let overrides = Overrides {
-                model: model_of(model, lorentz, &fixture)?,
-                camera_t,
-                width,
-                height,
-                spp,
-            };
+            let overrides = view.overrides(&fixture)?;
             let view = vstf::run::view(&fixture, &overrides)?;
             let traversal = if brute_force {
                 Traversal::BruteForce
@@ -359,22 +351,11 @@ fn run(cli: Cli) -> Result<(), String> {
             pixel,
             region,
             log,
-            model,
-            lorentz,
-            camera_t,
-            width,
-            height,
-            spp,
+            view,
             brute_force,
         } => {
             let fixture = Fixture::load(&fixture).map_err(|e| e.to_string())?;
-            let overrides = Overrides {
-                model: model_of(model, lorentz, &fixture)?,
-                camera_t,
-                width,
-                height,
-                spp,
-            };
+            let overrides = view.overrides(&fixture)?;
             let view = vstf::run::view(&fixture, &overrides)?;
             let traversal = if brute_force {
                 Traversal::BruteForce
@@ -439,22 +420,18 @@ fn run(cli: Cli) -> Result<(), String> {
             step,
             out,
             fps,
-            model,
-            lorentz,
-            width,
-            height,
-            spp,
+            view,
         } => {
             use std::sync::atomic::{AtomicBool, Ordering};
             use std::sync::Arc;
+            if view.camera_t.is_some() {
+                return Err("animate takes its camera times from --frames, not --camera-t".into());
+            }
             let times = vstf::animate::frame_times(frames.0, frames.1, step)?;
             let fixture = Fixture::load(&fixture).map_err(|e| e.to_string())?;
             let overrides = Overrides {
-                model: model_of(model, lorentz, &fixture)?,
                 camera_t: Some(times[0]),
-                width,
-                height,
-                spp,
+                ..view.overrides(&fixture)?
             };
             let view = vstf::run::view(&fixture, &overrides)?;
             let output = vstf::animate::Output::from_path(&out);
