@@ -357,6 +357,7 @@ pub fn difference(a: &Reading, b: &Reading) -> Reading {
 }
 
 pub mod aberration;
+pub mod blink;
 pub mod retarded;
 pub mod stage;
 pub mod teaser;
@@ -402,6 +403,7 @@ pub const CHECKS: &[(&str, Check)] = &[
     ("terrell-contracted", terrell::contracted),
     ("aberration", aberration::run),
     ("teaser", teaser::run),
+    ("blink", blink::run),
 ];
 
 /// Runs the checks of the named fixtures (all when empty), comparing

@@ -1,0 +1,201 @@
+//! Time-dilated materials (issue 6, item 3): plates that blink every
+//! P = 2 t.units of their own proper time, one approaching the camera at
+//! 0.5c and one receding. Measured from an animation: the period with which
+//! the camera sees them blink. Expected from first principles: each switch
+//! happens at a proper time m P on the plate's clock (time dilation puts it
+//! at lab time t0 + gamma m P for the plate's centre), and is seen one light
+//! time later (the changing light delay): approaching, the camera sees the
+//! blinking faster; receding, slower.
+
+use super::{Effort, FixtureReport, Row, Setup};
+use crate::fixture::{Fixture, Overrides};
+use crate::oracle::{body_point, gamma, retarded};
+use glam::DVec3;
+use renderer::{Motion, Traversal};
+
+const NAME: &str = "blink";
+/// Camera times of the animation, and its step.
+const FROM: f64 = 60.0;
+const TO: f64 = 90.0;
+const STEP: f64 = 0.05;
+
+struct Plate {
+    name: &'static str,
+    /// Which half of the image the plate is seen in.
+    left: bool,
+}
+
+const PLATES: [Plate; 2] = [
+    Plate {
+        name: "approaching",
+        left: true,
+    },
+    Plate {
+        name: "receding",
+        left: false,
+    },
+];
+
+/// The camera times at which the plate is first seen switching on, from
+/// the frames: midway between the last frame seen off and the first seen on.
+fn measured_switches(frames: &[(f64, Option<bool>)]) -> Vec<f64> {
+    frames
+        .windows(2)
+        .filter_map(|w| match (w[0].1, w[1].1) {
+            (Some(false), Some(true)) => Some((w[0].0 + w[1].0) / 2.0),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The animation is the same at every effort: its precision is set by the frame step.
+pub fn run(_effort: &Effort) -> Result<FixtureReport, String> {
+    let f = Fixture::load(NAME).map_err(|e| e.to_string())?;
+    let model = f
+        .model(&Overrides::default())
+        .map_err(|(p, m)| format!("{p}: {m}"))?;
+    let view = crate::run::view(
+        &f,
+        &Overrides {
+            width: Some(96),
+            height: Some(72),
+            spp: Some(1),
+            ..Default::default()
+        },
+    )?;
+    let db = crate::run::database(&f, model.lorentz, Traversal::Bvh)?;
+    let cam = f.spec.camera.position;
+    let times: Vec<f64> = (0..=((TO - FROM) / STEP).round() as usize)
+        .map(|i| FROM + STEP * i as f64)
+        .collect();
+    // Each frame: for each half of the image, whether the plate there is on
+    // (closer to its blink colour, white) or off; None when not seen.
+    let mut seen: Vec<Vec<(f64, Option<bool>)>> = vec![Vec::new(), Vec::new()];
+    for &t in &times {
+        let img = crate::run::render_with(
+            &db,
+            &f,
+            &crate::fixture::View {
+                camera_t: t,
+                ..view
+            },
+        );
+        for (k, plate) in PLATES.iter().enumerate() {
+            let (mut n, mut sum) = (0.0, DVec3::ZERO);
+            for (i, p) in img.pixels.iter().enumerate() {
+                let x = (i as u32) % img.width;
+                if (x < img.width / 2) == plate.left && p.length() > 0.05 {
+                    n += 1.0;
+                    sum += *p;
+                }
+            }
+            let state = (n > 0.0).then(|| (sum / n).x > 0.55);
+            seen[k].push((t, state));
+        }
+    }
+    let mut rows = Vec::new();
+    let mut marks = Vec::new();
+    for (k, plate) in PLATES.iter().enumerate() {
+        let switches = measured_switches(&seen[k]);
+        if switches.len() < 3 {
+            return Err(format!(
+                "{NAME}: the {} plate was seen switching on only {} times",
+                plate.name,
+                switches.len()
+            ));
+        }
+        let n = (switches.len() - 1) as f64;
+        let measured = (switches[switches.len() - 1] - switches[0]) / n;
+        // First principles: switch m happens at proper time m P; the plate's
+        // centre (its reference point) reads t0 + gamma m P then.
+        let obj = f
+            .scene
+            .objects
+            .iter()
+            .find(|o| o.name == plate.name)
+            .ok_or("no plate")?;
+        let (start, v, period) = match (obj.motion, obj.material.blink) {
+            (
+                Motion::Velocity {
+                    start, velocity, ..
+                },
+                Some(b),
+            ) => (start, velocity, b.period),
+            _ => {
+                return Err(format!(
+                    "{NAME}: {} must move by velocity and blink",
+                    plate.name
+                ))
+            }
+        };
+        let g = if model.lorentz {
+            gamma(v.length())
+        } else {
+            1.0
+        };
+        let seen_at = |m: f64, r: DVec3| {
+            let p = body_point(start.t, start.x, v, r, model.lorentz);
+            let offset = if model.lorentz {
+                crate::oracle::contract(r, v)
+            } else {
+                r
+            };
+            let t = start.t + g * (m * period + g * v.dot(offset));
+            t + (p.at(t) - cam).length()
+        };
+        // The switch numbers m nearest to the first and last measured switches.
+        let nearest = |t: f64| {
+            let mut m = 0.0;
+            while seen_at(m + 1.0, DVec3::ZERO) <= t {
+                m += 1.0;
+            }
+            if (seen_at(m + 1.0, DVec3::ZERO) - t).abs() < (seen_at(m, DVec3::ZERO) - t).abs() {
+                m + 1.0
+            } else {
+                m
+            }
+        };
+        let (m0, m1) = (nearest(switches[0]), nearest(switches[switches.len() - 1]));
+        let expected = (seen_at(m1, DVec3::ZERO) - seen_at(m0, DVec3::ZERO)) / (m1 - m0);
+        // Uncertainty: each switch is known to within half a frame step; the
+        // plate's extent (its corners switch at other seen times) may shift
+        // the switch seen in the average colour by up to the change of that
+        // spread between the first and last switches.
+        let corners = [
+            DVec3::new(-0.5, -0.5, 0.0),
+            DVec3::new(0.5, 0.5, 0.0),
+            DVec3::new(-0.5, 0.5, 0.0),
+            DVec3::new(0.5, -0.5, 0.0),
+        ];
+        let spread = |m: f64| {
+            corners
+                .iter()
+                .map(|&r| seen_at(m, r) - seen_at(m, DVec3::ZERO))
+                .fold(0.0f64, |a, b| a.max(b.abs()))
+        };
+        let tolerance = (STEP + (spread(m1) - spread(m0)).abs() + spread(m0).max(spread(m1))) / n;
+        rows.push(Row::new(
+            NAME,
+            &format!("{} plate: blink period seen by the camera", plate.name),
+            measured,
+            expected,
+            None,
+            tolerance,
+            "t.units",
+        ));
+        if let Some(r) = retarded(
+            &body_point(start.t, start.x, v, DVec3::ZERO, model.lorentz),
+            f.spec.camera.t,
+            cam,
+        ) {
+            marks.push(r.direction);
+        }
+    }
+    let setup = Setup {
+        fixture: &f,
+        model,
+        camera_t: f.spec.camera.t,
+    };
+    let views = vec![setup.full_view("view", &marks)?];
+    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
+}
