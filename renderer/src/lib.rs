@@ -30,7 +30,7 @@ pub use boost::Boost;
 pub use database::{Database, SceneError, Traversal};
 pub use extrude::{Prism, Tetrahedron};
 pub use intersect::Hit;
-pub use lightcone::{Attitude, Camera, LightSpeed, Ray};
+pub use lightcone::{Attitude, Camera, Kinematics, LightSpeed, Ray};
 pub use mesh::Mesh;
 pub use model::Model;
 pub use render::{render, Image, RenderSettings};

@@ -62,10 +62,34 @@ pub enum Attitude {
     YawPitch { yaw_deg: f64, pitch_deg: f64 },
 }
 
-/// A pinhole camera at rest in the lab frame at `event`. Its viewplane is
-/// spherical in time (paper 3.2): every pixel's ray starts at the camera event,
-/// so the image adds no light delay of its own. Pixel (0, 0) is the top left;
-/// pixel centres are at half-integers.
+/// How a moving camera's lines of sight are carried into the lab frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kinematics {
+    /// Light is instantaneous: the camera's motion does not turn its rays.
+    None,
+    /// Galilean addition of the camera's velocity to the light's (classical model).
+    Galilean,
+    /// The Lorentz boost of the light's 4-vector: relativistic aberration.
+    Lorentz,
+}
+
+impl Kinematics {
+    pub fn of(model: crate::model::Model) -> Kinematics {
+        match (model.light_speed, model.lorentz) {
+            (LightSpeed::Infinite, _) => Kinematics::None,
+            (LightSpeed::Finite, false) => Kinematics::Galilean,
+            (LightSpeed::Finite, true) => Kinematics::Lorentz,
+        }
+    }
+}
+
+/// A pinhole camera at `event`, moving through the lab with `velocity`
+/// (at rest by default, as in the paper). Its attitude (forward, right, up)
+/// and image plane are defined in its own rest frame; its lines of sight
+/// are carried into the lab by `kinematics`. Its viewplane is spherical in
+/// time (paper 3.2): every pixel's ray starts at the camera event, so the
+/// image adds no light delay of its own. Pixel (0, 0) is the top left; pixel
+/// centres are at half-integers.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
     pub event: Event,
@@ -76,6 +100,9 @@ pub struct Camera {
     pub vfov_deg: f64,
     pub width: u32,
     pub height: u32,
+    /// Lab velocity (fraction of c).
+    pub velocity: DVec3,
+    pub kinematics: Kinematics,
 }
 
 impl Camera {
@@ -107,7 +134,63 @@ impl Camera {
             vfov_deg,
             width,
             height,
+            velocity: DVec3::ZERO,
+            kinematics: Kinematics::None,
         })
+    }
+
+    /// The same camera moving with lab `velocity`, its rays carried into the
+    /// lab as `model` says; `None` at or above light speed.
+    pub fn moving(self, velocity: DVec3, model: crate::model::Model) -> Option<Camera> {
+        (velocity.is_finite() && velocity.length_squared() < 1.0).then_some(Camera {
+            velocity,
+            kinematics: Kinematics::of(model),
+            ..self
+        })
+    }
+
+    /// Where the camera is at lab time `t`.
+    pub fn position_at(&self, t: f64) -> DVec3 {
+        self.event.x + self.velocity * (t - self.event.t)
+    }
+
+    /// A line of sight from the camera's rest frame into the lab.
+    fn to_lab(&self, n: DVec3) -> DVec3 {
+        let v = self.velocity;
+        match self.kinematics {
+            _ if v == DVec3::ZERO => n,
+            Kinematics::None => n,
+            // The past-directed null vector (-1, n) of the camera's frame, boosted.
+            Kinematics::Lorentz => {
+                let lab = crate::boost::Boost::new(v)
+                    .expect("checked in moving()")
+                    .to_lab(crate::spacetime::FourVector::new(-1.0, n));
+                (lab.x / -lab.t).normalize()
+            }
+            // Light moves at c in the lab; in the camera's frame its velocity is
+            // u - v, along -n: so n_lab = lambda n - v with |n_lab| = 1.
+            Kinematics::Galilean => {
+                let nv = n.dot(v);
+                let lambda = nv + (nv * nv - v.length_squared() + 1.0).sqrt();
+                (n * lambda - v).normalize()
+            }
+        }
+    }
+
+    /// A lab line of sight into the camera's rest frame (inverse of `to_lab`).
+    fn from_lab(&self, d: DVec3) -> DVec3 {
+        let v = self.velocity;
+        match self.kinematics {
+            _ if v == DVec3::ZERO => d,
+            Kinematics::None => d,
+            Kinematics::Lorentz => {
+                let rest = crate::boost::Boost::new(v)
+                    .expect("checked in moving()")
+                    .to_rest(crate::spacetime::FourVector::new(-1.0, d));
+                (rest.x / -rest.t).normalize()
+            }
+            Kinematics::Galilean => (d + v).normalize(),
+        }
     }
 
     /// Half-extent of the image plane at unit distance, vertically.
@@ -115,9 +198,9 @@ impl Camera {
         (self.vfov_deg.to_radians() / 2.0).tan()
     }
 
-    /// Unit direction (lab frame, from the camera into the scene) through the
-    /// continuous pixel position (px, py).
-    pub fn direction(&self, px: f64, py: f64) -> DVec3 {
+    /// Unit direction in the camera's own frame through the continuous
+    /// pixel position (px, py).
+    pub fn camera_direction(&self, px: f64, py: f64) -> DVec3 {
         let th = self.tan_half_v();
         let aspect = f64::from(self.width) / f64::from(self.height);
         let u = (2.0 * px / f64::from(self.width) - 1.0) * th * aspect;
@@ -125,9 +208,16 @@ impl Camera {
         (self.forward + self.right * u + self.up * v).normalize()
     }
 
+    /// Unit direction (lab frame, from the camera into the scene) of the line
+    /// of sight through the continuous pixel position (px, py).
+    pub fn direction(&self, px: f64, py: f64) -> DVec3 {
+        self.to_lab(self.camera_direction(px, py))
+    }
+
     /// Inverse of [`Camera::direction`]: the continuous pixel position where
-    /// light arriving from spatial direction `dir` lands; `None` if behind.
+    /// light arriving from lab direction `dir` lands; `None` if behind.
     pub fn pixel_of(&self, dir: DVec3) -> Option<(f64, f64)> {
+        let dir = self.from_lab(dir);
         let f = dir.dot(self.forward);
         if f <= 0.0 {
             return None;
@@ -142,9 +232,13 @@ impl Camera {
         ))
     }
 
-    /// The primary ray through (px, py) for a camera at lab time `t`.
+    /// The primary ray through (px, py) for the camera at lab time `t`.
     pub fn ray(&self, px: f64, py: f64, t: f64, light: LightSpeed) -> Ray {
-        Ray::backwards(Event::new(t, self.event.x), self.direction(px, py), light)
+        Ray::backwards(
+            Event::new(t, self.position_at(t)),
+            self.direction(px, py),
+            light,
+        )
     }
 }
 

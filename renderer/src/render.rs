@@ -7,7 +7,7 @@
 //! the number of threads.
 
 use crate::database::Database;
-use crate::lightcone::Camera;
+use crate::lightcone::{Camera, Kinematics};
 use crate::model::Model;
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
@@ -91,6 +91,10 @@ pub fn render(
     settings: &RenderSettings,
 ) -> Image {
     let shader = shader(db, scene, model, settings);
+    let camera = &Camera {
+        kinematics: Kinematics::of(model),
+        ..*camera
+    };
     let (w, h) = (camera.width, camera.height);
     let mut pixels = vec![DVec3::ZERO; w as usize * h as usize];
     pixels

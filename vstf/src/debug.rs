@@ -61,7 +61,7 @@ pub fn trace_pixel(
         fixture: f.name.clone(),
         model: view.model.to_string(),
         camera_t: view.camera_t,
-        camera: view.camera.event.x,
+        camera: view.camera.position_at(view.camera_t),
         pixel: [x, y],
         steps: rec.steps,
         color,

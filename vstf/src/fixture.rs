@@ -77,6 +77,10 @@ pub struct CameraSpec {
     /// Vertical field of view, degrees.
     #[serde(default = "default_vfov")]
     pub vfov_deg: f64,
+    /// Lab velocity of the camera (fraction of c); `position` is where it
+    /// is at time `t`. At rest by default, as in the paper.
+    #[serde(default)]
+    pub velocity: Option<DVec3>,
 }
 
 /// Image settings.
@@ -412,8 +416,8 @@ impl Fixture {
                 )
             }
         };
-        let camera = Camera::new(
-            Event::new(camera_t, c.position),
+        let still = Camera::new(
+            Event::new(c.t, c.position),
             attitude,
             c.vfov_deg,
             width,
@@ -424,6 +428,17 @@ impl Fixture {
                 "camera".to_string(),
                 "degenerate attitude: look_at equals position, or up is parallel to the view"
                     .to_string(),
+            )
+        })?;
+        let velocity = c.velocity.unwrap_or(DVec3::ZERO);
+        finite3("camera.velocity", velocity)?;
+        let camera = still.moving(velocity, model).ok_or_else(|| {
+            (
+                "camera.velocity".to_string(),
+                format!(
+                    "the camera moves at {:.6}c; it must be slower than light",
+                    velocity.length()
+                ),
             )
         })?;
         let settings = RenderSettings {
