@@ -217,7 +217,16 @@ impl Camera {
     /// Inverse of [`Camera::direction`]: the continuous pixel position where
     /// light arriving from lab direction `dir` lands; `None` if behind.
     pub fn pixel_of(&self, dir: DVec3) -> Option<(f64, f64)> {
-        let dir = self.from_lab(dir);
+        self.project(self.from_lab(dir))
+    }
+
+    /// The continuous pixel position of a direction given in the camera's
+    /// own frame (for directions behind the camera, a point off the image).
+    pub fn pixel_of_camera(&self, dir: DVec3) -> (f64, f64) {
+        self.project(dir).unwrap_or((-1.0, -1.0))
+    }
+
+    fn project(&self, dir: DVec3) -> Option<(f64, f64)> {
         let f = dir.dot(self.forward);
         if f <= 0.0 {
             return None;

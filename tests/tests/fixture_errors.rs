@@ -152,3 +152,19 @@ fn every_shipped_fixture_loads() {
         Fixture::load(&name).unwrap_or_else(|e| panic!("{e}"));
     }
 }
+
+#[test]
+fn a_camera_at_or_above_light_speed_is_refused() {
+    let e = error_of(&flange_with(|v| {
+        v["camera"]["velocity"] = serde_json::json!([0.8, 0.6, 0.0])
+    }));
+    assert!(
+        e.contains("camera.velocity: the camera moves at 1.000000c; it must be slower than light"),
+        "{e}"
+    );
+    Fixture::parse(
+        &flange_with(|v| v["camera"]["velocity"] = serde_json::json!([0.5, 0.0, 0.0])),
+        Path::new("fixtures/ok.json"),
+    )
+    .unwrap();
+}

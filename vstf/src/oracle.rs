@@ -116,6 +116,63 @@ pub fn instantaneous(p: &PointWorldline, tc: f64, camera: DVec3) -> Retarded {
     }
 }
 
+/// The direction, in the frame of an observer moving with lab velocity `v`,
+/// of light that reaches it from lab direction `n` (unit, from the observer
+/// towards the source). Relativistic aberration: the photon's 4-momentum
+/// (1, -n) is boosted, k'^0 = gamma (1 + v.n), k' = -n + (gamma - 1)(-n.v^)v^
+/// - gamma v, and n' = -k' / k'^0 (paper eq. 3-5 in vector form).
+pub fn aberrate_lorentz(n: DVec3, v: DVec3) -> DVec3 {
+    let b = v.length();
+    if b == 0.0 {
+        return n;
+    }
+    let vh = v / b;
+    let g = gamma(b);
+    let k = -n;
+    let k0 = g * (1.0 - v.dot(k));
+    let kv = k + vh * ((g - 1.0) * k.dot(vh)) - v * g;
+    (-kv / k0).normalize()
+}
+
+/// The same for Galilean kinematics: light moving at c in the lab has
+/// velocity -n - v relative to the observer, who sees it coming from n + v.
+pub fn aberrate_galilean(n: DVec3, v: DVec3) -> DVec3 {
+    (n + v).normalize()
+}
+
+/// The least and greatest values of `f` over the boundary of the square
+/// with corners `corners` (in order), by a dense scan of each side refined by
+/// golden-section search.
+pub fn extremes_on_polygon(corners: &[DVec3], f: impl Fn(DVec3) -> f64) -> (f64, f64) {
+    let extreme = |sign: f64| {
+        let mut best = f64::NEG_INFINITY;
+        for k in 0..corners.len() {
+            let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+            let g = |s: f64| sign * f(a + (b - a) * s);
+            let n = 400;
+            let i = (0..=n)
+                .max_by(|i, j| g(*i as f64 / n as f64).total_cmp(&g(*j as f64 / n as f64)))
+                .unwrap_or(0);
+            let (mut lo, mut hi) = (
+                ((i as f64) - 1.0).max(0.0) / n as f64,
+                ((i as f64) + 1.0).min(n as f64) / n as f64,
+            );
+            let phi = (5f64.sqrt() - 1.0) / 2.0;
+            for _ in 0..100 {
+                let (m1, m2) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
+                if g(m1) < g(m2) {
+                    lo = m1
+                } else {
+                    hi = m2
+                }
+            }
+            best = best.max(g((lo + hi) / 2.0)).max(g(0.0)).max(g(1.0));
+        }
+        sign * best
+    };
+    (extreme(-1.0), extreme(1.0))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -143,5 +200,18 @@ mod tests {
         let r = retarded(&p, 40.0, c).unwrap();
         assert_relative_eq!((r.x - c).length(), 40.0 - r.t, max_relative = 1e-12);
         assert!(r.t < 40.0);
+    }
+
+    #[test]
+    fn aberration_matches_the_paper_half_angle_formula() {
+        // Eq. (9): tan(a'/2) = sqrt((1 - b)/(1 + b)) tan(a/2), angles from the observer's velocity.
+        let b = 0.6;
+        for a_deg in [10.0f64, 60.0, 116.565, 170.0] {
+            let a = a_deg.to_radians();
+            let n = DVec3::new(a.cos(), a.sin(), 0.0);
+            let got = aberrate_lorentz(n, DVec3::new(b, 0.0, 0.0));
+            let want = 2.0 * (((1.0 - b) / (1.0 + b)).sqrt() * (a / 2.0).tan()).atan();
+            assert_relative_eq!(got.y.atan2(got.x), want, max_relative = 1e-12);
+        }
     }
 }

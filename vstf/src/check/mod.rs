@@ -169,7 +169,9 @@ impl Setup<'_> {
     }
 
     /// Renders only the objects named in `keep`, looking towards
-    /// `look_at` with horizontal field of view `hfov_deg`, at `width` x `height`.
+    /// `look_at` (a direction in the camera's frame, from its position) with
+    /// horizontal field of view `hfov_deg`, at `width` x `height`. The probe
+    /// camera moves as the fixture's does.
     pub fn probe(
         &self,
         keep: &[&str],
@@ -204,7 +206,12 @@ impl Setup<'_> {
             width,
             height,
         )
-        .ok_or("degenerate probe camera")?;
+        .ok_or("degenerate probe camera")?
+        .moving(
+            self.fixture.spec.camera.velocity.unwrap_or(DVec3::ZERO),
+            self.model,
+        )
+        .ok_or("the camera moves at or above light speed")?;
         let settings = renderer::RenderSettings {
             spp,
             shutter: 0.0,
@@ -358,6 +365,7 @@ pub fn difference(a: &Reading, b: &Reading) -> Reading {
 
 pub mod aberration;
 pub mod blink;
+pub mod relativity;
 pub mod retarded;
 pub mod stage;
 pub mod teaser;
@@ -404,6 +412,7 @@ pub const CHECKS: &[(&str, Check)] = &[
     ("aberration", aberration::run),
     ("teaser", teaser::run),
     ("blink", blink::run),
+    ("relativity", relativity::run),
 ];
 
 /// Runs the checks of the named fixtures (all when empty), comparing

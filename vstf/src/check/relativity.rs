@@ -1,0 +1,258 @@
+//! The principle of relativity (issue 6, item 1): a camera moving at v past
+//! a static cube, and the camera at rest with the cube moving at -v, seen at
+//! the same event, must give the same image in the relativistic model. The
+//! object-moving scene is the Lorentz transform of the camera-moving one
+//! (classical model: the Galilean transform). Measured from both images:
+//! where the cube's silhouette crosses the horizon, as azimuths in the
+//! camera's frame. Expected from first principles, for each scene on its
+//! own: the static cube's directions aberrated into the moving camera's
+//! frame, or the moving cube's retarded directions for the camera at rest.
+
+use super::{
+    background, difference, is_background, Edge, EdgeTrace, Effort, FixtureReport, Reading, Row,
+    Setup,
+};
+use crate::fixture::Fixture;
+use crate::measure::edge;
+use crate::oracle::{
+    aberrate_galilean, aberrate_lorentz, body_point, extremes_on_polygon, retarded,
+};
+use glam::DVec3;
+use renderer::{Boost, Event, FourVector, Model, Motion, ObjectKind};
+
+const NAME: &str = "relativity";
+const CUBE: &str = "cube";
+const HALF: f64 = 1.5;
+/// How long before and after the camera event the moving cube exists.
+const SPAN: f64 = 1000.0;
+
+/// The camera's rest-frame attitude: azimuth of a camera-frame direction.
+fn azimuth(setup: &Setup, d: DVec3) -> f64 {
+    let c = &setup.fixture.spec.camera;
+    let forward = (c.look_at.unwrap_or(c.position + DVec3::NEG_Z) - c.position).normalize();
+    let right = forward.cross(c.up).normalize();
+    d.dot(right).atan2(d.dot(forward)).to_degrees()
+}
+
+/// The scene seen by a camera at rest at the same event, with the cube
+/// moving at -v: its worldline is the camera-moving one transformed (Lorentz
+/// or Galilean) into the camera's rest frame.
+fn object_moving(f: &Fixture, model: Model) -> Result<Fixture, String> {
+    let mut g = f.clone();
+    let v = g.spec.camera.velocity.take().unwrap_or(DVec3::ZERO);
+    let cam = Event::new(f.spec.camera.t, f.spec.camera.position);
+    let cube = g
+        .scene
+        .objects
+        .iter_mut()
+        .find(|o| o.name == CUBE)
+        .ok_or("relativity: no cube")?;
+    let centre = match cube.motion {
+        Motion::Extrusion { start, .. } | Motion::Velocity { start, .. } => start.x,
+    };
+    // The cube's centre at the camera's time, in the camera's rest frame.
+    let at = if model.lorentz {
+        let rel = Boost::new(v)
+            .ok_or("relativity: camera at light speed")?
+            .to_rest(Event::new(cam.t, centre) - cam);
+        cam + rel
+    } else {
+        Event::new(cam.t, centre)
+    };
+    let u = -v;
+    cube.kind = if model.lorentz {
+        ObjectKind::VObj
+    } else {
+        ObjectKind::HObj
+    };
+    cube.motion = Motion::Extrusion {
+        start: at + FourVector::new(-SPAN, -u * SPAN),
+        extrusion: FourVector::new(2.0 * SPAN, u * 2.0 * SPAN),
+    };
+    Ok(g)
+}
+
+/// The silhouette's left and right crossings of the horizon (camera-frame
+/// azimuths, degrees), measured on a probe render.
+fn measure(setup: &Setup, effort: &Effort) -> Result<(Reading, Reading), String> {
+    let c = &setup.fixture.spec.camera;
+    let look = c.look_at.unwrap_or(c.position + DVec3::NEG_Z);
+    let (img, camera) = setup.probe(
+        &[CUBE],
+        look,
+        40.0,
+        effort.probe,
+        effort.probe / 4,
+        effort.spp,
+    )?;
+    let bg = background(setup.fixture);
+    let w = i64::from(img.width());
+    // Rows as (row offset from the horizon, pixels; azimuth of the edge).
+    let centre = f64::from(img.height()) / 2.0;
+    let still = renderer::Camera {
+        velocity: DVec3::ZERO,
+        kinematics: renderer::Kinematics::None,
+        ..camera
+    };
+    let to_az = |px: f64| azimuth(setup, still.camera_direction(px, centre));
+    let mut traces = Vec::new();
+    for (from, step) in [(0, 1), (w - 1, -1)] {
+        let mut points = Vec::new();
+        for y in 0..img.height() {
+            let scan = crate::measure::Scan {
+                horizontal: true,
+                at: y,
+            };
+            if let Some(u) = edge(&img, scan, from, step, |c| is_background(c, bg)) {
+                points.push((f64::from(y) + 0.5 - centre, u));
+            }
+        }
+        // The edge in pixels, fitted against the row, read on the horizon;
+        // its footprint in azimuth per pixel there.
+        let dpx = (to_az(centre + 1.0) - to_az(centre - 1.0)).abs() / 2.0;
+        let trace = EdgeTrace {
+            points,
+            footprint: 1.0,
+        };
+        let e = Edge::fit(&trace, 2, effort)
+            .map_err(|e| format!("{NAME}: {e}"))?
+            .at(0.0);
+        traces.push(Reading {
+            value: to_az(e.value),
+            tolerance: e.tolerance * dpx,
+        });
+    }
+    Ok((traces.remove(0), traces.remove(0)))
+}
+
+/// Lab directions of the points on the horizon at the given camera-frame
+/// azimuths, for the report's markers.
+fn horizon_marks(setup: &Setup, azimuths: &[f64]) -> Vec<DVec3> {
+    let c = &setup.fixture.spec.camera;
+    let forward = (c.look_at.unwrap_or(c.position + DVec3::NEG_Z) - c.position).normalize();
+    let right = forward.cross(c.up).normalize();
+    let camera = renderer::Camera::new(
+        Event::new(c.t, c.position),
+        renderer::Attitude::LookAt {
+            look_at: c.position + forward,
+            up: c.up,
+        },
+        c.vfov_deg,
+        8,
+        8,
+    )
+    .and_then(|cam| cam.moving(c.velocity.unwrap_or(DVec3::ZERO), setup.model));
+    azimuths
+        .iter()
+        .filter_map(|a| {
+            let n = forward * a.to_radians().cos() + right * a.to_radians().sin();
+            // The camera-frame direction, carried into the lab as the camera carries its rays.
+            camera.map(|cam| cam.direction(cam.pixel_of_camera(n).0, cam.pixel_of_camera(n).1))
+        })
+        .collect()
+}
+
+pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
+    let f = Fixture::load(NAME).map_err(|e| e.to_string())?;
+    let c = f.spec.camera.clone();
+    let v = c.velocity.unwrap_or(DVec3::ZERO);
+    let square = [
+        DVec3::new(-HALF, 0.0, -HALF),
+        DVec3::new(HALF, 0.0, -HALF),
+        DVec3::new(HALF, 0.0, HALF),
+        DVec3::new(-HALF, 0.0, HALF),
+    ];
+    let mut rows = Vec::new();
+    let mut views = Vec::new();
+    for model in [Model::RELATIVISTIC, Model::CLASSICAL] {
+        let moving_camera = f.clone();
+        let moving_object = object_moving(&f, model)?;
+        let a = Setup {
+            fixture: &moving_camera,
+            model,
+            camera_t: c.t,
+        };
+        let b = Setup {
+            fixture: &moving_object,
+            model,
+            camera_t: c.t,
+        };
+        let (la, ra) = measure(&a, effort)?;
+        let (lb, rb) = measure(&b, effort)?;
+        // First principles. Camera moving: the static cube's points are seen
+        // along their lab directions, aberrated into the camera's frame.
+        let centre = match f
+            .scene
+            .objects
+            .iter()
+            .find(|o| o.name == CUBE)
+            .map(|o| o.motion)
+        {
+            Some(Motion::Extrusion { start, .. }) | Some(Motion::Velocity { start, .. }) => start.x,
+            None => return Err("relativity: no cube".into()),
+        };
+        let aberrate = |n: DVec3| {
+            if model.lorentz {
+                aberrate_lorentz(n, v)
+            } else {
+                aberrate_galilean(n, v)
+            }
+        };
+        let (ea_l, ea_r) = extremes_on_polygon(&square, |r| {
+            azimuth(&a, aberrate((centre + r - c.position).normalize()))
+        });
+        // Object moving: the moving cube's points at their retarded positions.
+        let cube_b = moving_object
+            .scene
+            .objects
+            .iter()
+            .find(|o| o.name == CUBE)
+            .ok_or("no cube")?;
+        let (start_b, u) = match cube_b.motion {
+            Motion::Extrusion { start, extrusion } => (start, extrusion.velocity()),
+            Motion::Velocity {
+                start, velocity, ..
+            } => (start, velocity),
+        };
+        let seen_b = |r: DVec3| {
+            let p = body_point(start_b.t, start_b.x, u, r, model.lorentz);
+            retarded(&p, c.t, c.position).map_or(f64::NAN, |s| azimuth(&b, s.direction))
+        };
+        let (eb_l, eb_r) = extremes_on_polygon(&square, seen_b);
+        let m = model.to_string();
+        let row = |q: &str, r: &Reading, e: f64| {
+            Row::new(
+                NAME,
+                &format!("{m}: {q}"),
+                r.value,
+                e,
+                None,
+                r.tolerance,
+                "deg",
+            )
+        };
+        rows.push(row("left edge, camera moving", &la, ea_l));
+        rows.push(row("left edge, cube moving", &lb, eb_l));
+        rows.push(row("right edge, camera moving", &ra, ea_r));
+        rows.push(row("right edge, cube moving", &rb, eb_r));
+        rows.push(row(
+            "left edge: camera moving minus cube moving",
+            &difference(&la, &lb),
+            ea_l - eb_l,
+        ));
+        rows.push(row(
+            "right edge: camera moving minus cube moving",
+            &difference(&ra, &rb),
+            ea_r - eb_r,
+        ));
+        views.push(a.full_view(
+            &format!("{m}, camera moving"),
+            &horizon_marks(&a, &[ea_l, ea_r]),
+        )?);
+        views.push(b.full_view(
+            &format!("{m}, cube moving"),
+            &horizon_marks(&b, &[eb_l, eb_r]),
+        )?);
+    }
+    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
+}
