@@ -155,7 +155,7 @@ impl Camera {
     }
 
     /// A line of sight from the camera's rest frame into the lab.
-    fn to_lab(&self, n: DVec3) -> DVec3 {
+    fn sight_to_lab(&self, n: DVec3) -> DVec3 {
         let v = self.velocity;
         match self.kinematics {
             _ if v == DVec3::ZERO => n,
@@ -177,8 +177,8 @@ impl Camera {
         }
     }
 
-    /// A lab line of sight into the camera's rest frame (inverse of `to_lab`).
-    fn from_lab(&self, d: DVec3) -> DVec3 {
+    /// A lab line of sight into the camera's rest frame (inverse of `sight_to_lab`).
+    fn sight_from_lab(&self, d: DVec3) -> DVec3 {
         let v = self.velocity;
         match self.kinematics {
             _ if v == DVec3::ZERO => d,
@@ -211,13 +211,13 @@ impl Camera {
     /// Unit direction (lab frame, from the camera into the scene) of the line
     /// of sight through the continuous pixel position (px, py).
     pub fn direction(&self, px: f64, py: f64) -> DVec3 {
-        self.to_lab(self.camera_direction(px, py))
+        self.sight_to_lab(self.camera_direction(px, py))
     }
 
     /// Inverse of [`Camera::direction`]: the continuous pixel position where
     /// light arriving from lab direction `dir` lands; `None` if behind.
     pub fn pixel_of(&self, dir: DVec3) -> Option<(f64, f64)> {
-        self.project(self.from_lab(dir))
+        self.project(self.sight_from_lab(dir))
     }
 
     /// The continuous pixel position of a direction given in the camera's
