@@ -1,7 +1,13 @@
 //! The Visual Software Test Fixture (paper section 4): loads scene fixtures,
 //! renders them with the `renderer` crate, and checks what the images show.
 //!
-//! fixture ([`fixture`]) -> scene -> 4D database -> image ([`output`]).
+//! Data flows one way: a fixture ([`fixture`]) is rendered ([`run`]), the
+//! image is measured ([`measure`]), the measurements are compared with
+//! first-principles expectations ([`oracle`]) scene by scene ([`check`]),
+//! and the views with their approved images ([`golden`]); [`report`]
+//! presents the verdict. Beside that: [`debug`] logs the variables along a
+//! pixel's rays, [`animate`] renders frame sequences, [`bench`] measures
+//! speed, and [`output`] writes files atomically.
 
 pub mod animate;
 pub mod bench;
