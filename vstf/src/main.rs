@@ -223,6 +223,23 @@ fn parse_region(s: &str) -> Result<(u32, u32, u32, u32), String> {
     }
 }
 
+/// Loads a fixture, applies the view flags and builds the database.
+fn prepare(
+    name: &str,
+    args: &ViewArgs,
+    brute_force: bool,
+) -> Result<(Fixture, vstf::fixture::View, renderer::Database), String> {
+    let fixture = Fixture::load(name).map_err(|e| e.to_string())?;
+    let view = vstf::run::view(&fixture, &args.overrides(&fixture)?)?;
+    let traversal = if brute_force {
+        Traversal::BruteForce
+    } else {
+        Traversal::Bvh
+    };
+    let db = vstf::run::database(&fixture, view.model.lorentz, traversal)?;
+    Ok((fixture, view, db))
+}
+
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Render {
@@ -231,16 +248,8 @@ fn run(cli: Cli) -> Result<(), String> {
             view,
             brute_force,
         } => {
-            let fixture = Fixture::load(&fixture).map_err(|e| e.to_string())?;
-            let overrides = view.overrides(&fixture)?;
-            let view = vstf::run::view(&fixture, &overrides)?;
-            let traversal = if brute_force {
-                Traversal::BruteForce
-            } else {
-                Traversal::Bvh
-            };
             let started = Instant::now();
-            let db = vstf::run::database(&fixture, view.model.lorentz, traversal)?;
+            let (fixture, view, db) = prepare(&fixture, &view, brute_force)?;
             let image = vstf::run::render_with(&db, &fixture, &view);
             vstf::output::write_png(&out, &image.to_rgb8())?;
             eprintln!(
@@ -354,15 +363,7 @@ fn run(cli: Cli) -> Result<(), String> {
             view,
             brute_force,
         } => {
-            let fixture = Fixture::load(&fixture).map_err(|e| e.to_string())?;
-            let overrides = view.overrides(&fixture)?;
-            let view = vstf::run::view(&fixture, &overrides)?;
-            let traversal = if brute_force {
-                Traversal::BruteForce
-            } else {
-                Traversal::Bvh
-            };
-            let db = vstf::run::database(&fixture, view.model.lorentz, traversal)?;
+            let (fixture, view, db) = prepare(&fixture, &view, brute_force)?;
             let (x0, y0, x1, y1) = match (pixel, region) {
                 (Some((x, y)), _) => (x, y, x, y),
                 (None, Some(r)) => r,

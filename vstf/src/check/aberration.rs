@@ -15,7 +15,7 @@ use super::{
 };
 use crate::fixture::{Fixture, Overrides};
 use crate::measure::{edge, Plane};
-use crate::oracle::{body_point, contract, retarded};
+use crate::oracle::{body_point, contract, extremes_on_polygon, retarded};
 use glam::DVec3;
 use renderer::{Event, FourVector, Model, Motion, ObjectKind};
 
@@ -92,8 +92,7 @@ fn moving(control: &Fixture, u: DVec3, model: Model) -> Result<(Fixture, DVec3),
 
 /// The extreme azimuths (left, right) of the cube's horizon cross-section as
 /// seen from the camera at the origin at t = 0: every point of the square's
-/// boundary is retarded in closed form; the extremes are found by a dense
-/// scan refined by golden-section search.
+/// boundary is retarded in closed form.
 fn expected_edges(centre: DVec3, u: DVec3, lorentz: bool) -> (f64, f64) {
     let corners = [
         DVec3::new(-HALF, 0.0, -HALF),
@@ -105,33 +104,7 @@ fn expected_edges(centre: DVec3, u: DVec3, lorentz: bool) -> (f64, f64) {
         let p = body_point(0.0, centre, u, r, lorentz);
         retarded(&p, 0.0, DVec3::ZERO).map_or(f64::NAN, |s| azimuth_deg(s.direction))
     };
-    let extreme = |sign: f64| {
-        let mut best = f64::NEG_INFINITY;
-        for k in 0..4 {
-            let (a, b) = (corners[k], corners[(k + 1) % 4]);
-            let f = |s: f64| sign * az(a + (b - a) * s);
-            let n = 400;
-            let i = (0..=n)
-                .max_by(|i, j| f(*i as f64 / n as f64).total_cmp(&f(*j as f64 / n as f64)))
-                .unwrap();
-            let (mut lo, mut hi) = (
-                ((i as f64) - 1.0).max(0.0) / n as f64,
-                ((i as f64) + 1.0).min(n as f64) / n as f64,
-            );
-            let g = (5f64.sqrt() - 1.0) / 2.0;
-            for _ in 0..100 {
-                let (m1, m2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-                if f(m1) < f(m2) {
-                    lo = m1
-                } else {
-                    hi = m2
-                }
-            }
-            best = best.max(f((lo + hi) / 2.0)).max(f(0.0)).max(f(1.0));
-        }
-        sign * best
-    };
-    (extreme(-1.0), extreme(1.0))
+    extremes_on_polygon(&corners, az)
 }
 
 /// Measures the silhouette edge on the horizon near azimuth `near_deg`:
