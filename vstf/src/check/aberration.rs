@@ -15,7 +15,9 @@ use super::{
 };
 use crate::fixture::{Fixture, Overrides};
 use crate::measure::{edge, Plane};
-use crate::oracle::{body_point, contract, extremes_on_polygon, retarded};
+use crate::oracle::{
+    aberrate_galilean, aberrate_lorentz, body_point, contract, extremes_on_polygon, retarded,
+};
 use glam::DVec3;
 use renderer::{Event, FourVector, Model, Motion, ObjectKind};
 
@@ -131,6 +133,9 @@ fn measure_edge(
     let bg = background(setup.fixture);
     let w = i64::from(img.width());
     let (from, step) = if right { (w - 1, -1) } else { (0, 1) };
+    // Angles are the observer's: lines of sight in the camera's own frame
+    // (the same as the lab's when the camera is at rest).
+    let camera = still(&camera);
     // On the unit sphere of directions: elevation (deg) against azimuth (deg).
     let sphere = Plane::z(-1.0);
     let trace = trace_rows(
@@ -150,6 +155,58 @@ fn measure_edge(
         .at(0.0))
 }
 
+/// The camera with its motion removed: its pixels' lines of sight are then
+/// those of the camera's own frame.
+fn still(camera: &renderer::Camera) -> renderer::Camera {
+    renderer::Camera {
+        velocity: DVec3::ZERO,
+        kinematics: renderer::Kinematics::None,
+        ..*camera
+    }
+}
+
+/// Where the control fixture puts the cube's centre (at rest).
+fn rest_centre(control: &Fixture) -> Result<DVec3, String> {
+    match control
+        .scene
+        .objects
+        .iter()
+        .find(|o| o.name == CUBE)
+        .map(|o| o.motion)
+    {
+        Some(Motion::Extrusion { start, .. }) | Some(Motion::Velocity { start, .. }) => Ok(start.x),
+        None => Err(format!("{NAME}: no cube")),
+    }
+}
+
+/// The control fixture seen by a camera (the Earth) moving with `w`, the
+/// cube at rest: the way the paper describes the seasonal views.
+fn earth_moving(control: &Fixture, w: DVec3) -> Fixture {
+    let mut f = control.clone();
+    f.spec.camera.velocity = Some(w);
+    f
+}
+
+/// The extreme azimuths (left, right), in the moving camera's frame, of the
+/// static cube's horizon cross-section: each point's lab direction from the
+/// camera, aberrated by the camera's velocity (Lorentz or Galilean).
+fn expected_edges_earth_moving(centre: DVec3, w: DVec3, lorentz: bool) -> (f64, f64) {
+    let corners = [
+        DVec3::new(-HALF, 0.0, -HALF),
+        DVec3::new(HALF, 0.0, -HALF),
+        DVec3::new(HALF, 0.0, HALF),
+        DVec3::new(-HALF, 0.0, HALF),
+    ];
+    extremes_on_polygon(&corners, |r| {
+        let n = (centre + r).normalize();
+        azimuth_deg(if lorentz {
+            aberrate_lorentz(n, w)
+        } else {
+            aberrate_galilean(n, w)
+        })
+    })
+}
+
 /// Angular size of a probe pixel at its centre, degrees.
 fn measure_angular(camera: &renderer::Camera) -> f64 {
     let (cx, cy) = (
@@ -162,7 +219,39 @@ fn measure_angular(camera: &renderer::Camera) -> f64 {
 /// Rough azimuths (left, right) of the silhouette on the horizon, from a
 /// wide render.
 fn coarse_edges(setup: &Setup) -> Result<(f64, f64), String> {
-    let (img, camera) = setup.probe(&[CUBE], DVec3::NEG_Z, 170.0, 1441, 3, 1)?;
+    // A wide strip across the horizon first; where the cube reaches its
+    // border (beyond +-85 degrees), a second strip turned towards that side.
+    let (l, r) = coarse_strip(setup, 0.0, 170.0)?;
+    let l = if l.1 {
+        coarse_strip(setup, -60.0, 60.0)?.0 .0
+    } else {
+        l.0
+    };
+    let r = if r.1 {
+        coarse_strip(setup, 60.0, 60.0)?.1 .0
+    } else {
+        r.0
+    };
+    Ok((l, r))
+}
+
+/// The azimuths of the leftmost and rightmost cube pixels on the horizon of
+/// a strip centred on azimuth `centre_deg`, each with whether it lies on the
+/// strip's border.
+fn coarse_strip(
+    setup: &Setup,
+    centre_deg: f64,
+    hfov_deg: f64,
+) -> Result<((f64, bool), (f64, bool)), String> {
+    let a = centre_deg.to_radians();
+    let (img, camera) = setup.probe(
+        &[CUBE],
+        DVec3::new(a.sin(), 0.0, -a.cos()),
+        hfov_deg,
+        1441,
+        3,
+        1,
+    )?;
     let bg = background(setup.fixture);
     let row = img.height() / 2;
     let xs: Vec<u32> = (0..img.width())
@@ -171,8 +260,12 @@ fn coarse_edges(setup: &Setup) -> Result<(f64, f64), String> {
     let (Some(&l), Some(&r)) = (xs.first(), xs.last()) else {
         return Err(format!("{NAME}: the cube is not on the horizon"));
     };
+    let camera = still(&camera);
     let az = |x: f64| azimuth_deg(camera.direction(x, f64::from(row) + 0.5));
-    Ok((az(f64::from(l)), az(f64::from(r) + 1.0)))
+    Ok((
+        (az(f64::from(l)), l == 0),
+        (az(f64::from(r) + 1.0), r + 1 == img.width()),
+    ))
 }
 
 pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
@@ -217,6 +310,58 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
         };
         rows.push(row("left edge azimuth", &left, exp_l, None, "deg"));
         rows.push(row("right edge azimuth", &right, exp_r, None, "deg"));
+        if let Some(s) = season {
+            // The same season seen the paper's way: the Earth moving, the star at rest.
+            let w = s.earth * beta;
+            let fe = earth_moving(&control, w);
+            let earth = Setup {
+                fixture: &fe,
+                model,
+                camera_t: 0.0,
+            };
+            let (cl, cr) = coarse_edges(&earth)?;
+            let (el, er) = (
+                measure_edge(&earth, cl, false, effort)?,
+                measure_edge(&earth, cr, true, effort)?,
+            );
+            let (xl, xr) = expected_edges_earth_moving(rest_centre(&control)?, w, model.lorentz);
+            rows.push(row("Earth moving: left edge azimuth", &el, xl, None, "deg"));
+            rows.push(row(
+                "Earth moving: right edge azimuth",
+                &er,
+                xr,
+                None,
+                "deg",
+            ));
+            if s.name == "receding" && beta == 0.866 && !model.lorentz {
+                // The paper prints 93.6 for the relativistic view; it is this one's.
+                let from_motion = Reading {
+                    value: 180.0 - er.value,
+                    tolerance: er.tolerance,
+                };
+                rows.push(row(
+                    "Earth moving: right edge angle from the direction of motion",
+                    &from_motion,
+                    180.0 - xr,
+                    Some(93.6),
+                    "deg",
+                ));
+            }
+            if s.name == "moving left" && beta == 0.5 {
+                let paper = if model.lorentz { 30.0 } else { 26.565 };
+                let migration = Reading {
+                    value: rest_right - er.value,
+                    tolerance: er.tolerance,
+                };
+                rows.push(row(
+                    "Earth moving: right edge migration",
+                    &migration,
+                    rest_right - xr,
+                    Some(paper),
+                    "deg",
+                ));
+            }
+        }
         // On the grid 10 l.units ahead, in grid marks (l.units).
         let on_grid = |deg: f64| 10.0 * deg.to_radians().tan();
         let slope =
