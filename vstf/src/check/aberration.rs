@@ -235,6 +235,9 @@ fn coarse_edges(setup: &Setup) -> Result<(f64, f64), String> {
     Ok((l, r))
 }
 
+/// A rough edge azimuth (degrees), and whether it lies on the probe's border.
+type CoarseEdge = (f64, bool);
+
 /// The azimuths of the leftmost and rightmost cube pixels on the horizon of
 /// a strip centred on azimuth `centre_deg`, each with whether it lies on the
 /// strip's border.
@@ -242,7 +245,7 @@ fn coarse_strip(
     setup: &Setup,
     centre_deg: f64,
     hfov_deg: f64,
-) -> Result<((f64, bool), (f64, bool)), String> {
+) -> Result<(CoarseEdge, CoarseEdge), String> {
     let a = centre_deg.to_radians();
     let (img, camera) = setup.probe(
         &[CUBE],
