@@ -119,7 +119,7 @@ pub fn html(dir: &Path, reports: &[FixtureReport]) -> Result<(), String> {
         "<!doctype html><meta charset=utf-8><title>VSTF report</title><style>\
          body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{padding:2px 8px;border-bottom:1px solid #ccc;text-align:left}\
          .FAIL{background:#fdd}.pass{background:#dfd}img{margin:4px;image-rendering:pixelated}figure{display:inline-block;margin:0 1em 1em 0}</style>\
-         <h1>VSTF report</h1><p>Markers (yellow crosses) are where first-principles physics puts the marked points, computed without the ray tracer.\
+         <h1>VSTF report</h1><p>Markers (yellow crosses) are where first-principles physics puts the marked points, computed without the ray tracer. \
          A paper figure marked * differs from first principles by more than the tolerance (see docs/physics.md).</p>",
     );
     for r in order {
