@@ -96,7 +96,83 @@ pub struct Database {
     top: Bvh,
     instances: Vec<Instance>,
     segments: Vec<Segment>,
+    /// Analytic spheres, numbered after the tetrahedra in hits.
+    spheres: Vec<Sphere>,
     traversal: Traversal,
+}
+
+/// An analytic sphere: in its object's comoving coordinates
+/// x' = x - v (t - t0) - x0 it is static; Lorentz-contracted (a V_obj) it is
+/// the ellipsoid |S x'| = R, S stretching by gamma along v.
+struct Sphere {
+    object: u32,
+    radius: f64,
+    origin: Event,
+    velocity: DVec3,
+    /// 1 when not contracted.
+    gamma: f64,
+    /// Lab time the object's life ends.
+    end: f64,
+}
+
+impl Sphere {
+    /// S applied to a comoving offset: its component along v times gamma.
+    fn stretch(&self, p: DVec3) -> DVec3 {
+        let b2 = self.velocity.length_squared();
+        if b2 == 0.0 || self.gamma == 1.0 {
+            return p;
+        }
+        let along = self.velocity * (self.velocity.dot(p) / b2);
+        p + along * (self.gamma - 1.0)
+    }
+
+    fn comoving(&self, e: Event) -> DVec3 {
+        e.x - self.velocity * (e.t - self.origin.t) - self.origin.x
+    }
+
+    /// The nearest crossing of the sphere's worldtube within `range` and
+    /// its lifetime: |S (o' + s d')| = R, a quadratic in s.
+    fn intersect(&self, ray: &Ray, id: u32, range: (f64, f64)) -> Option<Hit> {
+        let a = self.stretch(self.comoving(ray.origin));
+        let b = self.stretch(ray.direction.x - self.velocity * ray.direction.t);
+        let (qa, qb, qc) = (
+            b.length_squared(),
+            2.0 * a.dot(b),
+            a.length_squared() - self.radius * self.radius,
+        );
+        let disc = qb * qb - 4.0 * qa * qc;
+        if qa == 0.0 || disc < 0.0 {
+            return None;
+        }
+        let q = -0.5 * (qb + qb.signum() * disc.sqrt());
+        let (r1, r2) = (q / qa, if q != 0.0 { qc / q } else { q / qa });
+        let alive = |s: f64| {
+            let t = ray.origin.t + s * ray.direction.t;
+            s >= range.0 && s <= range.1 && t >= self.origin.t && t <= self.end
+        };
+        let s = [r1.min(r2), r1.max(r2)].into_iter().find(|s| alive(*s))?;
+        Some(Hit {
+            s,
+            event: ray.at(s),
+            tet: id,
+            bary: [0.0; 4],
+        })
+    }
+
+    /// Outward unit normal at an event on the surface (lab frame): the
+    /// gradient of |S x'|^2, S^T S x'.
+    fn normal(&self, e: Event) -> DVec3 {
+        self.stretch(self.stretch(self.comoving(e))).normalize()
+    }
+}
+
+/// The surface a hit lies on: its object, the lab-frame unit normal, and the
+/// triangle (0 for a sphere).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Surface {
+    pub object: u32,
+    pub normal: DVec3,
+    pub triangle: u32,
 }
 
 fn err(path: String, message: String) -> SceneError {
@@ -119,12 +195,23 @@ impl Database {
         let mut objects = Vec::new();
         let mut prisms = Vec::new();
         let mut tets = Vec::new();
+        let mut spheres = Vec::new();
         for (i, obj) in scene.objects.iter().enumerate() {
             let at = |field: &str| format!("objects[{i}].{field}");
             let named = |m: String| format!("object {:?}: {m}", obj.name);
-            obj.mesh
-                .validate()
-                .map_err(|e| err(at("mesh"), named(e.to_string())))?;
+            match obj.sphere {
+                Some(r) if !(r > 0.0 && r.is_finite()) => {
+                    return Err(err(
+                        at("mesh"),
+                        named(format!("sphere radius {r}: expected a positive length")),
+                    ));
+                }
+                Some(_) => {}
+                None => obj
+                    .mesh
+                    .validate()
+                    .map_err(|e| err(at("mesh"), named(e.to_string())))?,
+            }
             let v = obj.motion.velocity();
             if !v.is_finite() {
                 return Err(err(
@@ -188,10 +275,22 @@ impl Database {
                     }
                 }
             };
-            let mesh = obj.mesh.map_vertices(|p| boost.contract(p));
-            mesh.validate()
-                .map_err(|e| err(at("mesh"), named(format!("after Lorentz contraction: {e}"))))?;
-            extrude(&mesh, &worldline, i as u32, &mut prisms, &mut tets);
+            if let Some(radius) = obj.sphere {
+                spheres.push(Sphere {
+                    object: i as u32,
+                    radius,
+                    origin: worldline.start,
+                    velocity: worldline.velocity(),
+                    gamma: boost.gamma(),
+                    end: worldline.end().t,
+                });
+            } else {
+                let mesh = obj.mesh.map_vertices(|p| boost.contract(p));
+                mesh.validate().map_err(|e| {
+                    err(at("mesh"), named(format!("after Lorentz contraction: {e}")))
+                })?;
+                extrude(&mesh, &worldline, i as u32, &mut prisms, &mut tets);
+            }
             objects.push(ObjectRecord {
                 name: obj.name.clone(),
                 kind: obj.kind,
@@ -223,6 +322,7 @@ impl Database {
             top,
             instances,
             segments,
+            spheres,
             traversal: Traversal::Bvh,
         })
     }
@@ -245,6 +345,26 @@ impl Database {
 
     pub fn tetrahedra(&self) -> &[Tetrahedron] {
         &self.tets
+    }
+
+    /// The surface a hit lies on: a triangle's prism, or an analytic sphere.
+    pub fn surface(&self, hit: &Hit) -> Surface {
+        let n = self.tets.len() as u32;
+        if hit.tet < n {
+            let p = self.prism_of(hit.tet);
+            Surface {
+                object: p.object,
+                normal: p.normal,
+                triangle: p.triangle,
+            }
+        } else {
+            let sp = &self.spheres[(hit.tet - n) as usize];
+            Surface {
+                object: sp.object,
+                normal: sp.normal(hit.event),
+                triangle: 0,
+            }
+        }
     }
 
     /// The prism a tetrahedron belongs to.
@@ -294,6 +414,19 @@ impl Database {
         range: (f64, f64),
         trace: &mut T,
     ) -> Option<Hit> {
+        let mut best = self.closest_tet(ray, range, trace);
+        // Analytic spheres (few): the same for every traversal.
+        let first = self.tets.len() as u32;
+        for (k, sphere) in self.spheres.iter().enumerate() {
+            let hi = best.map_or(range.1, |b| b.s);
+            if let Some(h) = sphere.intersect(ray, first + k as u32, (range.0, hi)) {
+                best = Some(nearer(best, h));
+            }
+        }
+        best
+    }
+
+    fn closest_tet<T: Trace>(&self, ray: &Ray, range: (f64, f64), trace: &mut T) -> Option<Hit> {
         match self.traversal {
             Traversal::BruteForce => {
                 let mut best: Option<Hit> = None;
@@ -376,6 +509,9 @@ fn accelerate(
                 .iter()
                 .take_while(|p| p.object == i as u32)
                 .count();
+        if end == first {
+            continue; // an analytic sphere: searched on its own
+        }
         let wl = obj.worldline;
         let (t0, t1) = (wl.start.t, wl.end().t);
         let v = wl.velocity();
@@ -410,7 +546,7 @@ fn accelerate(
             let pad = (bh - bl) * 1e-9 + (bl.abs() + bh.abs()) * 1e-12 + DVec3::splat(1e-300);
             seg_bounds.push(((bl - pad).extend(ta), (bh + pad).extend(tb)));
             segments.push(Segment {
-                instance: i as u32,
+                instance: instances.len() as u32,
                 t0: ta,
                 t1: tb,
             });

@@ -27,7 +27,7 @@ pub mod spacetime;
 pub mod trace;
 
 pub use boost::Boost;
-pub use database::{Database, SceneError, Traversal};
+pub use database::{Database, SceneError, Surface, Traversal};
 pub use extrude::{Prism, Tetrahedron};
 pub use intersect::Hit;
 pub use lightcone::{Attitude, Camera, Kinematics, LightSpeed, Ray};

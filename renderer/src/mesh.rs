@@ -177,6 +177,41 @@ impl Mesh {
         m
     }
 
+    /// A sphere of `radius` about the origin: `segments` around the axis
+    /// (y) and `segments / 2` from pole to pole, poles fanned.
+    pub fn uv_sphere(radius: f64, segments: u32) -> Mesh {
+        let (nu, nv) = (segments.max(3), (segments / 2).max(2));
+        let mut m = Mesh::default();
+        let at = |i: u32, j: u32| {
+            let (phi, theta) = (
+                std::f64::consts::TAU * f64::from(i) / f64::from(nu),
+                std::f64::consts::PI * f64::from(j) / f64::from(nv),
+            );
+            DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            ) * radius
+        };
+        for j in 0..nv {
+            for i in 0..nu {
+                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                let k = m.vertices.len() as u32;
+                if j == 0 {
+                    m.vertices.extend([a, c, d]);
+                    m.triangles.push([k, k + 1, k + 2]);
+                } else if j == nv - 1 {
+                    m.vertices.extend([a, b, c]);
+                    m.triangles.push([k, k + 1, k + 2]);
+                } else {
+                    m.vertices.extend([a, b, c, d]);
+                    m.triangles.extend([[k, k + 1, k + 2], [k, k + 2, k + 3]]);
+                }
+            }
+        }
+        m
+    }
+
     /// Reads the vertices (`v`) and faces (`f`, polygons fanned into
     /// triangles; `i`, `i/t`, `i//n`, `i/t/n` and negative indices) of a
     /// Wavefront OBJ file. Other statements are ignored.

@@ -63,6 +63,9 @@ pub struct SceneObject {
     pub kind: ObjectKind,
     /// Triangles relative to the reference point; rest-frame dimensions for a V_obj.
     pub mesh: Mesh,
+    /// When set, the object is instead an analytic sphere of this (rest-frame)
+    /// radius centred on the reference point, and `mesh` is ignored.
+    pub sphere: Option<f64>,
     pub motion: Motion,
     pub material: Material,
 }

@@ -151,24 +151,24 @@ impl Shader<'_> {
     }
 
     fn hit_step(&self, kind: RayKind, ray: &Ray, hit: &Hit) -> Step {
-        let prism = self.db.prism_of(hit.tet);
-        let object = &self.db.objects()[prism.object as usize];
+        let surface = self.db.surface(hit);
+        let object = &self.db.objects()[surface.object as usize];
         Step::Hit {
             kind,
             tet: hit.tet,
             object: object.name.clone(),
-            triangle: prism.triangle,
+            triangle: surface.triangle,
             event: hit.event,
             surface_point: object.local_point(hit.event),
             proper_time: object.proper_time(hit.event),
-            normal: prism.normal,
+            normal: surface.normal,
             facing_normal: self.facing_normal(ray, hit),
         }
     }
 
     /// The unit normal of the hit surface, turned to face the ray's origin.
     pub fn facing_normal(&self, ray: &Ray, hit: &Hit) -> DVec3 {
-        let n = self.db.prism_of(hit.tet).normal;
+        let n = self.db.surface(hit).normal;
         if n.dot(ray.direction.x) > 0.0 {
             -n
         } else {
@@ -211,8 +211,7 @@ impl Shader<'_> {
     }
 
     fn shade_traced<T: Trace>(&self, ray: &Ray, hit: &Hit, depth: u32, trace: &mut T) -> DVec3 {
-        let prism = self.db.prism_of(hit.tet);
-        let object = &self.db.objects()[prism.object as usize];
+        let object = &self.db.objects()[self.db.surface(hit).object as usize];
         let m = &object.material;
         let albedo = m.color_at(object.proper_time(hit.event));
         let n = self.facing_normal(ray, hit);

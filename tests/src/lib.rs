@@ -64,6 +64,7 @@ pub fn scene(objects: Vec<SceneObject>) -> Scene {
 
 pub fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> SceneObject {
     SceneObject {
+        sphere: None,
         name: name.into(),
         kind,
         mesh,

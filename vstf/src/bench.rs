@@ -120,6 +120,7 @@ pub fn tessellated_boxes(n: usize, k: u32, seed: u64) -> Scene {
                 rng.range(0.2, 1.0),
             );
             SceneObject {
+                sphere: None,
                 name: format!("box {i}"),
                 kind: ObjectKind::HObj,
                 mesh: if k == 1 {

@@ -143,6 +143,10 @@ pub enum MeshSpec {
     },
     /// Several meshes merged.
     Group(Vec<MeshSpec>),
+    /// A sphere tessellated into `segments` around and `segments / 2` from pole to pole.
+    Sphere { radius: f64, segments: u32 },
+    /// An exact sphere (not tessellated), centred on the reference point.
+    AnalyticSphere { radius: f64 },
 }
 
 /// An object's worldline: either `extrusion`, or `velocity` with `proper_lifetime`.
@@ -530,6 +534,17 @@ fn build_mesh(spec: &MeshSpec, path: &str, file: &Path) -> Result<Mesh, (String,
             vertices: vertices.clone(),
             triangles: indices.clone(),
         },
+        MeshSpec::Sphere { radius, segments } => {
+            positive("sphere.radius", *radius)?;
+            if *segments < 4 || *segments > 4096 {
+                return bad(format!("sphere.segments {segments}: expected 4..=4096"));
+            }
+            Mesh::uv_sphere(*radius, *segments)
+        }
+        MeshSpec::AnalyticSphere { radius } => {
+            positive("analytic_sphere.radius", *radius)?;
+            Mesh::default()
+        }
         MeshSpec::Group(parts) => {
             let mut m = Mesh::default();
             for (i, part) in parts.iter().enumerate() {
@@ -582,10 +597,15 @@ fn build_scene(spec: &FixtureSpec, file: &Path) -> Result<Scene, (String, String
                 }
             },
         };
+        let sphere = match o.mesh {
+            MeshSpec::AnalyticSphere { radius } => Some(radius),
+            _ => None,
+        };
         objects.push(SceneObject {
             name: o.name.clone(),
             kind: o.kind,
             mesh,
+            sphere,
             motion,
             material: o.material.clone(),
         });

@@ -367,6 +367,7 @@ pub mod aberration;
 pub mod blink;
 pub mod relativity;
 pub mod retarded;
+pub mod sphere;
 pub mod stage;
 pub mod teaser;
 pub mod terrell;
@@ -413,6 +414,8 @@ pub const CHECKS: &[(&str, Check)] = &[
     ("teaser", teaser::run),
     ("blink", blink::run),
     ("relativity", relativity::run),
+    ("sphere-relativistic", sphere::relativistic),
+    ("sphere-classical", sphere::classical),
 ];
 
 /// Runs the checks of the named fixtures (all when empty), comparing
