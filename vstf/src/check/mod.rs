@@ -13,6 +13,7 @@ use crate::golden::{Comparison, Store};
 use crate::measure::{self, PolyFit, Scan};
 use glam::DVec3;
 use image::RgbImage;
+use rayon::prelude::*;
 use renderer::{Attitude, Camera, Database, Event, Model, Traversal};
 use serde::Serialize;
 
@@ -430,19 +431,23 @@ pub fn run(names: &[String], effort: &Effort, store: &Store) -> Result<Vec<Fixtu
             ));
         }
     }
-    let mut reports = Vec::new();
-    let chosen = CHECKS
+    let chosen: Vec<&(&str, Check)> = CHECKS
         .iter()
-        .filter(|(c, _)| names.is_empty() || names.iter().any(|n| n == c));
-    for (name, check) in chosen {
-        let mut report = check(effort)?;
-        let fuzzy = Fixture::load(name).map_err(|e| e.to_string())?.spec.fuzzy;
-        for v in &report.views {
-            report
-                .goldens
-                .push(store.check(&report.fixture, &v.name, &v.image, fuzzy)?);
-        }
-        reports.push(report);
-    }
-    Ok(reports)
+        .filter(|(c, _)| names.is_empty() || names.iter().any(|n| n == c))
+        .collect();
+    // The checks run concurrently (each renders in parallel too, so their
+    // serial parts overlap); results come back in the table's order.
+    chosen
+        .par_iter()
+        .map(|(name, check)| {
+            let mut report = check(effort)?;
+            let fuzzy = Fixture::load(name).map_err(|e| e.to_string())?.spec.fuzzy;
+            for v in &report.views {
+                report
+                    .goldens
+                    .push(store.check(&report.fixture, &v.name, &v.image, fuzzy)?);
+            }
+            Ok(report)
+        })
+        .collect()
 }
