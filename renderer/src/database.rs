@@ -3,10 +3,12 @@
 
 use crate::boost::Boost;
 use crate::bvh::Bvh;
-use crate::extrude::{extrude, Prism, Tetrahedron};
+use crate::extrude::{extrude, extrude_between, Prism, Tetrahedron};
 use crate::intersect::{nearer, Hit, Miss, PreparedTet};
+use crate::keyframe::{self, Frame};
 use crate::lightcone::Ray;
-use crate::scene::{Motion, ObjectKind, Scene};
+use crate::mesh::Mesh;
+use crate::scene::{Motion, ObjectKind, Scene, SceneObject};
 use crate::shade::Material;
 use crate::spacetime::{Event, FourVector, Worldline};
 use crate::trace::{NoTrace, Outcome, Step, Trace};
@@ -29,30 +31,59 @@ impl fmt::Display for SceneError {
 
 impl std::error::Error for SceneError {}
 
+/// One straight stretch of an object's path: its whole worldline for
+/// uniform motion, or one interval between keyframes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Piece {
+    /// Lab-frame worldline of the reference point over the stretch.
+    pub worldline: Worldline,
+    /// Boost from the stretch's comoving frame (identity when
+    /// Lorentz-decoupled).
+    pub clock: Boost,
+    /// The object's proper time at the start of the stretch.
+    pub proper_start: f64,
+}
+
 /// An object as inserted into the database.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ObjectRecord {
     pub name: String,
     pub kind: ObjectKind,
     pub material: Material,
-    /// Lab-frame worldline of the reference point, lifetime included.
-    pub worldline: Worldline,
-    /// Boost from the object's rest frame (identity when Lorentz-decoupled).
-    pub clock: Boost,
+    /// Its path in lab-time order: one piece for uniform motion, one per
+    /// keyframe interval otherwise.
+    pub pieces: Vec<Piece>,
 }
 
 impl ObjectRecord {
-    /// The object's own time at a lab event on it: the rest-frame time
-    /// coordinate, zero at the start event; for a decoupled object, lab time
-    /// since the start. Drives time-dependent materials (paper 3, item 2d).
+    /// The stretch of the path at lab time `t` (the first or last outside
+    /// the lifetime).
+    pub fn piece_at(&self, t: f64) -> &Piece {
+        let k = self.pieces.partition_point(|p| p.worldline.end().t < t);
+        &self.pieces[k.min(self.pieces.len() - 1)]
+    }
+
+    /// Lab times of the start and end of the object's existence.
+    pub fn lifetime(&self) -> (f64, f64) {
+        let (first, last) = (self.pieces[0], self.pieces[self.pieces.len() - 1]);
+        (first.worldline.start.t, last.worldline.end().t)
+    }
+
+    /// The object's own time at a lab event on it: the comoving frame's
+    /// time coordinate, zero at the start event; for a decoupled object, lab
+    /// time since the start. Drives time-dependent materials (paper 3,
+    /// item 2d).
     pub fn proper_time(&self, event: Event) -> f64 {
-        self.clock.to_rest(event - self.worldline.start).t
+        let p = self.piece_at(event.t);
+        p.proper_start + p.clock.to_rest(event - p.worldline.start).t
     }
 
     /// Where a lab event on the object lies in the object's frame:
-    /// rest-frame coordinates relative to the reference point.
+    /// comoving coordinates relative to the reference point at the start
+    /// of the stretch.
     pub fn local_point(&self, event: Event) -> DVec3 {
-        self.clock.to_rest(event - self.worldline.start).x
+        let p = self.piece_at(event.t);
+        p.clock.to_rest(event - p.worldline.start).x
     }
 }
 
@@ -179,12 +210,141 @@ fn err(path: String, message: String) -> SceneError {
     SceneError { path, message }
 }
 
-fn check_event(path: &str, e: Event) -> Result<(), SceneError> {
-    if e.is_finite() {
-        Ok(())
-    } else {
-        Err(err(path.into(), "must be finite numbers".into()))
+/// The straight worldline of a uniformly moving object and the boost of
+/// its rest frame (identity unless a V_obj under the Lorentz transform);
+/// errors name the field relative to the object.
+fn straight(obj: &SceneObject, lorentz: bool) -> Result<(Worldline, Boost), (String, String)> {
+    let v = match obj.motion {
+        Motion::Extrusion { extrusion, .. } => extrusion.velocity(),
+        Motion::Velocity { velocity, .. } => velocity,
+        Motion::Keyframes(_) | Motion::Hyperbolic(_) => unreachable!("resolved into keyframes"),
+    };
+    let bad = |f: &str, m: &str| Err((f.to_string(), m.to_string()));
+    if !v.is_finite() {
+        return bad(
+            "worldline",
+            "the velocity is not finite (zero-duration extrusion?)",
+        );
     }
+    if obj.kind == ObjectKind::VObj && v.length() >= 1.0 {
+        return Err((
+            "worldline".into(),
+            format!(
+                "a V_obj moves at {:.6}c; it must be slower than light (use an H_obj for a Lorentz-decoupled, superluminal object)",
+                v.length()
+            ),
+        ));
+    }
+    let boost = match (obj.kind, lorentz) {
+        (ObjectKind::VObj, true) => Boost::new(v).expect("checked above"),
+        _ => Boost::identity(),
+    };
+    let worldline = match obj.motion {
+        Motion::Extrusion { start, extrusion } => {
+            if !start.is_finite() {
+                return bad("worldline.start", "must be finite numbers");
+            }
+            if !extrusion.is_finite() {
+                return bad("worldline.extrusion", "must be finite numbers");
+            }
+            if extrusion.t == 0.0 {
+                return bad(
+                    "worldline.extrusion",
+                    "zero-duration extrusion (dt = 0): the object would exist for no time",
+                );
+            }
+            if extrusion.t < 0.0 {
+                Worldline {
+                    start: start + extrusion,
+                    extrusion: -extrusion,
+                }
+            } else {
+                Worldline { start, extrusion }
+            }
+        }
+        Motion::Velocity {
+            start,
+            velocity,
+            proper_lifetime,
+        } => {
+            if !start.is_finite() {
+                return bad("worldline.start", "must be finite numbers");
+            }
+            if !(proper_lifetime > 0.0 && proper_lifetime.is_finite()) {
+                return bad(
+                    "worldline.proper_lifetime",
+                    "must be a positive finite time",
+                );
+            }
+            let dt = boost.gamma() * proper_lifetime;
+            Worldline {
+                start,
+                extrusion: FourVector::new(dt, velocity * dt),
+            }
+        }
+        Motion::Keyframes(_) | Motion::Hyperbolic(_) => unreachable!("resolved into keyframes"),
+    };
+    Ok((worldline, boost))
+}
+
+/// Extrudes a keyframed object interval by interval, each interval one
+/// piece of its path and one instance of the acceleration structure.
+/// Errors name the keyframe, relative to the keyframe list.
+#[allow(clippy::too_many_arguments)]
+fn keyframed(
+    object: u32,
+    mesh: &Mesh,
+    frames: &[Frame],
+    contracted: bool,
+    prisms: &mut Vec<Prism>,
+    tets: &mut Vec<Tetrahedron>,
+    groups: &mut Vec<Group>,
+) -> Result<Vec<Piece>, (String, String)> {
+    for (k, f) in frames.iter().enumerate() {
+        let shape = Mesh {
+            vertices: f.vertices.clone(),
+            triangles: mesh.triangles.clone(),
+        };
+        shape
+            .validate()
+            .map_err(|e| (format!("[{k}]"), format!("at t = {}: {e}", f.t)))?;
+    }
+    let mut pieces = Vec::with_capacity(frames.len() - 1);
+    for (k, w) in frames.windows(2).enumerate() {
+        let worldline = Worldline {
+            start: Event::new(w[0].t, w[0].reference),
+            extrusion: FourVector::new(w[1].t - w[0].t, w[1].reference - w[0].reference),
+        };
+        let v = worldline.velocity();
+        let clock = if contracted {
+            Boost::new(v).ok_or_else(|| {
+                (
+                    format!("[{}]", k + 1),
+                    format!(
+                        "the reference point moves at {:.6}c; a V_obj must be slower than light",
+                        v.length()
+                    ),
+                )
+            })?
+        } else {
+            Boost::identity()
+        };
+        let first = prisms.len();
+        extrude_between(mesh, &w[0], &w[1], object, prisms, tets);
+        groups.push(Group {
+            origin: worldline.start,
+            velocity: v,
+            span: (w[0].t, w[1].t),
+            prisms: first..prisms.len(),
+            translation: false,
+        });
+        pieces.push(Piece {
+            worldline,
+            clock,
+            proper_start: w[0].proper_time,
+        });
+    }
+    Ok(pieces)
 }
 
 impl Database {
@@ -196,6 +356,7 @@ impl Database {
         let mut prisms = Vec::new();
         let mut tets = Vec::new();
         let mut spheres = Vec::new();
+        let mut groups = Vec::new();
         for (i, obj) in scene.objects.iter().enumerate() {
             let at = |field: &str| format!("objects[{i}].{field}");
             let named = |m: String| format!("object {:?}: {m}", obj.name);
@@ -212,91 +373,75 @@ impl Database {
                     .validate()
                     .map_err(|e| err(at("mesh"), named(e.to_string())))?,
             }
-            let v = obj.motion.velocity();
-            if !v.is_finite() {
-                return Err(err(
-                    at("worldline"),
-                    named("the velocity is not finite (zero-duration extrusion?)".into()),
-                ));
-            }
-            if obj.kind == ObjectKind::VObj && v.length() >= 1.0 {
-                return Err(err(
-                    at("worldline"),
-                    named(format!(
-                        "a V_obj moves at {:.6}c; it must be slower than light (use an H_obj for a Lorentz-decoupled, superluminal object)",
-                        v.length()
-                    )),
-                ));
-            }
-            let boost = match (obj.kind, lorentz) {
-                (ObjectKind::VObj, true) => Boost::new(v).expect("checked above"),
-                _ => Boost::identity(),
+            let contracted = lorentz && obj.kind == ObjectKind::VObj;
+            let frames = match &obj.motion {
+                Motion::Keyframes(k) => Some(
+                    keyframe::resolve(k, &obj.mesh, contracted)
+                        .map_err(|(f, m)| err(at(&format!("worldline.keyframes{f}")), named(m)))?,
+                ),
+                Motion::Hyperbolic(h) => {
+                    Some(h.keyframes(&obj.mesh, contracted).map_err(|(f, m)| {
+                        err(at(&format!("worldline.hyperbolic.{f}")), named(m))
+                    })?)
+                }
+                _ => None,
             };
-            let worldline = match obj.motion {
-                Motion::Extrusion { start, extrusion } => {
-                    check_event(&at("worldline.start"), start)?;
-                    if !extrusion.is_finite() {
-                        return Err(err(
-                            at("worldline.extrusion"),
-                            "must be finite numbers".into(),
-                        ));
-                    }
-                    if extrusion.t == 0.0 {
-                        return Err(err(
-                            at("worldline.extrusion"),
-                            named("zero-duration extrusion (dt = 0): the object would exist for no time".into()),
-                        ));
-                    }
-                    if extrusion.t < 0.0 {
-                        Worldline {
-                            start: start + extrusion,
-                            extrusion: -extrusion,
-                        }
+            let pieces = match frames {
+                Some(_) if obj.sphere.is_some() => {
+                    return Err(err(
+                        at("worldline"),
+                        named("an analytic sphere moves uniformly (extrusion or velocity); give a tessellated sphere keyframes or hyperbolic motion".into()),
+                    ));
+                }
+                Some(frames) => keyframed(
+                    i as u32,
+                    &obj.mesh,
+                    &frames,
+                    contracted,
+                    &mut prisms,
+                    &mut tets,
+                    &mut groups,
+                )
+                .map_err(|(f, m)| err(at(&format!("worldline.keyframes{f}")), named(m)))?,
+                None => {
+                    let (worldline, boost) =
+                        straight(obj, lorentz).map_err(|(f, m)| err(at(&f), named(m)))?;
+                    if let Some(radius) = obj.sphere {
+                        spheres.push(Sphere {
+                            object: i as u32,
+                            radius,
+                            origin: worldline.start,
+                            velocity: worldline.velocity(),
+                            gamma: boost.gamma(),
+                            end: worldline.end().t,
+                        });
                     } else {
-                        Worldline { start, extrusion }
+                        let mesh = obj.mesh.map_vertices(|p| boost.contract(p));
+                        mesh.validate().map_err(|e| {
+                            err(at("mesh"), named(format!("after Lorentz contraction: {e}")))
+                        })?;
+                        let first = prisms.len();
+                        extrude(&mesh, &worldline, i as u32, &mut prisms, &mut tets);
+                        groups.push(Group {
+                            origin: worldline.start,
+                            velocity: worldline.velocity(),
+                            span: (worldline.start.t, worldline.end().t),
+                            prisms: first..prisms.len(),
+                            translation: true,
+                        });
                     }
-                }
-                Motion::Velocity {
-                    start,
-                    velocity,
-                    proper_lifetime,
-                } => {
-                    check_event(&at("worldline.start"), start)?;
-                    if !(proper_lifetime > 0.0 && proper_lifetime.is_finite()) {
-                        return Err(err(
-                            at("worldline.proper_lifetime"),
-                            named("must be a positive finite time".into()),
-                        ));
-                    }
-                    let dt = boost.gamma() * proper_lifetime;
-                    Worldline {
-                        start,
-                        extrusion: FourVector::new(dt, velocity * dt),
-                    }
+                    vec![Piece {
+                        worldline,
+                        clock: boost,
+                        proper_start: 0.0,
+                    }]
                 }
             };
-            if let Some(radius) = obj.sphere {
-                spheres.push(Sphere {
-                    object: i as u32,
-                    radius,
-                    origin: worldline.start,
-                    velocity: worldline.velocity(),
-                    gamma: boost.gamma(),
-                    end: worldline.end().t,
-                });
-            } else {
-                let mesh = obj.mesh.map_vertices(|p| boost.contract(p));
-                mesh.validate().map_err(|e| {
-                    err(at("mesh"), named(format!("after Lorentz contraction: {e}")))
-                })?;
-                extrude(&mesh, &worldline, i as u32, &mut prisms, &mut tets);
-            }
             objects.push(ObjectRecord {
                 name: obj.name.clone(),
                 kind: obj.kind,
                 material: obj.material.clone(),
-                worldline,
-                clock: boost,
+                pieces,
             });
         }
         let mut prepared = Vec::with_capacity(tets.len());
@@ -313,7 +458,7 @@ impl Database {
             })?;
             prepared.push(p);
         }
-        let (top, instances, segments) = accelerate(&objects, &prisms, &tets);
+        let (top, instances, segments) = accelerate(&groups, &tets);
         Ok(Database {
             objects,
             prisms,
@@ -354,7 +499,7 @@ impl Database {
             let p = self.prism_of(hit.tet);
             Surface {
                 object: p.object,
-                normal: p.normal,
+                normal: p.normal_at(hit.event.t),
                 triangle: p.triangle,
             }
         } else {
@@ -489,40 +634,52 @@ impl Segment {
     }
 }
 
-/// The two-level structure: per object, a hierarchy over its prisms'
-/// comoving bounds (the triangle's box at the start, times the lifetime);
-/// over all objects, a hierarchy of the lab-frame 4D bounds of each
-/// object's time segments. An object is cut into as many segments as it
-/// takes for each to sweep about its own size (at most [`MAX_SEGMENTS`]).
-fn accelerate(
-    objects: &[ObjectRecord],
-    prisms: &[Prism],
-    tets: &[Tetrahedron],
-) -> (Bvh, Vec<Instance>, Vec<Segment>) {
+/// A run of prisms moving together: an object's whole extrusion, or one
+/// keyframe interval of it. Its comoving frame follows the reference point
+/// from `origin` with `velocity`.
+struct Group {
+    origin: Event,
+    velocity: DVec3,
+    /// Lab times covered.
+    span: (f64, f64),
+    prisms: std::ops::Range<usize>,
+    /// Whether every prism is a pure translation along `velocity`.
+    translation: bool,
+}
+
+/// The two-level structure: per group, a hierarchy over its prisms'
+/// comoving bounds (the box of all six corners in comoving coordinates,
+/// which holds the prism since comoving coordinates are affine in the
+/// event, times the group's span); over all groups, a hierarchy of the
+/// lab-frame 4D bounds of their time segments. A group is cut into as many
+/// segments as it takes for each to sweep about its own size (at most
+/// [`MAX_SEGMENTS`]).
+fn accelerate(groups: &[Group], tets: &[Tetrahedron]) -> (Bvh, Vec<Instance>, Vec<Segment>) {
     let mut instances = Vec::new();
     let mut segments = Vec::new();
     let mut seg_bounds = Vec::new();
-    let mut first = 0usize;
-    for (i, obj) in objects.iter().enumerate() {
-        let end = first
-            + prisms[first..]
-                .iter()
-                .take_while(|p| p.object == i as u32)
-                .count();
-        if end == first {
-            continue; // an analytic sphere: searched on its own
-        }
-        let wl = obj.worldline;
-        let (t0, t1) = (wl.start.t, wl.end().t);
-        let v = wl.velocity();
-        let mut comoving = Vec::with_capacity(end - first);
+    for g in groups {
+        let (t0, t1) = g.span;
+        let v = g.velocity;
+        let mut comoving = Vec::with_capacity(g.prisms.len());
         let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-        for p in first..end {
-            // The first piece (a0 b0 c0 c1) holds the three start corners.
+        for p in g.prisms.clone() {
             let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-            for e in &tets[3 * p].vertices[..3] {
-                a = a.min(e.x - wl.start.x);
-                b = b.max(e.x - wl.start.x);
+            // A translated prism's box is that of its start corners, which
+            // the first piece holds; a keyframe interval's takes all six
+            // corners, which the three pieces hold, padded for the rounding
+            // of the comoving transform.
+            let pieces = if g.translation { 1 } else { 3 };
+            for tet in &tets[3 * p..3 * p + pieces] {
+                for e in &tet.vertices[..if g.translation { 3 } else { 4 }] {
+                    let x = e.x - v * (e.t - t0) - g.origin.x;
+                    a = a.min(x);
+                    b = b.max(x);
+                }
+            }
+            if !g.translation {
+                let pad = (b - a) * 1e-9 + (a.abs() + b.abs()) * 1e-12;
+                (a, b) = (a - pad, b + pad);
             }
             comoving.push((a.extend(t0), b.extend(t1)));
             lo = lo.min(a);
@@ -540,7 +697,7 @@ fn accelerate(
                     t0 + (t1 - t0) * (k + 1) as f64 / count as f64
                 },
             );
-            let (pa, pb) = (wl.start.x + v * (ta - t0), wl.start.x + v * (tb - t0));
+            let (pa, pb) = (g.origin.x + v * (ta - t0), g.origin.x + v * (tb - t0));
             let (bl, bh) = ((lo + pa).min(lo + pb), (hi + pa).max(hi + pb));
             // Pad for the rounding of positions computed along the worldline.
             let pad = (bh - bl) * 1e-9 + (bl.abs() + bh.abs()) * 1e-12 + DVec3::splat(1e-300);
@@ -552,12 +709,11 @@ fn accelerate(
             });
         }
         instances.push(Instance {
-            origin: wl.start,
+            origin: g.origin,
             velocity: v,
-            first_prism: first as u32,
+            first_prism: g.prisms.start as u32,
             bvh: Bvh::build(&comoving),
         });
-        first = end;
     }
     (Bvh::build(&seg_bounds), instances, segments)
 }

@@ -2,6 +2,7 @@
 //! worldline is a prism, a 3-manifold of spacetime, cut into three
 //! tetrahedra by a fixed table (paper Figure 4).
 
+use crate::keyframe::Frame;
 use crate::mesh::Mesh;
 use crate::spacetime::{Event, FourVector, Worldline};
 use glam::DVec3;
@@ -24,9 +25,30 @@ pub struct Prism {
     pub object: u32,
     /// Index of the triangle in the object's mesh.
     pub triangle: u32,
-    /// Lab-frame unit normal of the triangle (after any Lorentz contraction);
-    /// constant along the worldline since the motion is a pure translation.
+    /// Lab-frame unit normal of the triangle (after any Lorentz contraction)
+    /// at the start of the prism.
     pub normal: DVec3,
+    /// The same at the end: equal to `normal` for a pure translation, not
+    /// for a keyframe interval that turns or deforms the triangle.
+    pub end_normal: DVec3,
+    /// Lab times of the prism's bottom and top.
+    pub span: (f64, f64),
+}
+
+impl Prism {
+    /// The unit normal at lab time `t`: the start and end normals
+    /// interpolated (exact for a translation, to first order in the turn
+    /// for a keyframe interval).
+    pub fn normal_at(&self, t: f64) -> DVec3 {
+        if self.normal == self.end_normal {
+            return self.normal;
+        }
+        let f = ((t - self.span.0) / (self.span.1 - self.span.0)).clamp(0.0, 1.0);
+        self.normal
+            .lerp(self.end_normal, f)
+            .try_normalize()
+            .unwrap_or(self.normal)
+    }
 }
 
 /// Orders a triangle's corners by position (lexicographic x, y, z). Every
@@ -57,9 +79,14 @@ pub fn split_prism(
     extrusion: FourVector,
     order: [usize; 3],
 ) -> [[Event; 4]; 3] {
+    split_between(bottom, bottom.map(|e| e + extrusion), order)
+}
+
+/// The prism with bottom corners `lo` and top corners `hi` (corner i moving
+/// straight from `lo[i]` to `hi[i]`) as three tetrahedra, cut as in
+/// [`split_prism`].
+pub fn split_between(lo: [Event; 3], hi: [Event; 3], order: [usize; 3]) -> [[Event; 4]; 3] {
     let [a, b, c] = order;
-    let lo = bottom;
-    let hi = bottom.map(|e| e + extrusion);
     [
         [lo[a], lo[b], lo[c], hi[c]],
         [lo[a], lo[b], hi[b], hi[c]],
@@ -87,9 +114,48 @@ pub fn extrude(
             object,
             triangle: t as u32,
             normal,
+            end_normal: normal,
+            span: (worldline.start.t, worldline.end().t),
         });
         let bottom = corners.map(|p| Event::new(worldline.start.t, worldline.start.x + p));
         let pieces = split_prism(bottom, worldline.extrusion, corner_order(corners));
+        for (piece, vertices) in pieces.into_iter().enumerate() {
+            tets.push(Tetrahedron {
+                vertices,
+                prism,
+                piece: piece as u8,
+            });
+        }
+    }
+}
+
+/// Extrudes every triangle of `mesh` over one keyframe interval: each
+/// vertex moves in a straight line from its lab position in `from` to that
+/// in `to` (curved temporal extrusion, paper 6, as a chain of straight
+/// ones). The cut follows the rest mesh's [`corner_order`], the same in
+/// every interval, so neighbouring prisms share faces. The caller has
+/// checked that no triangle is degenerate at either keyframe.
+pub fn extrude_between(
+    mesh: &Mesh,
+    from: &Frame,
+    to: &Frame,
+    object: u32,
+    prisms: &mut Vec<Prism>,
+    tets: &mut Vec<Tetrahedron>,
+) {
+    let normal_of = |c: [Event; 3]| (c[1].x - c[0].x).cross(c[2].x - c[0].x).normalize();
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let lo = tri.map(|i| Event::new(from.t, from.vertices[i as usize]));
+        let hi = tri.map(|i| Event::new(to.t, to.vertices[i as usize]));
+        let prism = prisms.len() as u32;
+        prisms.push(Prism {
+            object,
+            triangle: t as u32,
+            normal: normal_of(lo),
+            end_normal: normal_of(hi),
+            span: (from.t, to.t),
+        });
+        let pieces = split_between(lo, hi, corner_order(mesh.corners(t)));
         for (piece, vertices) in pieces.into_iter().enumerate() {
             tets.push(Tetrahedron {
                 vertices,

@@ -3,7 +3,7 @@
 //!
 //! Data flows one way:
 //! scene ([`scene`], [`mesh`]) -> temporal extrusion ([`extrude`], with
-//! [`boost`] for V_obj objects) -> static 4D database ([`database`], searched
+//! [`boost`] for V_obj objects and [`keyframe`] for accelerated ones) -> static 4D database ([`database`], searched
 //! through [`bvh`]) -> light-cone rays ([`lightcone`]) -> barycentric solve
 //! ([`intersect`]) -> shading with shadow and mirror rays ([`shade`]) ->
 //! image ([`render`]).
@@ -16,6 +16,7 @@ pub mod bvh;
 pub mod database;
 pub mod extrude;
 pub mod intersect;
+pub mod keyframe;
 pub mod lightcone;
 pub mod mesh;
 pub mod model;
@@ -24,12 +25,14 @@ pub mod rng;
 pub mod scene;
 pub mod shade;
 pub mod spacetime;
+pub mod spectrum;
 pub mod trace;
 
 pub use boost::Boost;
 pub use database::{Database, SceneError, Surface, Traversal};
 pub use extrude::{Prism, Tetrahedron};
 pub use intersect::Hit;
+pub use keyframe::{Hyperbolic, Keyframe};
 pub use lightcone::{Attitude, Camera, Kinematics, LightSpeed, Ray};
 pub use mesh::Mesh;
 pub use model::Model;

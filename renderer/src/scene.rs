@@ -2,6 +2,7 @@
 //! and a background. [`crate::database::Database::build`] turns it into the
 //! static 4D database.
 
+use crate::keyframe::{Hyperbolic, Keyframe};
 use crate::mesh::Mesh;
 use crate::shade::{Light, Material};
 use crate::spacetime::{Event, FourVector};
@@ -23,7 +24,7 @@ pub enum ObjectKind {
 }
 
 /// How an object's reference point moves through the lab.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Motion {
     /// From event `start` along the lab-frame 4-vector `extrusion`
     /// (paper 3.1: dt is the lab lifetime, dx the distance travelled in it).
@@ -36,6 +37,14 @@ pub enum Motion {
         velocity: DVec3,
         proper_lifetime: f64,
     },
+    /// Through keyframes at increasing lab times, straight between
+    /// consecutive ones (paper 6, curved temporal extrusions): covers
+    /// acceleration, rotation and deformation. The object exists from the
+    /// first keyframe to the last.
+    Keyframes(Vec<Keyframe>),
+    /// Constant proper acceleration, generated into keyframes within its
+    /// stated tolerance.
+    Hyperbolic(Hyperbolic),
 }
 
 impl Motion {
@@ -47,11 +56,23 @@ impl Motion {
         }
     }
 
-    /// Lab velocity.
-    pub fn velocity(&self) -> DVec3 {
+    /// The start event and lab velocity, for uniform motion.
+    pub fn uniform(&self) -> Option<(Event, DVec3)> {
         match self {
-            Motion::Extrusion { extrusion, .. } => extrusion.velocity(),
-            Motion::Velocity { velocity, .. } => *velocity,
+            Motion::Extrusion { start, extrusion } => Some((*start, extrusion.velocity())),
+            Motion::Velocity {
+                start, velocity, ..
+            } => Some((*start, *velocity)),
+            Motion::Keyframes(_) | Motion::Hyperbolic(_) => None,
+        }
+    }
+
+    /// Lab velocity, for uniform motion.
+    pub fn velocity(&self) -> Option<DVec3> {
+        match self {
+            Motion::Extrusion { extrusion, .. } => Some(extrusion.velocity()),
+            Motion::Velocity { velocity, .. } => Some(*velocity),
+            Motion::Keyframes(_) | Motion::Hyperbolic(_) => None,
         }
     }
 }

@@ -4,8 +4,8 @@
 
 use glam::DVec3;
 use renderer::{
-    Attitude, Camera, Event, FourVector, Light, Material, Mesh, Model, Motion, ObjectKind,
-    RenderSettings, Scene, SceneObject,
+    Attitude, Camera, Event, FourVector, Hyperbolic, Keyframe, Light, Material, Mesh, Model,
+    Motion, ObjectKind, RenderSettings, Scene, SceneObject,
 };
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -149,12 +149,14 @@ pub enum MeshSpec {
     AnalyticSphere { radius: f64 },
 }
 
-/// An object's worldline: either `extrusion`, or `velocity` with `proper_lifetime`.
+/// An object's worldline: from `start`, either `extrusion`, or `velocity`
+/// with `proper_lifetime`, or `hyperbolic`; or else `keyframes` alone.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WorldlineSpec {
     /// Event (t, x, y, z) where the reference point starts.
-    pub start: [f64; 4],
+    #[serde(default)]
+    pub start: Option<[f64; 4]>,
     /// Lab 4-vector (dt, dx, dy, dz) of the temporal extrusion.
     #[serde(default)]
     pub extrusion: Option<[f64; 4]>,
@@ -164,6 +166,58 @@ pub struct WorldlineSpec {
     /// Lifetime in the object's proper time.
     #[serde(default)]
     pub proper_lifetime: Option<f64>,
+    /// The object at a list of lab times, straight in between.
+    #[serde(default)]
+    pub keyframes: Option<Vec<KeyframeSpec>>,
+    /// Constant proper acceleration from `start`.
+    #[serde(default)]
+    pub hyperbolic: Option<HyperbolicSpec>,
+}
+
+/// The object at one lab time.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KeyframeSpec {
+    /// Lab time.
+    pub t: f64,
+    /// Lab position of the reference point.
+    pub position: DVec3,
+    /// Turn of the mesh about its reference point.
+    #[serde(default)]
+    pub rotation: Option<RotationSpec>,
+    /// The mesh's vertices (relative to the reference point, rest-frame
+    /// dimensions for a V_obj) at this keyframe, replacing the mesh's own.
+    #[serde(default)]
+    pub vertices: Option<Vec<DVec3>>,
+}
+
+/// A rotation by `degrees` about `axis` (right-handed).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RotationSpec {
+    pub axis: DVec3,
+    pub degrees: f64,
+}
+
+/// Constant proper acceleration (hyperbolic motion).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HyperbolicSpec {
+    /// Proper acceleration of the reference point, 1/l.units (c = 1):
+    /// its direction and magnitude.
+    pub acceleration: DVec3,
+    /// Lab velocity at the start along the acceleration (default 0).
+    #[serde(default)]
+    pub initial_velocity: f64,
+    /// Lab time the motion lasts.
+    pub duration: f64,
+    /// Largest lab distance of any vertex from its exact path, l.units.
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+}
+
+fn default_tolerance() -> f64 {
+    1e-4
 }
 
 /// One object.
@@ -562,6 +616,84 @@ fn event(a: [f64; 4]) -> Event {
     Event::new(a[0], DVec3::new(a[1], a[2], a[3]))
 }
 
+/// The motion a worldline spec gives; errors name the field under `at`.
+fn motion(w: &WorldlineSpec, mesh: &Mesh, at: &str) -> Result<Motion, (String, String)> {
+    let field = |f: &str| format!("{at}.{f}");
+    let start = |w: &WorldlineSpec| -> Result<Event, (String, String)> {
+        let s = w.start.ok_or_else(|| {
+            (
+                field("start"),
+                "missing: the start event [t, x, y, z]".to_string(),
+            )
+        })?;
+        let e = event(s);
+        if !e.is_finite() {
+            return Err((field("start"), "must be finite numbers".into()));
+        }
+        Ok(e)
+    };
+    match (w.extrusion, w.velocity, w.proper_lifetime, &w.keyframes, w.hyperbolic) {
+        (Some(e), None, None, None, None) => Ok(Motion::Extrusion {
+            start: start(w)?,
+            extrusion: FourVector::new(e[0], DVec3::new(e[1], e[2], e[3])),
+        }),
+        (None, Some(velocity), Some(proper_lifetime), None, None) => Ok(Motion::Velocity {
+            start: start(w)?,
+            velocity,
+            proper_lifetime,
+        }),
+        (None, None, None, Some(frames), None) => {
+            if w.start.is_some() {
+                return Err((
+                    field("start"),
+                    "keyframes give their own positions and times; drop start".into(),
+                ));
+            }
+            let mut keyframes = Vec::with_capacity(frames.len());
+            for (k, f) in frames.iter().enumerate() {
+                let mut offsets = f.vertices.clone();
+                if let Some(r) = f.rotation {
+                    let path = field(&format!("keyframes[{k}].rotation"));
+                    let axis = r.axis.try_normalize().filter(|_| r.degrees.is_finite()).ok_or_else(|| {
+                        (path, "expected a non-zero finite axis and finite degrees".to_string())
+                    })?;
+                    let turn = glam::DQuat::from_axis_angle(axis, r.degrees.to_radians());
+                    let base = offsets.unwrap_or_else(|| mesh.vertices.clone());
+                    offsets = Some(base.into_iter().map(|p| turn * p).collect());
+                }
+                keyframes.push(Keyframe {
+                    t: f.t,
+                    position: f.position,
+                    offsets,
+                });
+            }
+            Ok(Motion::Keyframes(keyframes))
+        }
+        (None, None, None, None, Some(h)) => {
+            let start = start(w)?;
+            let a = h.acceleration;
+            if !(a.is_finite() && a.length() > 0.0) {
+                return Err((
+                    field("hyperbolic.acceleration"),
+                    "expected a non-zero finite proper acceleration [ax, ay, az] (1/l.units); for uniform motion use velocity".into(),
+                ));
+            }
+            Ok(Motion::Hyperbolic(Hyperbolic {
+                start,
+                direction: a.normalize(),
+                acceleration: a.length(),
+                initial_velocity: h.initial_velocity,
+                duration: h.duration,
+                tolerance: h.tolerance,
+            }))
+        }
+        _ => Err((
+            at.to_string(),
+            "give one of: extrusion [dt, dx, dy, dz]; velocity [vx, vy, vz] with proper_lifetime; hyperbolic {acceleration, duration}; or keyframes [{t, position}, ...]".into(),
+        )),
+    }
+}
+
 fn build_scene(spec: &FixtureSpec, file: &Path) -> Result<Scene, (String, String)> {
     let [t0, t1] = spec.static_lifetime;
     if !(t0.is_finite() && t1.is_finite() && t0 < t1) {
@@ -582,20 +714,12 @@ fn build_scene(spec: &FixtureSpec, file: &Path) -> Result<Scene, (String, String
                 Motion::at_rest(p, t0, t1)
             }
             (Some(_), Some(_)) => {
-                return Err((at("position"), "give either position (static object) or worldline, not both".into()))
+                return Err((
+                    at("position"),
+                    "give either position (static object) or worldline, not both".into(),
+                ))
             }
-            (Some(w), None) => match (w.extrusion, w.velocity, w.proper_lifetime) {
-                (Some(e), None, None) => Motion::Extrusion { start: event(w.start), extrusion: FourVector::new(e[0], DVec3::new(e[1], e[2], e[3])) },
-                (None, Some(velocity), Some(proper_lifetime)) => {
-                    Motion::Velocity { start: event(w.start), velocity, proper_lifetime }
-                }
-                _ => {
-                    return Err((
-                        at("worldline"),
-                        "give either extrusion [dt, dx, dy, dz], or velocity [vx, vy, vz] with proper_lifetime".into(),
-                    ))
-                }
-            },
+            (Some(w), None) => motion(w, &mesh, &at("worldline"))?,
         };
         let sphere = match o.mesh {
             MeshSpec::AnalyticSphere { radius } => Some(radius),

@@ -173,6 +173,81 @@ pub fn extremes_on_polygon(corners: &[DVec3], f: impl Fn(DVec3) -> f64) -> (f64,
     (extreme(-1.0), extreme(1.0))
 }
 
+/// A point under constant proper acceleration along the unit vector `n`:
+/// the hyperbola S^2 - T^2 = A^2 about the centre event (`centre_t`,
+/// `centre`), where S is the distance from `centre` along `n` and
+/// T = t - centre_t. A = 1/a is its own proper acceleration's inverse.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointHyperbola {
+    pub centre_t: f64,
+    pub centre: DVec3,
+    pub n: DVec3,
+    pub big_a: f64,
+}
+
+impl PointHyperbola {
+    /// A point that starts at `x0` at lab time `t0` with velocity
+    /// `v0` along `n` (|v0| < 1) and keeps the proper acceleration `a`.
+    pub fn starting(t0: f64, x0: DVec3, n: DVec3, a: f64, v0: f64) -> PointHyperbola {
+        let g0 = 1.0 / (1.0 - v0 * v0).sqrt();
+        // S = cosh(phi0)/a = gamma0/a and T = sinh(phi0)/a = gamma0 v0/a at the start.
+        PointHyperbola {
+            centre_t: t0 - g0 * v0 / a,
+            centre: x0 - n * (g0 / a),
+            n,
+            big_a: 1.0 / a,
+        }
+    }
+
+    pub fn at(&self, t: f64) -> DVec3 {
+        self.centre + self.n * self.big_a.hypot(t - self.centre_t)
+    }
+}
+
+/// Where the camera at (`tc`, `camera`) sees a point under hyperbolic
+/// motion: its worldline meets the past light cone where
+/// (Tc - T)^2 = |D|^2 - 2 Dn S + S^2 with D = camera - centre, Dn = D.n and
+/// Tc = tc - centre_t. With S^2 - T^2 = A^2 this is the straight line
+/// 2 Dn S - 2 Tc T = |D|^2 + A^2 - Tc^2 =: K, which meets the hyperbola
+/// S = A cosh(eta), T = A sinh(eta) where u = e^eta solves
+/// A (Dn - Tc) u^2 - K u + A (Dn + Tc) = 0. The latest root with T <= Tc
+/// is the one seen.
+pub fn retarded_hyperbolic(p: &PointHyperbola, tc: f64, camera: DVec3) -> Option<Retarded> {
+    let d = camera - p.centre;
+    let (dn, big_tc, a) = (d.dot(p.n), tc - p.centre_t, p.big_a);
+    let k = d.length_squared() + a * a - big_tc * big_tc;
+    let (qa, qb, qc) = (a * (dn - big_tc), -k, a * (dn + big_tc));
+    let roots: Vec<f64> = if qa.abs() < 1e-15 * (qb.abs() + qc.abs()) {
+        vec![-qc / qb]
+    } else {
+        let disc = qb * qb - 4.0 * qa * qc;
+        if disc < 0.0 {
+            return None;
+        }
+        let q = -0.5 * (qb + qb.signum() * disc.sqrt());
+        let mut r = vec![q / qa];
+        if q != 0.0 {
+            r.push(qc / q);
+        }
+        r
+    };
+    let t = roots
+        .into_iter()
+        .filter(|u| *u > 0.0)
+        .map(|u| p.centre_t + a * (u - 1.0 / u) / 2.0)
+        .filter(|t| *t <= tc + 1e-12 * tc.abs().max(1.0))
+        .fold(f64::NEG_INFINITY, f64::max);
+    if !t.is_finite() {
+        return None;
+    }
+    let x = p.at(t);
+    Some(Retarded {
+        t,
+        x,
+        direction: (x - camera).normalize(),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -213,5 +288,31 @@ mod tests {
             let want = 2.0 * (((1.0 - b) / (1.0 + b)).sqrt() * (a / 2.0).tan()).atan();
             assert_relative_eq!(got.y.atan2(got.x), want, max_relative = 1e-12);
         }
+    }
+    /// The hyperbolic closed form against bisection on the light-cone
+    /// condition, and the emission event lies on both the cone and the
+    /// hyperbola.
+    #[test]
+    fn hyperbolic_retarded_solve_matches_bisection() {
+        let p = PointHyperbola::starting(2.0, DVec3::new(-3.0, 1.0, 0.5), DVec3::X, 0.3, -0.4);
+        let cam = DVec3::new(1.0, 2.0, 9.0);
+        for tc in [5.0, 12.0, 30.0, 60.0] {
+            let r = retarded_hyperbolic(&p, tc, cam).unwrap();
+            let gap = |t: f64| (tc - t) - (p.at(t) - cam).length();
+            assert!(gap(r.t).abs() < 1e-9, "on the cone: {}", gap(r.t));
+            let (mut lo, mut hi) = (tc - 1e3, tc);
+            for _ in 0..200 {
+                let m = 0.5 * (lo + hi);
+                if gap(m) > 0.0 {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            assert!((r.t - lo).abs() < 1e-9, "tc {tc}: {} vs {lo}", r.t);
+        }
+        // The start: at t0 the point is at x0 moving at v0.
+        let v = (p.at(2.0 + 1e-6).x - p.at(2.0 - 1e-6).x) / 2e-6;
+        assert!((p.at(2.0).x + 3.0).abs() < 1e-12 && (v + 0.4).abs() < 1e-8);
     }
 }

@@ -70,10 +70,12 @@ fn moving(control: &Fixture, u: DVec3, model: Model) -> Result<(Fixture, DVec3),
         .iter_mut()
         .find(|o| o.name == CUBE)
         .ok_or("aberration: no cube")?;
-    let rest_centre = match cube.motion {
-        Motion::Extrusion { start, .. } => start.x,
-        Motion::Velocity { start, .. } => start.x,
-    };
+    let rest_centre = cube
+        .motion
+        .uniform()
+        .ok_or("aberration: the cube must move uniformly")?
+        .0
+        .x;
     let centre = if model.lorentz {
         contract(rest_centre, u)
     } else {
@@ -172,10 +174,10 @@ fn rest_centre(control: &Fixture) -> Result<DVec3, String> {
         .objects
         .iter()
         .find(|o| o.name == CUBE)
-        .map(|o| o.motion)
+        .and_then(|o| o.motion.uniform())
     {
-        Some(Motion::Extrusion { start, .. }) | Some(Motion::Velocity { start, .. }) => Ok(start.x),
-        None => Err(format!("{NAME}: no cube")),
+        Some((start, _)) => Ok(start.x),
+        None => Err(format!("{NAME}: no uniformly moving cube")),
     }
 }
 

@@ -114,13 +114,13 @@ pub fn run(_effort: &Effort) -> Result<FixtureReport, String> {
             .iter()
             .find(|o| o.name == plate.name)
             .ok_or("no plate")?;
-        let (start, v, period) = match (obj.motion, obj.material.blink) {
+        let (start, v, period) = match (&obj.motion, obj.material.blink) {
             (
                 Motion::Velocity {
                     start, velocity, ..
                 },
                 Some(b),
-            ) => (start, velocity, b.period),
+            ) => (*start, *velocity, b.period),
             _ => {
                 return Err(format!(
                     "{NAME}: {} must move by velocity and blink",

@@ -387,14 +387,13 @@ pub fn motion_of(
         .find(|o| o.name == name)
         .ok_or_else(|| format!("{}: no object {name:?}", fixture.file.display()))?;
     let lorentz = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
-    match obj.motion {
-        renderer::Motion::Extrusion { start, extrusion } => {
-            Ok((start, extrusion.velocity(), lorentz))
-        }
-        renderer::Motion::Velocity {
-            start, velocity, ..
-        } => Ok((start, velocity, lorentz)),
-    }
+    let (start, velocity) = obj.motion.uniform().ok_or_else(|| {
+        format!(
+            "{}: object {name:?} does not move uniformly",
+            fixture.file.display()
+        )
+    })?;
+    Ok((start, velocity, lorentz))
 }
 
 /// The background colour of probes, as stored in 8 bits.

@@ -47,9 +47,12 @@ fn object_moving(f: &Fixture, model: Model) -> Result<Fixture, String> {
         .iter_mut()
         .find(|o| o.name == CUBE)
         .ok_or("relativity: no cube")?;
-    let centre = match cube.motion {
-        Motion::Extrusion { start, .. } | Motion::Velocity { start, .. } => start.x,
-    };
+    let centre = cube
+        .motion
+        .uniform()
+        .ok_or("relativity: the cube must move uniformly")?
+        .0
+        .x;
     // The cube's centre at the camera's time, in the camera's rest frame.
     let at = if model.lorentz {
         let rel = Boost::new(v)
@@ -186,10 +189,10 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
             .objects
             .iter()
             .find(|o| o.name == CUBE)
-            .map(|o| o.motion)
+            .and_then(|o| o.motion.uniform())
         {
-            Some(Motion::Extrusion { start, .. }) | Some(Motion::Velocity { start, .. }) => start.x,
-            None => return Err("relativity: no cube".into()),
+            Some((start, _)) => start.x,
+            None => return Err("relativity: no uniformly moving cube".into()),
         };
         let aberrate = |n: DVec3| {
             if model.lorentz {
@@ -208,12 +211,10 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
             .iter()
             .find(|o| o.name == CUBE)
             .ok_or("no cube")?;
-        let (start_b, u) = match cube_b.motion {
-            Motion::Extrusion { start, extrusion } => (start, extrusion.velocity()),
-            Motion::Velocity {
-                start, velocity, ..
-            } => (start, velocity),
-        };
+        let (start_b, u) = cube_b
+            .motion
+            .uniform()
+            .ok_or("relativity: the cube must move uniformly")?;
         let seen_b = |r: DVec3| {
             let p = body_point(start_b.t, start_b.x, u, r, model.lorentz);
             retarded(&p, c.t, c.position).map_or(f64::NAN, |s| azimuth(&b, s.direction))

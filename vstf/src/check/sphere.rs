@@ -20,7 +20,7 @@ use crate::fixture::{Fixture, Overrides};
 use crate::measure::{edge, Scan};
 use crate::oracle::aberrate_lorentz;
 use glam::{DVec2, DVec3};
-use renderer::{Boost, Event, Motion};
+use renderer::{Boost, Event};
 
 const SPHERE: &str = "sphere";
 
@@ -219,12 +219,10 @@ fn run(name: &str, effort: &Effort) -> Result<FixtureReport, String> {
         .find(|o| o.name == SPHERE)
         .ok_or("no sphere")?;
     let radius = obj.sphere.ok_or("the sphere must be analytic")?;
-    let (start, u) = match obj.motion {
-        Motion::Extrusion { start, extrusion } => (start, extrusion.velocity()),
-        Motion::Velocity {
-            start, velocity, ..
-        } => (start, velocity),
-    };
+    let (start, u) = obj
+        .motion
+        .uniform()
+        .ok_or("the sphere must move uniformly")?;
     let contracted = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
     let setup = Setup {
         fixture: &f,

@@ -1,0 +1,477 @@
+//! Accelerated and keyframed motion: the paper's "curved temporal
+//! extrusions" (section 6). An object is given at a list of lab times;
+//! between consecutive keyframes every vertex moves in a straight line, so
+//! each interval is an ordinary temporal extrusion (paper 3.1) whose prisms
+//! may shear, turn and deform. Constant proper acceleration (hyperbolic
+//! motion) is generated into keyframes with a stated error bound.
+//!
+//! Rigidity of a V_obj. "Rigid" has no frame-free meaning under
+//! acceleration. Two assumptions are used, and stated in docs/physics.md:
+//! - *Keyframes of a V_obj* give the shape in the object's rest frame; each
+//!   keyframe is Lorentz-contracted along the reference point's velocity at
+//!   that keyframe (the instantaneously comoving inertial frame). Exact for
+//!   uniform motion; under acceleration a the points of a rest-rigid body
+//!   would in fact differ by order a L^2 (L its size, c = 1).
+//! - *Hyperbolic motion of a V_obj* is Born-rigid: the point at rest-frame
+//!   offset xi along the acceleration has its own proper acceleration
+//!   a / (1 + a xi), every point on a hyperbola about the same centre (the
+//!   Rindler congruence), so distances in the instantaneous rest frame never
+//!   change. The object must lie in front of the horizon, 1 + a xi > 0.
+
+use crate::boost::Boost;
+use crate::mesh::Mesh;
+use crate::spacetime::Event;
+use glam::DVec3;
+
+/// The object at one lab time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Keyframe {
+    /// Lab time, t.units.
+    pub t: f64,
+    /// Lab position of the reference point, l.units.
+    pub position: DVec3,
+    /// Vertex positions relative to the reference point, rest-frame
+    /// dimensions for a V_obj (turned or deformed mesh); `None` keeps the
+    /// mesh's own vertices.
+    pub offsets: Option<Vec<DVec3>>,
+}
+
+/// Constant proper acceleration along a straight line (hyperbolic motion).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hyperbolic {
+    /// Where and when the reference point starts.
+    pub start: Event,
+    /// Unit direction of the acceleration.
+    pub direction: DVec3,
+    /// Proper acceleration of the reference point, 1/l.units (c = 1).
+    pub acceleration: f64,
+    /// Lab velocity of the reference point at the start, along `direction`
+    /// (negative: first moving against the acceleration).
+    pub initial_velocity: f64,
+    /// Lab time the motion lasts, t.units.
+    pub duration: f64,
+    /// Largest allowed lab distance, l.units, between a vertex's generated
+    /// polyline and its exact hyperbola.
+    pub tolerance: f64,
+}
+
+/// Most keyframes a hyperbolic motion may be cut into.
+pub const MAX_KEYFRAMES: usize = 100_000;
+
+/// One resolved keyframe: lab positions of every vertex (after any
+/// contraction), and the reference point's state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    pub t: f64,
+    pub reference: DVec3,
+    /// Lab positions of the mesh's vertices, l.units.
+    pub vertices: Vec<DVec3>,
+    /// The reference point's proper time since the start (lab time for an
+    /// object inserted without the Lorentz transform).
+    pub proper_time: f64,
+}
+
+impl Hyperbolic {
+    /// Rapidity at the start, phi0 = atanh(initial_velocity).
+    pub fn initial_rapidity(&self) -> f64 {
+        self.initial_velocity.atanh()
+    }
+
+    /// The reference point's position along `direction` at lab time `t`,
+    /// relative to the start, for a point whose rest-frame offset along the
+    /// direction is `xi` (Born-rigid) or whose lab offset is fixed (`xi` = 0):
+    /// on the hyperbola S^2 - T^2 = A^2 about the common centre, with
+    /// A = 1/a + xi, S = s + cosh(phi0)/a and T = t - t0 + sinh(phi0)/a.
+    pub fn along(&self, xi: f64, t: f64) -> f64 {
+        let a = self.acceleration;
+        let phi0 = self.initial_rapidity();
+        let big_t = t - self.start.t + phi0.sinh() / a;
+        (1.0 / a + xi).hypot(big_t) - phi0.cosh() / a
+    }
+
+    /// The reference point's proper time at lab time `t`:
+    /// tau = (asinh(a T) - phi0) / a.
+    pub fn proper_time(&self, t: f64) -> f64 {
+        let a = self.acceleration;
+        let phi0 = self.initial_rapidity();
+        ((a * (t - self.start.t) + phi0.sinh()).asinh() - phi0) / a
+    }
+
+    /// Rejects a motion that cannot be generated; the error names the field.
+    fn validate(&self) -> Result<(), (String, String)> {
+        let bad = |f: &str, m: &str| Err((f.to_string(), m.to_string()));
+        if !self.start.is_finite() {
+            return bad("start", "must be finite numbers");
+        }
+        if !(self.direction.is_finite() && (self.direction.length() - 1.0).abs() < 1e-9) {
+            return bad(
+                "direction",
+                "must be a unit vector (the acceleration's direction)",
+            );
+        }
+        if !(self.acceleration > 0.0 && self.acceleration.is_finite()) {
+            return bad(
+                "acceleration",
+                "must be a positive proper acceleration (1/l.units); for uniform motion use a velocity worldline",
+            );
+        }
+        if !(self.initial_velocity.abs() < 1.0) {
+            return bad("initial_velocity", "must be slower than light (|v| < 1)");
+        }
+        if !(self.duration > 0.0 && self.duration.is_finite()) {
+            return bad("duration", "must be a positive finite lab time");
+        }
+        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
+            return bad("tolerance", "must be a positive finite length");
+        }
+        Ok(())
+    }
+
+    /// The keyframes of this motion for `mesh`, Born-rigid when
+    /// `born_rigid` (a V_obj with the Lorentz transform on), else every
+    /// vertex translated with the reference point.
+    ///
+    /// Error bound: a vertex's position along the line is
+    /// s(t) = sqrt(A^2 + T^2) + const, and |s''| = A^2 / (A^2 + T^2)^(3/2)
+    /// <= 1/A. Linear interpolation over a lab interval h is off by at most
+    /// h^2 max|s''| / 8 <= h^2 / (8 A_min), so intervals of
+    /// h = sqrt(8 tolerance A_min) keep every vertex within `tolerance`.
+    pub fn keyframes(&self, mesh: &Mesh, born_rigid: bool) -> Result<Vec<Frame>, (String, String)> {
+        self.validate()?;
+        let n = self.direction;
+        let a = self.acceleration;
+        let xi: Vec<f64> = mesh
+            .vertices
+            .iter()
+            .map(|p| if born_rigid { p.dot(n) } else { 0.0 })
+            .collect();
+        let xi_min = xi.iter().copied().fold(0.0, f64::min);
+        if 1.0 + a * xi_min <= 0.0 {
+            return Err((
+                "acceleration".into(),
+                format!(
+                    "a Born-rigid object under proper acceleration {a} must lie within 1/a = {} behind its reference point (the Rindler horizon); a vertex is {} behind it",
+                    1.0 / a,
+                    -xi_min
+                ),
+            ));
+        }
+        let a_min = 1.0 / a + xi_min;
+        let h = (8.0 * self.tolerance * a_min).sqrt();
+        let count = (self.duration / h).ceil().max(1.0);
+        if !(count <= MAX_KEYFRAMES as f64) {
+            return Err((
+                "tolerance".into(),
+                format!(
+                    "tolerance {} would take {count} keyframes (at most {MAX_KEYFRAMES}); loosen it",
+                    self.tolerance
+                ),
+            ));
+        }
+        let count = count as usize;
+        let (t0, x0) = (self.start.t, self.start.x);
+        Ok((0..=count)
+            .map(|k| {
+                let t = if k == count {
+                    t0 + self.duration
+                } else {
+                    t0 + self.duration * k as f64 / count as f64
+                };
+                let reference = x0 + n * self.along(0.0, t);
+                let vertices = mesh
+                    .vertices
+                    .iter()
+                    .zip(&xi)
+                    .map(|(p, &xi)| {
+                        let across = *p - n * xi;
+                        x0 + across + n * self.along(xi, t)
+                    })
+                    .collect();
+                Frame {
+                    t,
+                    reference,
+                    vertices,
+                    proper_time: if born_rigid {
+                        self.proper_time(t)
+                    } else {
+                        t - t0
+                    },
+                }
+            })
+            .collect())
+    }
+}
+
+/// Resolves keyframes into lab vertex positions. With `contract` (a V_obj
+/// with the Lorentz transform on) each keyframe's rest-frame shape is
+/// contracted along the reference point's velocity there (central
+/// difference of the neighbouring keyframes; one-sided at the ends), and
+/// the proper time accumulates dt / gamma over each interval. Errors name
+/// the field relative to the keyframe list.
+pub fn resolve(
+    keyframes: &[Keyframe],
+    mesh: &Mesh,
+    contract: bool,
+) -> Result<Vec<Frame>, (String, String)> {
+    if keyframes.len() < 2 {
+        return Err((
+            String::new(),
+            format!("{} keyframe(s): at least 2 are needed", keyframes.len()),
+        ));
+    }
+    for (k, f) in keyframes.iter().enumerate() {
+        if !(f.t.is_finite() && f.position.is_finite()) {
+            return Err((
+                format!("[{k}]"),
+                "t and position must be finite numbers".into(),
+            ));
+        }
+        if k > 0 && f.t <= keyframes[k - 1].t {
+            return Err((
+                format!("[{k}].t"),
+                format!(
+                    "keyframes out of time order: t = {} follows t = {}",
+                    f.t,
+                    keyframes[k - 1].t
+                ),
+            ));
+        }
+        if let Some(o) = &f.offsets {
+            if o.len() != mesh.vertices.len() {
+                return Err((
+                    format!("[{k}].vertices"),
+                    format!(
+                        "{} vertices given; the mesh has {}",
+                        o.len(),
+                        mesh.vertices.len()
+                    ),
+                ));
+            }
+            if let Some(v) = o.iter().position(|p| !p.is_finite()) {
+                return Err((
+                    format!("[{k}].vertices[{v}]"),
+                    "must be finite numbers".into(),
+                ));
+            }
+        }
+    }
+    let last = keyframes.len() - 1;
+    let velocity = |k: usize| {
+        let (i, j) = (k.saturating_sub(1), (k + 1).min(last));
+        (keyframes[j].position - keyframes[i].position) / (keyframes[j].t - keyframes[i].t)
+    };
+    let mut frames: Vec<Frame> = Vec::with_capacity(keyframes.len());
+    for (k, f) in keyframes.iter().enumerate() {
+        let offsets = f.offsets.as_deref().unwrap_or(&mesh.vertices);
+        let boost = if contract {
+            Boost::new(velocity(k)).ok_or_else(|| {
+                (
+                    format!("[{k}].position"),
+                    format!(
+                        "a V_obj's reference point moves at {:.6}c here; it must be slower than light",
+                        velocity(k).length()
+                    ),
+                )
+            })?
+        } else {
+            Boost::identity()
+        };
+        let proper_time = match frames.last() {
+            None => 0.0,
+            Some(prev) => {
+                let dt = f.t - prev.t;
+                let v = (f.position - prev.reference) / dt;
+                let dtau = if contract {
+                    dt * (1.0 - v.length_squared()).max(0.0).sqrt()
+                } else {
+                    dt
+                };
+                prev.proper_time + dtau
+            }
+        };
+        frames.push(Frame {
+            t: f.t,
+            reference: f.position,
+            vertices: offsets
+                .iter()
+                .map(|p| f.position + boost.contract(*p))
+                .collect(),
+            proper_time,
+        });
+    }
+    if contract {
+        for k in 1..frames.len() {
+            let dt = frames[k].t - frames[k - 1].t;
+            for (v, (a, b)) in frames[k - 1]
+                .vertices
+                .iter()
+                .zip(&frames[k].vertices)
+                .enumerate()
+            {
+                let speed = (*b - *a).length() / dt;
+                if !(speed < 1.0) {
+                    return Err((
+                        format!("[{k}]"),
+                        format!(
+                            "vertex {v} of a V_obj moves at {speed:.6}c between t = {} and t = {}; a V_obj's vertices must be slower than light (use an H_obj for a Lorentz-decoupled object)",
+                            frames[k - 1].t,
+                            frames[k].t
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(frames)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bar() -> Mesh {
+        Mesh::cuboid(DVec3::new(-0.5, -1.0, -0.1), DVec3::new(0.5, 1.0, 0.1))
+    }
+
+    fn motion(tolerance: f64) -> Hyperbolic {
+        Hyperbolic {
+            start: Event::new(-3.0, DVec3::new(1.0, 0.0, 0.0)),
+            direction: DVec3::X,
+            acceleration: 0.8,
+            initial_velocity: -0.3,
+            duration: 9.0,
+            tolerance,
+        }
+    }
+
+    /// Every vertex's polyline stays within the tolerance of its exact
+    /// hyperbola, and uses most of it (the bound is not loose by orders).
+    #[test]
+    fn polyline_error_is_within_the_stated_bound() {
+        for born in [false, true] {
+            let m = motion(1e-3);
+            let frames = m.keyframes(&bar(), born).unwrap();
+            let mut worst: f64 = 0.0;
+            for w in frames.windows(2) {
+                for i in 0..10 {
+                    let f = (i as f64 + 0.5) / 10.0;
+                    let t = w[0].t + f * (w[1].t - w[0].t);
+                    for (v, p) in bar().vertices.iter().enumerate() {
+                        let lerp = w[0].vertices[v].lerp(w[1].vertices[v], f);
+                        let xi = if born { p.x } else { 0.0 };
+                        let exact = m.start.x.x + p.x - xi + m.along(xi, t);
+                        worst = worst.max((lerp.x - exact).abs());
+                        assert!((lerp.y - (m.start.x.y + p.y)).abs() < 1e-12);
+                    }
+                }
+            }
+            assert!(worst <= 1e-3, "born {born}: error {worst}");
+            assert!(
+                worst > 1e-4,
+                "born {born}: error {worst}: bound far from tight"
+            );
+        }
+    }
+
+    /// The generated path has the proper acceleration asked for: at the
+    /// reference point, gamma^3 dv/dt = a; and it starts at the given velocity.
+    #[test]
+    fn hyperbola_has_the_proper_acceleration() {
+        let m = motion(1e-4);
+        let v = |t: f64| {
+            let h = 1e-5;
+            (m.along(0.0, t + h) - m.along(0.0, t - h)) / (2.0 * h)
+        };
+        assert!((v(m.start.t) - m.initial_velocity).abs() < 1e-8);
+        for t in [-2.0, 0.0, 4.0] {
+            let h = 1e-3;
+            let dv = (v(t + h) - v(t - h)) / (2.0 * h);
+            let gamma = 1.0 / (1.0 - v(t) * v(t)).sqrt();
+            assert!((gamma.powi(3) * dv - m.acceleration).abs() < 1e-5);
+        }
+    }
+
+    /// Born rigidity: in the reference point's instantaneous rest frame the
+    /// distance between two points on the line stays their rest distance.
+    #[test]
+    fn born_rigid_points_keep_their_rest_distance() {
+        let m = motion(1e-4);
+        let xi = 0.7;
+        for t in [-3.0, 0.0, 5.0] {
+            // The rest frame's simultaneity line through the reference
+            // event passes through the hyperbolas' common centre, so the
+            // other point is met where its hyperbola crosses that line.
+            let a = m.acceleration;
+            let phi0 = m.initial_rapidity();
+            let big_t = t - m.start.t + phi0.sinh() / a;
+            let s_ref = m.along(0.0, t) + phi0.cosh() / a;
+            let ratio = big_t / s_ref; // tanh(rapidity)
+            let s_other = (1.0 / a + xi) / (1.0 - ratio * ratio).sqrt();
+            let t_other = ratio * s_other;
+            let proper = ((s_other - s_ref).powi(2) - (t_other - big_t).powi(2)).sqrt();
+            assert!((proper - xi).abs() < 1e-12, "t {t}: {proper}");
+        }
+    }
+
+    #[test]
+    fn keyframes_out_of_order_are_an_error() {
+        let k = |t: f64| Keyframe {
+            t,
+            position: DVec3::ZERO,
+            offsets: None,
+        };
+        let e = resolve(&[k(0.0), k(2.0), k(1.0)], &bar(), false).unwrap_err();
+        assert_eq!(e.0, "[2].t");
+        assert!(e.1.contains("out of time order"), "{}", e.1);
+    }
+
+    #[test]
+    fn a_v_obj_vertex_faster_than_light_is_an_error() {
+        // The reference point is at rest but the bar turns: its ends sweep
+        // 0.5 * pi l.units in 1 t.unit.
+        let turned: Vec<DVec3> = bar().vertices.iter().map(|p| -*p).collect();
+        let frames = [
+            Keyframe {
+                t: 0.0,
+                position: DVec3::ZERO,
+                offsets: None,
+            },
+            Keyframe {
+                t: 1.0,
+                position: DVec3::ZERO,
+                offsets: Some(turned),
+            },
+        ];
+        let e = resolve(&frames, &bar(), true).unwrap_err();
+        assert_eq!(e.0, "[1]");
+        assert!(e.1.contains("slower than light"), "{}", e.1);
+        assert!(resolve(&frames, &bar(), false).is_ok(), "an H_obj may");
+    }
+
+    #[test]
+    fn keyframed_v_obj_is_contracted_along_its_velocity() {
+        let frames = [0.0, 1.0, 2.0].map(|t| Keyframe {
+            t,
+            position: DVec3::new(0.6 * t, 0.0, 0.0),
+            offsets: None,
+        });
+        let r = resolve(&frames, &bar(), true).unwrap();
+        let width = |f: &Frame| {
+            let xs = f.vertices.iter().map(|p| p.x);
+            xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
+        };
+        for f in &r {
+            assert!((width(f) - 0.8).abs() < 1e-12, "{}", width(f));
+        }
+        assert!((r[2].proper_time - 1.6).abs() < 1e-12);
+    }
+
+    #[test]
+    fn an_object_behind_the_horizon_is_an_error() {
+        let mut m = motion(1e-3);
+        m.acceleration = 3.0; // 1/a = 0.33 < the bar's half width 0.5
+        let e = m.keyframes(&bar(), true).unwrap_err();
+        assert_eq!(e.0, "acceleration");
+        assert!(m.keyframes(&bar(), false).is_ok());
+    }
+}
