@@ -115,7 +115,7 @@ impl Hyperbolic {
                 "must be a positive proper acceleration (1/l.units); for uniform motion use a velocity worldline",
             );
         }
-        if !(self.initial_velocity.abs() < 1.0) {
+        if self.initial_velocity.is_nan() || self.initial_velocity.abs() >= 1.0 {
             return bad("initial_velocity", "must be slower than light (|v| < 1)");
         }
         if !(self.duration > 0.0 && self.duration.is_finite()) {
@@ -159,7 +159,7 @@ impl Hyperbolic {
         let a_min = 1.0 / a + xi_min;
         let h = (8.0 * self.tolerance * a_min).sqrt();
         let count = (self.duration / h).ceil().max(1.0);
-        if !(count <= MAX_KEYFRAMES as f64) {
+        if count.is_nan() || count > MAX_KEYFRAMES as f64 {
             return Err((
                 "tolerance".into(),
                 format!(
@@ -309,7 +309,7 @@ pub fn resolve(
                 .enumerate()
             {
                 let speed = (*b - *a).length() / dt;
-                if !(speed < 1.0) {
+                if speed.is_nan() || speed >= 1.0 {
                     return Err((
                         format!("[{k}]"),
                         format!(

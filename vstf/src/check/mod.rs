@@ -365,6 +365,7 @@ pub fn difference(a: &Reading, b: &Reading) -> Reading {
 }
 
 pub mod aberration;
+pub mod accelerated;
 pub mod blink;
 pub mod relativity;
 pub mod retarded;
@@ -416,6 +417,7 @@ pub const CHECKS: &[(&str, Check)] = &[
     ("relativity", relativity::run),
     ("sphere-relativistic", sphere::relativistic),
     ("sphere-classical", sphere::classical),
+    ("accelerated", accelerated::run),
 ];
 
 /// Runs the checks of the named fixtures (all when empty), comparing

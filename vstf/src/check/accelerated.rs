@@ -1,0 +1,125 @@
+//! Accelerated motion (issue 6, item 5): plates under constant proper
+//! acceleration, generated into keyframes by the renderer and extruded
+//! interval by interval. Measured at three camera times: where each plate's
+//! left and right edges appear at mid-height, on the plates' plane.
+//! Expected from first principles: each edge point's hyperbola against the
+//! camera's past light cone, a line meeting a hyperbola
+//! ([`crate::oracle::retarded_hyperbolic`]). The Lorentz-decoupled plate
+//! moves every point on the same hyperbola; the Born-rigid one gives the
+//! point at rest-frame offset xi its own, A = 1/a + xi about the same
+//! centre. The tolerance adds the keyframes' stated error bound to the
+//! measurement's.
+
+use super::{background, is_background, trace_rows, Edge, Effort, FixtureReport, Row, Setup};
+use crate::fixture::{Fixture, Overrides};
+use crate::measure::{edge, Plane};
+use crate::oracle::{retarded_hyperbolic, PointHyperbola};
+use glam::DVec3;
+use renderer::{Hyperbolic, Motion, ObjectKind};
+
+const NAME: &str = "accelerated";
+/// Camera times of the measured frames.
+const FRAMES: [f64; 3] = [18.0, 22.0, 26.0];
+/// The plates' half width along the motion and height in the fixture; each
+/// spans x in [-HALF_WIDTH, HALF_WIDTH] about its reference point.
+const HALF_WIDTH: f64 = 0.5;
+const HEIGHT: f64 = 2.0;
+/// The measured plates and the height of their lower edge.
+const PLATES: [(&str, f64); 2] = [("decoupled", 0.5), ("born-rigid", -2.5)];
+
+/// The hyperbola of the plate point at offset `r` from the reference
+/// point (rest-frame for a Born-rigid plate).
+fn point(h: &Hyperbolic, r: DVec3, born_rigid: bool) -> PointHyperbola {
+    let xi = if born_rigid { r.dot(h.direction) } else { 0.0 };
+    let across = r - h.direction * xi;
+    let p = PointHyperbola::starting(
+        h.start.t,
+        h.start.x + across,
+        h.direction,
+        h.acceleration,
+        h.initial_velocity,
+    );
+    PointHyperbola {
+        big_a: p.big_a + xi,
+        ..p
+    }
+}
+
+pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
+    let f = Fixture::load(NAME).map_err(|e| e.to_string())?;
+    let model = f
+        .model(&Overrides::default())
+        .map_err(|(p, m)| format!("{p}: {m}"))?;
+    let bg = background(&f);
+    let mut rows = Vec::new();
+    let mut views = Vec::new();
+    for tc in FRAMES {
+        let setup = Setup {
+            fixture: &f,
+            model,
+            camera_t: tc,
+        };
+        let cam = setup.camera_x();
+        let mut marks = Vec::new();
+        for (name, y0) in PLATES {
+            let obj = f
+                .scene
+                .objects
+                .iter()
+                .find(|o| o.name == name)
+                .ok_or_else(|| format!("{NAME}: no plate {name:?}"))?;
+            let Motion::Hyperbolic(h) = obj.motion else {
+                return Err(format!("{NAME}: {name} must move hyperbolically"));
+            };
+            let born = model.lorentz && obj.kind == ObjectKind::VObj;
+            let (look, vfov) = setup.aim(&[name], 0.15)?;
+            let (img, camera) =
+                setup.probe(&[name], look, vfov, effort.probe, effort.probe, effort.spp)?;
+            let w = i64::from(img.width());
+            let mid = y0 + HEIGHT / 2.0;
+            let range = (y0 + 0.05 * HEIGHT, y0 + 0.95 * HEIGHT);
+            for (side, x, from, step) in [
+                ("left", -HALF_WIDTH, 0, 1),
+                ("right", HALF_WIDTH, w - 1, -1),
+            ] {
+                let trace = trace_rows(
+                    &img,
+                    &camera,
+                    Plane::z(h.start.x.z),
+                    |scan| edge(&img, scan, from, step, |c| is_background(c, bg)),
+                    |p| (p.y, p.x),
+                    range,
+                );
+                let reading = Edge::fit(&trace, 2, effort)
+                    .map_err(|e| format!("{NAME} {name} {side} at t_c = {tc}: {e}"))?
+                    .at(mid);
+                let expected =
+                    retarded_hyperbolic(&point(&h, DVec3::new(x, mid, 0.0), born), tc, cam)
+                        .ok_or_else(|| format!("{NAME}: {name} is never seen at t_c = {tc}"))?;
+                rows.push(Row::new(
+                    NAME,
+                    &format!("{name} {side} edge, t_c = {tc} (x)"),
+                    reading.value,
+                    expected.x.x,
+                    None,
+                    reading.tolerance + h.tolerance,
+                    "l.units",
+                ));
+            }
+            for (x, y) in [
+                (-HALF_WIDTH, y0),
+                (HALF_WIDTH, y0),
+                (-HALF_WIDTH, y0 + HEIGHT),
+                (HALF_WIDTH, y0 + HEIGHT),
+            ] {
+                if let Some(r) =
+                    retarded_hyperbolic(&point(&h, DVec3::new(x, y, 0.0), born), tc, cam)
+                {
+                    marks.push(r.direction);
+                }
+            }
+        }
+        views.push(setup.full_view(&format!("t_c = {tc}"), &marks)?);
+    }
+    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
+}
