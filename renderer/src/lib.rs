@@ -5,7 +5,8 @@
 //! scene ([`scene`], [`mesh`]) -> temporal extrusion ([`extrude`], with
 //! [`boost`] for V_obj objects and [`keyframe`] for accelerated ones) -> static 4D database ([`database`], searched
 //! through [`bvh`]) -> light-cone rays ([`lightcone`]) -> barycentric solve
-//! ([`intersect`]) -> shading with shadow and mirror rays ([`shade`]) ->
+//! ([`intersect`]) -> shading with shadow and mirror rays ([`shade`]; colour
+//! effects of motion by [`doppler`] on [`spectrum`]s) ->
 //! image ([`render`]).
 //!
 //! Natural units throughout (c = 1); events are lab-frame (t, x, y, z) in f64,
@@ -14,6 +15,7 @@
 pub mod boost;
 pub mod bvh;
 pub mod database;
+pub mod doppler;
 pub mod extrude;
 pub mod intersect;
 pub mod keyframe;
@@ -30,6 +32,7 @@ pub mod trace;
 
 pub use boost::Boost;
 pub use database::{Database, SceneError, Surface, Traversal};
+pub use doppler::Effects;
 pub use extrude::{Prism, Tetrahedron};
 pub use intersect::Hit;
 pub use keyframe::{Hyperbolic, Keyframe};

@@ -7,12 +7,13 @@
 //! the number of threads.
 
 use crate::database::Database;
+use crate::doppler::Effects;
 use crate::lightcone::{Camera, Kinematics};
 use crate::model::Model;
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
 use crate::shade::Shader;
-use crate::trace::{NoTrace, RayKind, Step, Trace};
+use crate::trace::{NoTrace, Step, Trace};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -28,6 +29,8 @@ pub struct RenderSettings {
     pub max_depth: u32,
     /// Whether shadow rays are traced (off: every lit-facing surface is lit).
     pub shadows: bool,
+    /// Doppler shift and searchlight (both off by default).
+    pub effects: Effects,
 }
 
 impl Default for RenderSettings {
@@ -38,6 +41,7 @@ impl Default for RenderSettings {
             seed: 1,
             max_depth: 4,
             shadows: true,
+            effects: Effects::NONE,
         }
     }
 }
@@ -78,6 +82,7 @@ pub fn shader<'a>(
         light_speed: model.light_speed,
         max_depth: settings.max_depth,
         shadows: settings.shadows,
+        effects: settings.effects,
     }
 }
 
@@ -159,7 +164,7 @@ pub fn pixel_traced<T: Trace>(
             });
         }
         let ray = camera.ray(px, py, t, model.light_speed);
-        shader.radiance_traced(&ray, 0, RayKind::Primary, trace)
+        shader.observed_traced(camera, &ray, trace)
     };
     if settings.spp <= 1 {
         return sample(0, f64::from(x) + 0.5, f64::from(y) + 0.5, camera_t, trace);

@@ -5,15 +5,30 @@
 //! object, earlier.
 
 use crate::database::Database;
+use crate::doppler::{self, Effects, Leg};
 use crate::intersect::Hit;
-use crate::lightcone::{LightSpeed, Ray};
+use crate::lightcone::{Camera, Kinematics, LightSpeed, Ray};
 use crate::spacetime::Event;
+use crate::spectrum::{self, Spectrum, BAND_LEN};
 use crate::trace::{NoTrace, RayKind, Step, Trace};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
+use std::borrow::Cow;
+
+/// Values at the wavelengths of the observed band, carried into whatever
+/// frame a leg of the path is in.
+pub type Band = [f64; BAND_LEN];
+
+fn sample(s: &Spectrum, nm: &Band) -> Band {
+    std::array::from_fn(|i| s.at(nm[i]))
+}
+
+fn scaled(nm: &Band, f: f64) -> Band {
+    nm.map(|x| x * f)
+}
 
 /// A point light at rest in the lab frame.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Light {
     /// Lab position, l.units.
@@ -24,6 +39,30 @@ pub struct Light {
     /// Fraction of a material's colour seen without direct light.
     #[serde(default = "default_ambient")]
     pub ambient: f64,
+    /// The light's spectrum for Doppler rendering (default: the smooth
+    /// spectrum of `color`).
+    #[serde(default)]
+    pub spectrum: Option<Spectrum>,
+}
+
+impl Light {
+    /// A white light with the given ambient fraction.
+    pub fn white(position: DVec3, ambient: f64) -> Light {
+        Light {
+            position,
+            color: DVec3::ONE,
+            ambient,
+            spectrum: None,
+        }
+    }
+
+    /// The spectrum used when wavelengths are shifted.
+    pub fn spectrum(&self) -> Cow<'_, Spectrum> {
+        match &self.spectrum {
+            Some(s) => Cow::Borrowed(s),
+            None => Cow::Owned(Spectrum::Rgb(self.color)),
+        }
+    }
 }
 
 fn white() -> DVec3 {
@@ -66,6 +105,14 @@ pub struct Material {
     pub mirror: f64,
     #[serde(default)]
     pub blink: Option<Blink>,
+    /// The reflectance spectrum for Doppler rendering (default: the smooth
+    /// spectrum of `color`, or of the blink colour while it shows).
+    #[serde(default)]
+    pub spectrum: Option<Spectrum>,
+    /// Light the surface gives off itself, in its own frame: spectral
+    /// radiance (its RGB is added when wavelengths are not shifted).
+    #[serde(default)]
+    pub emission: Option<Spectrum>,
 }
 
 impl Material {
@@ -77,6 +124,19 @@ impl Material {
             shininess: default_shininess(),
             mirror: 0.0,
             blink: None,
+            spectrum: None,
+            emission: None,
+        }
+    }
+
+    /// The reflectance spectrum at the object's proper time `tau`.
+    pub fn reflectance_at(&self, tau: f64) -> Cow<'_, Spectrum> {
+        match (&self.spectrum, self.blink) {
+            (_, Some(b)) if (tau / b.period).rem_euclid(1.0) < 0.5 => {
+                Cow::Owned(Spectrum::Rgb(b.color))
+            }
+            (Some(s), _) => Cow::Borrowed(s),
+            (None, _) => Cow::Owned(Spectrum::Rgb(self.color)),
         }
     }
 
@@ -106,6 +166,30 @@ pub struct Shader<'a> {
     pub max_depth: u32,
     /// Whether shadow rays are traced.
     pub shadows: bool,
+    /// Doppler shift and searchlight.
+    pub effects: Effects,
+}
+
+/// What shading at a hit needs beyond the hit: the geometry of the light and
+/// view, the shadow test, and the surface's motion for the colour effects.
+struct Lit {
+    object: u32,
+    tau: f64,
+    n: DVec3,
+    l: DVec3,
+    light_distance: f64,
+    lambert: f64,
+    shadowed: bool,
+    /// m.specular (r.v)^shininess, 0 in shadow.
+    specular: f64,
+    /// Lab velocity of the surface and the gamma of its clock (1 when
+    /// Lorentz-decoupled: classical Doppler).
+    velocity: DVec3,
+    gamma: f64,
+    /// nu_surface / nu_lab for the light's leg, and nu_lab / nu_surface for
+    /// the leg from the surface towards the ray's origin (1 when off).
+    from_light: f64,
+    out: f64,
 }
 
 impl Shader<'_> {
@@ -205,56 +289,292 @@ impl Shader<'_> {
         blocker.is_some()
     }
 
+    /// The frequency ratio between the lab and the frame of a surface
+    /// moving with `velocity` (clock `gamma`) for light propagating along
+    /// `k`: nu_surface / nu_lab; 1 when light is instantaneous or the
+    /// effects are off.
+    fn to_surface(&self, velocity: DVec3, gamma: f64, k: DVec3) -> f64 {
+        if !self.effects.any() || self.light_speed == LightSpeed::Infinite {
+            return 1.0;
+        }
+        doppler::to_frame(velocity, gamma, k)
+    }
+
+    fn lit<T: Trace>(&self, ray: &Ray, hit: &Hit, trace: &mut T) -> Lit {
+        let surface = self.db.surface(hit);
+        let object = &self.db.objects()[surface.object as usize];
+        let m = &object.material;
+        let n = self.facing_normal(ray, hit);
+        let view = -ray.direction.x;
+        let to_light = self.light.position - hit.event.x;
+        let l = to_light.normalize_or_zero();
+        let lambert = n.dot(l);
+        let (mut specular, mut shadowed) = (0.0, false);
+        if lambert > 0.0 {
+            shadowed = self.shadows && self.in_shadow_traced(hit.event, trace);
+            if !shadowed && m.specular > 0.0 {
+                let r = 2.0 * lambert * n - l;
+                specular = m.specular * r.dot(view).max(0.0).powf(m.shininess);
+            }
+        }
+        let piece = object.piece_at(hit.event.t);
+        let (velocity, gamma) = (piece.worldline.velocity(), piece.clock.gamma());
+        let from_light = self.to_surface(velocity, gamma, -l);
+        let out = 1.0 / self.to_surface(velocity, gamma, view.normalize());
+        Lit {
+            object: surface.object,
+            tau: object.proper_time(hit.event),
+            n,
+            l,
+            light_distance: to_light.length(),
+            lambert,
+            shadowed,
+            specular,
+            velocity,
+            gamma,
+            from_light,
+            out,
+        }
+    }
+
+    /// The mirror ray leaving `hit`, and nu_surface / nu_lab for the light
+    /// arriving along it.
+    fn mirror_ray(&self, ray: &Ray, hit: &Hit, lit: &Lit) -> (Ray, f64) {
+        let d = ray.direction.x;
+        let reflected = Ray::backwards(hit.event, d - 2.0 * d.dot(lit.n) * lit.n, self.light_speed);
+        let f = self.to_surface(lit.velocity, lit.gamma, -reflected.direction.x.normalize());
+        (reflected, f)
+    }
+
     /// Lambert plus Phong at `hit`, plus the mirror term.
     pub fn shade(&self, ray: &Ray, hit: &Hit, depth: u32) -> DVec3 {
         self.shade_traced(ray, hit, depth, &mut NoTrace)
     }
 
+    /// RGB shading. With the searchlight on (and wavelengths unshifted) each
+    /// leg scales the frequency-integrated intensity: the light's
+    /// irradiance by (nu_s/nu_lab)^2, mirrored radiance by ^4, the radiance
+    /// leaving towards the ray's origin by (nu_lab/nu_s)^4.
     fn shade_traced<T: Trace>(&self, ray: &Ray, hit: &Hit, depth: u32, trace: &mut T) -> DVec3 {
-        let object = &self.db.objects()[self.db.surface(hit).object as usize];
-        let m = &object.material;
-        let albedo = m.color_at(object.proper_time(hit.event));
-        let n = self.facing_normal(ray, hit);
-        let view = -ray.direction.x;
+        let lit = self.lit(ray, hit, trace);
+        let m = &self.db.objects()[lit.object as usize].material;
+        let albedo = m.color_at(lit.tau);
         let ambient = albedo * self.light.ambient;
-        let to_light = self.light.position - hit.event.x;
-        let l = to_light.normalize_or_zero();
-        let lambert = n.dot(l);
-        let (mut diffuse, mut specular, mut shadowed) = (DVec3::ZERO, 0.0, false);
-        if lambert > 0.0 {
-            shadowed = self.shadows && self.in_shadow_traced(hit.event, trace);
-            if !shadowed {
-                let r = 2.0 * lambert * n - l;
-                specular = if m.specular > 0.0 {
-                    m.specular * r.dot(view).max(0.0).powf(m.shininess)
-                } else {
-                    0.0
-                };
-                diffuse = albedo * (m.diffuse * lambert);
-            }
+        let (mut diffuse, mut specular) = (DVec3::ZERO, 0.0);
+        if lit.lambert > 0.0 && !lit.shadowed {
+            specular = lit.specular;
+            diffuse = albedo * (m.diffuse * lit.lambert);
         }
-        let local = ambient + self.light.color * (diffuse + DVec3::splat(specular));
+        let fx = self.effects;
+        let mut local = if fx.searchlight {
+            ambient
+                + self.light.color
+                    * (diffuse + DVec3::splat(specular))
+                    * fx.intensity(lit.from_light, Leg::PointSource)
+        } else {
+            ambient + self.light.color * (diffuse + DVec3::splat(specular))
+        };
+        if let Some(e) = &m.emission {
+            local += spectrum::to_rgb(&e.sample_scaled(1.0));
+        }
         let mut color = local;
+        let mut mirror_factor = None;
         if m.mirror > 0.0 && depth < self.max_depth {
-            let d = ray.direction.x;
-            let reflected = Ray::backwards(hit.event, d - 2.0 * d.dot(n) * n, self.light_speed);
-            color = local * (1.0 - m.mirror)
-                + self.radiance_traced(&reflected, depth + 1, RayKind::Reflection, trace)
-                    * m.mirror;
+            let (reflected, f) = self.mirror_ray(ray, hit, &lit);
+            mirror_factor = Some(f);
+            let seen = self.radiance_traced(&reflected, depth + 1, RayKind::Reflection, trace);
+            let seen = if fx.searchlight {
+                seen * fx.intensity(f, Leg::Radiance)
+            } else {
+                seen
+            };
+            color = local * (1.0 - m.mirror) + seen * m.mirror;
+        }
+        if fx.searchlight {
+            color *= fx.intensity(lit.out, Leg::Radiance);
         }
         if T::ENABLED {
             trace.record(Step::Shading {
                 depth,
                 albedo,
                 ambient,
-                light_vector: l,
-                light_distance: to_light.length(),
-                lambert,
-                in_shadow: shadowed,
+                light_vector: lit.l,
+                light_distance: lit.light_distance,
+                lambert: lit.lambert,
+                in_shadow: lit.shadowed,
                 diffuse,
                 specular,
                 mirror: m.mirror,
                 local,
+                color,
+            });
+            if fx.any() {
+                trace.record(self.doppler_step(depth, &lit, mirror_factor, None));
+            }
+        }
+        color
+    }
+
+    fn doppler_step(
+        &self,
+        depth: u32,
+        lit: &Lit,
+        mirror: Option<f64>,
+        spectral: Option<(&Band, &Band)>,
+    ) -> Step {
+        Step::Doppler {
+            depth,
+            surface_velocity: lit.velocity,
+            gamma: lit.gamma,
+            from_light: lit.from_light,
+            to_origin: lit.out,
+            from_mirror: mirror,
+            surface_nm: spectral.map(|(nm, _)| nm.to_vec()),
+            surface_radiance: spectral.map(|(_, r)| r.to_vec()),
+        }
+    }
+
+    /// Spectral radiance arriving along `ray` at the wavelengths `nm`, both
+    /// in the lab frame (wavelength tracking: each leg rescales the
+    /// wavelengths at which the next is evaluated).
+    pub fn spectral_traced<T: Trace>(
+        &self,
+        ray: &Ray,
+        depth: u32,
+        kind: RayKind,
+        nm: &Band,
+        trace: &mut T,
+    ) -> Band {
+        let margin = if depth == 0 {
+            0.0
+        } else {
+            self_hit_margin(ray.origin)
+        };
+        let range = (margin, f64::INFINITY);
+        if T::ENABLED {
+            trace.record(ray_step(kind, depth, ray, range));
+        }
+        match self.db.closest_hit_traced(ray, range, trace) {
+            None => {
+                if T::ENABLED {
+                    trace.record(Step::Miss {
+                        kind,
+                        background: self.background,
+                    });
+                }
+                sample(&Spectrum::Rgb(self.background), nm)
+            }
+            Some(hit) => {
+                if T::ENABLED {
+                    trace.record(self.hit_step(kind, ray, &hit));
+                }
+                self.shade_spectral(ray, &hit, depth, nm, trace)
+            }
+        }
+    }
+
+    /// Spectral shading. In the surface's frame the lab wavelengths `nm`
+    /// are nm * (nu_lab / nu_s); there the surface reflects the light (its
+    /// spectrum evaluated at the wavelengths that left the lamp, times
+    /// (nu_s/nu_lab)^3 with the searchlight), mirrors what reaches it, and
+    /// emits; back in the lab the radiance scales by (nu_lab/nu_s)^5.
+    fn shade_spectral<T: Trace>(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        depth: u32,
+        nm: &Band,
+        trace: &mut T,
+    ) -> Band {
+        let lit = self.lit(ray, hit, trace);
+        let m = &self.db.objects()[lit.object as usize].material;
+        if lit.out <= 0.0 || lit.from_light <= 0.0 {
+            // A superluminal decoupled surface running into its own light.
+            return [0.0; BAND_LEN];
+        }
+        let fx = self.effects;
+        let surface_nm = scaled(nm, lit.out);
+        let reflectance = sample(&m.reflectance_at(lit.tau), &surface_nm);
+        let white = sample(&Spectrum::Rgb(DVec3::ONE), &surface_nm);
+        let lamp = sample(&self.light.spectrum(), &scaled(&surface_nm, lit.from_light));
+        let lamp_gain = fx.intensity(lit.from_light, Leg::PointSource);
+        let direct = if lit.lambert > 0.0 && !lit.shadowed {
+            (m.diffuse * lit.lambert, lit.specular)
+        } else {
+            (0.0, 0.0)
+        };
+        let emission = m.emission.as_ref().map(|e| sample(e, &surface_nm));
+        let mut local: Band = std::array::from_fn(|i| {
+            let lamp = lamp[i] * lamp_gain;
+            reflectance[i] * (self.light.ambient * white[i] + direct.0 * lamp)
+                + direct.1 * lamp
+                + emission.map_or(0.0, |e| e[i])
+        });
+        let mut mirror_factor = None;
+        if m.mirror > 0.0 && depth < self.max_depth {
+            let (reflected, f) = self.mirror_ray(ray, hit, &lit);
+            mirror_factor = Some(f);
+            let seen = self.spectral_traced(
+                &reflected,
+                depth + 1,
+                RayKind::Reflection,
+                &scaled(&surface_nm, f),
+                trace,
+            );
+            let gain = fx.intensity(f, Leg::Radiance);
+            for (l, s) in local.iter_mut().zip(seen) {
+                *l = *l * (1.0 - m.mirror) + s * gain * m.mirror;
+            }
+        }
+        if T::ENABLED {
+            trace.record(self.doppler_step(
+                depth,
+                &lit,
+                mirror_factor,
+                Some((&surface_nm, &local)),
+            ));
+        }
+        let gain = fx.intensity(lit.out, Leg::Radiance);
+        local.map(|l| l * gain)
+    }
+
+    /// The colour the camera records along `ray` (one of its rays, in the
+    /// lab): the radiance, carried into the camera's frame when the colour
+    /// effects are on (nu_cam / nu_lab = gamma_c (1 - v_c . k) for light
+    /// propagating along k; classical without gamma, 1 for instantaneous
+    /// light), then, for Doppler, integrated against the CIE 1931 matching
+    /// functions into linear sRGB.
+    pub fn observed_traced<T: Trace>(&self, camera: &Camera, ray: &Ray, trace: &mut T) -> DVec3 {
+        let fx = self.effects;
+        if !fx.any() {
+            return self.radiance_traced(ray, 0, RayKind::Primary, trace);
+        }
+        let k = -ray.direction.x.normalize();
+        let f = match camera.kinematics {
+            Kinematics::Lorentz => {
+                let g = 1.0 / (1.0 - camera.velocity.length_squared()).sqrt();
+                doppler::to_frame(camera.velocity, g, k)
+            }
+            Kinematics::Galilean => doppler::to_frame(camera.velocity, 1.0, k),
+            Kinematics::None => 1.0,
+        };
+        let gain = fx.intensity(f, Leg::Radiance);
+        let (color, spectral) = if fx.doppler {
+            let lab_nm = scaled(&spectrum::band_nm(), f);
+            let seen = self.spectral_traced(ray, 0, RayKind::Primary, &lab_nm, trace);
+            let xyz = spectrum::xyz(&seen.map(|l| l * gain));
+            (spectrum::xyz_to_rgb(xyz), Some((lab_nm, xyz)))
+        } else {
+            (
+                self.radiance_traced(ray, 0, RayKind::Primary, trace) * gain,
+                None,
+            )
+        };
+        if T::ENABLED {
+            trace.record(Step::Observed {
+                doppler: f,
+                lab_nm: spectral.map(|(nm, _)| nm.to_vec()),
+                xyz: spectral.map(|(_, xyz)| xyz),
                 color,
             });
         }

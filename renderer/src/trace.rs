@@ -120,6 +120,38 @@ pub enum Step {
         local: DVec3,
         color: DVec3,
     },
+    /// The colour effects of the surface's motion at a hit (with
+    /// `--doppler` or `--searchlight`). Frequency ratios are 1 when off.
+    Doppler {
+        depth: u32,
+        /// Lab velocity of the surface, and its clock's gamma (1:
+        /// classical Doppler).
+        surface_velocity: DVec3,
+        gamma: f64,
+        /// nu_surface / nu_lab of the light arriving from the lamp.
+        from_light: f64,
+        /// nu_lab / nu_surface of the light leaving towards the ray's
+        /// origin: the surface's Doppler factor D.
+        to_origin: f64,
+        /// nu_surface / nu_lab of the light arriving along the mirror ray.
+        from_mirror: Option<f64>,
+        /// With Doppler: the band's wavelengths in the surface's frame, nm,
+        /// and the spectral radiance leaving the surface there.
+        surface_nm: Option<Vec<f64>>,
+        surface_radiance: Option<Vec<f64>>,
+    },
+    /// What the camera records for the sample (with `--doppler` or
+    /// `--searchlight`).
+    Observed {
+        /// nu_camera / nu_lab along the primary ray.
+        doppler: f64,
+        /// With Doppler: the lab wavelengths of the observed band, nm, and
+        /// the CIE XYZ of the observed spectrum.
+        lab_nm: Option<Vec<f64>>,
+        xyz: Option<DVec3>,
+        /// Linear sRGB.
+        color: DVec3,
+    },
 }
 
 /// A sink for recorded steps.

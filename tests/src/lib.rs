@@ -57,6 +57,7 @@ pub fn scene(objects: Vec<SceneObject>) -> Scene {
             position: DVec3::new(0.0, 100.0, 0.0),
             color: DVec3::ONE,
             ambient: 0.3,
+            spectrum: None,
         },
         background: DVec3::ZERO,
     }

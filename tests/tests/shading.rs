@@ -4,6 +4,7 @@
 use glam::DVec3;
 use renderer::lightcone::{Attitude, LightSpeed, Ray};
 use renderer::shade::{Blink, Shader};
+use renderer::Effects;
 use renderer::{
     Camera, Database, Event, FourVector, Light, Material, Mesh, Model, Motion, ObjectKind,
     RenderSettings, Scene,
@@ -42,6 +43,7 @@ fn shadows_are_cast_where_the_light_was_blocked_earlier() {
             position: DVec3::new(0.0, 10.0, 0.0),
             color: DVec3::ONE,
             ambient: 0.2,
+            spectrum: None,
         },
         background: DVec3::ZERO,
     };
@@ -53,6 +55,7 @@ fn shadows_are_cast_where_the_light_was_blocked_earlier() {
         light_speed,
         max_depth: 0,
         shadows: true,
+        effects: Effects::NONE,
     };
     let (enter, leave) = (-4.5 / 0.9, -0.5 / 0.9);
     let finite = shader(LightSpeed::Finite);
@@ -119,6 +122,7 @@ fn a_mirror_shows_a_moving_object_retarded_over_the_reflected_path() {
             position: DVec3::new(0.0, 0.0, 30.0),
             color: DVec3::ONE,
             ambient: 1.0,
+            spectrum: None,
         },
         background: DVec3::ZERO,
     };
@@ -130,6 +134,7 @@ fn a_mirror_shows_a_moving_object_retarded_over_the_reflected_path() {
         light_speed: LightSpeed::Finite,
         max_depth: 2,
         shadows: true,
+        effects: Effects::NONE,
     };
     let cam = DVec3::new(0.0, 0.0, 10.0);
     let tc = 20.0;
@@ -187,6 +192,7 @@ fn the_shutter_blurs_a_moving_edge_over_its_travel() {
             position: DVec3::new(0.0, 0.0, 10.0),
             color: DVec3::ZERO,
             ambient: 1.0,
+            spectrum: None,
         },
         background: DVec3::ZERO,
     };
@@ -216,6 +222,7 @@ fn the_shutter_blurs_a_moving_edge_over_its_travel() {
                 seed: 9,
                 max_depth: 0,
                 shadows: true,
+                effects: Effects::NONE,
             },
         );
         (0..200)
@@ -263,6 +270,7 @@ fn a_v_obj_clock_and_lifetime_are_dilated() {
             position: DVec3::Y * 10.0,
             color: DVec3::ONE,
             ambient: 0.2,
+            spectrum: None,
         },
         background: DVec3::ZERO,
     };

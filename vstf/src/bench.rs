@@ -142,6 +142,7 @@ pub fn tessellated_boxes(n: usize, k: u32, seed: u64) -> Scene {
             position: DVec3::new(60.0, 200.0, 150.0),
             color: DVec3::ONE,
             ambient: 0.3,
+            spectrum: None,
         },
         background: DVec3::ZERO,
     }

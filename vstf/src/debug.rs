@@ -144,11 +144,47 @@ pub fn describe(log: &PixelLog) -> String {
                 v3(*local),
                 v3(*color)
             ),
+            Step::Doppler { depth, surface_velocity, gamma, from_light, to_origin, from_mirror, surface_nm, surface_radiance } => {
+                let mut line = format!(
+                    "doppler (depth {depth}): surface velocity {} (gamma {gamma:.9}); nu_s/nu_lab from the light {from_light:.9}; D = nu_lab/nu_s towards the ray's origin {to_origin:.9}",
+                    v3(*surface_velocity)
+                );
+                if let Some(f) = from_mirror {
+                    line += &format!("; nu_s/nu_lab from the mirror ray {f:.9}");
+                }
+                if let (Some(nm), Some(r)) = (surface_nm, surface_radiance) {
+                    line += &format!("; surface-frame spectrum {}", spectrum_line(nm, r));
+                }
+                line
+            }
+            Step::Observed { doppler, lab_nm, xyz, color } => {
+                let mut line = format!("observed: nu_cam/nu_lab {doppler:.9}; colour {}", v3(*color));
+                if let (Some(nm), Some(xyz)) = (lab_nm, xyz) {
+                    line += &format!(
+                        "; band {:.3}..{:.3} nm in the lab; XYZ {}",
+                        nm[0],
+                        nm[nm.len() - 1],
+                        v3(*xyz)
+                    );
+                }
+                line
+            }
         };
         let _ = writeln!(out, "{indent}{line}");
     }
     let _ = writeln!(out, "colour {} -> 8-bit {:?}", v3(log.color), log.rgb8);
     out
+}
+
+/// A spectrum in brief: every 10th sample as wavelength:value (the log
+/// file has them all).
+fn spectrum_line(nm: &[f64], values: &[f64]) -> String {
+    nm.iter()
+        .zip(values)
+        .step_by(10)
+        .map(|(l, v)| format!("{l:.1}:{v:.6}"))
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// One field that differs between two logs.

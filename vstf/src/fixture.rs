@@ -101,6 +101,12 @@ pub struct ImageSpec {
     /// Trace shadow rays (default true).
     #[serde(default = "yes")]
     pub shadows: bool,
+    /// Doppler-shift wavelengths (spectral rendering; default false).
+    #[serde(default)]
+    pub doppler: bool,
+    /// Scale intensities by the searchlight effect (default false).
+    #[serde(default)]
+    pub searchlight: bool,
 }
 
 fn one() -> u32 {
@@ -289,6 +295,9 @@ pub struct Overrides {
     pub width: Option<u32>,
     pub height: Option<u32>,
     pub spp: Option<u32>,
+    /// Turn on Doppler shift / searchlight whatever the fixture says.
+    pub doppler: bool,
+    pub searchlight: bool,
 }
 
 /// A view ready to render.
@@ -505,6 +514,10 @@ impl Fixture {
             seed: im.seed,
             max_depth: im.max_depth,
             shadows: im.shadows,
+            effects: renderer::Effects {
+                doppler: im.doppler || o.doppler,
+                searchlight: im.searchlight || o.searchlight,
+            },
         };
         Ok(View {
             camera,
@@ -736,7 +749,7 @@ fn build_scene(spec: &FixtureSpec, file: &Path) -> Result<Scene, (String, String
     }
     Ok(Scene {
         objects,
-        light: spec.light,
+        light: spec.light.clone(),
         background: spec.background,
     })
 }

@@ -47,6 +47,15 @@ struct ViewArgs {
     /// Samples per pixel (4D anti-aliasing).
     #[arg(long)]
     spp: Option<u32>,
+    /// Doppler-shift the colours: spectral rendering, wavelengths followed
+    /// along each leg of the light's path (off by default: it can hide the
+    /// geometry).
+    #[arg(long)]
+    doppler: bool,
+    /// Scale intensities by the searchlight effect (powers of the Doppler
+    /// factor; see docs/physics.md).
+    #[arg(long)]
+    searchlight: bool,
 }
 
 impl ViewArgs {
@@ -57,6 +66,8 @@ impl ViewArgs {
             width: self.width,
             height: self.height,
             spp: self.spp,
+            doppler: self.doppler,
+            searchlight: self.searchlight,
         })
     }
 }

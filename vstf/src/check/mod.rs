@@ -149,6 +149,8 @@ impl Setup<'_> {
             width: Some(width),
             height: Some(height),
             spp: None,
+            doppler: false,
+            searchlight: false,
         };
         crate::run::view(self.fixture, &o)
     }
@@ -219,6 +221,10 @@ impl Setup<'_> {
             seed: 1,
             max_depth: 0,
             shadows: false,
+            effects: renderer::Effects {
+                doppler: self.fixture.spec.image.doppler,
+                searchlight: self.fixture.spec.image.searchlight,
+            },
         };
         let img = renderer::render(&db, &scene, &camera, self.camera_t, self.model, &settings);
         Ok((img.to_rgb8(), camera))
