@@ -22,7 +22,7 @@ fn setup(name: &str, w: u32, h: u32) -> (Fixture, View) {
 
 #[test]
 fn the_debugged_colour_is_the_rendered_colour() {
-    for name in ["teaser", "terrell-contracted", "flange"] {
+    for name in ["teaser", "terrell-contracted", "flange", "doppler"] {
         let (f, view) = setup(name, 64, 36);
         let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
         let image = vstf::run::render_with(&db, &f, &view);
@@ -217,4 +217,87 @@ fn debug_diff_reports_the_first_differing_field() {
         .unwrap()
         .iter()
         .any(|d| d.path == "(number of pixels)"));
+}
+
+/// With Doppler on, the log holds each surface's Doppler factors and its
+/// spectrum in its own frame, and what the camera records.
+#[test]
+fn doppler_factors_and_spectra_are_logged() {
+    let (f, view) = setup("doppler", 64, 48);
+    assert!(
+        view.settings.effects.doppler,
+        "the fixture renders with Doppler on"
+    );
+    let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+    let band = renderer::spectrum::band_nm();
+    let mut checked = 0;
+    for (x, y) in (0..64).flat_map(|x| (0..48).map(move |y| (x, y))) {
+        let log = trace_pixel(&f, &view, &db, x, y).unwrap();
+        // The first primary hit, the ray it was found on, and the steps after it.
+        let mut ray_dir = None;
+        let mut found = None;
+        for (i, s) in log.steps.iter().enumerate() {
+            match s {
+                Step::Ray { direction, .. } => ray_dir = Some(direction.x),
+                Step::Hit { object, .. } => {
+                    found = Some((ray_dir.unwrap(), object.clone(), i));
+                    break;
+                }
+                _ => {}
+            }
+        }
+        let Some((ray_dir, object, at)) = found else {
+            continue;
+        };
+        let u = f
+            .scene
+            .objects
+            .iter()
+            .find(|o| o.name == object)
+            .unwrap()
+            .motion
+            .uniform()
+            .unwrap()
+            .1;
+        let gamma = 1.0 / (1.0 - u.length_squared()).sqrt();
+        let expected = 1.0 / (gamma * (1.0 - u.dot(-ray_dir.normalize())));
+        let doppler = log.steps[at..].iter().find_map(|s| match s {
+            Step::Doppler {
+                to_origin,
+                surface_nm,
+                surface_radiance,
+                gamma: g,
+                ..
+            } => Some((
+                *to_origin,
+                surface_nm.clone().unwrap(),
+                surface_radiance.clone().unwrap(),
+                *g,
+            )),
+            _ => None,
+        });
+        let (d, nm, radiance, g) = doppler.expect("no Doppler step for a hit");
+        assert!(
+            (d - expected).abs() < 1e-12,
+            "{object}: D {d} vs {expected}"
+        );
+        assert!((g - gamma).abs() < 1e-12);
+        assert_eq!(nm.len(), band.len());
+        assert_eq!(radiance.len(), band.len());
+        for (s, b) in nm.iter().zip(band) {
+            assert!(
+                (s - b * d).abs() < 1e-9,
+                "surface-frame wavelengths are the band times D"
+            );
+        }
+        let observed = log.steps[at..].iter().find_map(|s| match s {
+            Step::Observed { doppler, xyz, .. } => Some((*doppler, *xyz)),
+            _ => None,
+        });
+        let (f_cam, xyz) = observed.expect("no Observed step");
+        assert_eq!(f_cam, 1.0, "the camera is at rest");
+        assert!(xyz.unwrap().y > 0.0);
+        checked += 1;
+    }
+    assert!(checked > 20, "only {checked} pixels hit a panel");
 }

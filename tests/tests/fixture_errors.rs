@@ -280,3 +280,24 @@ fn bad_hyperbolic_motion_names_the_field() {
     ));
     assert!(e.contains("horizon"), "{e}");
 }
+
+#[test]
+fn bad_spectra_name_the_field() {
+    let e = error_of(&flange_with(|v| {
+        let i = flange_index(v);
+        v["objects"][i]["material"]["emission"] =
+            serde_json::json!({ "samples": { "nm": [500, 450], "values": [1, 1] } });
+    }));
+    assert!(
+        e.contains("material.emission") && e.contains("samples.nm[1]"),
+        "{e}"
+    );
+    let e = error_of(&flange_with(|v| {
+        v["light"]["spectrum"] = serde_json::json!({ "blackbody": { "kelvin": -5 } });
+    }));
+    assert!(e.contains("light.spectrum"), "{e}");
+    let e = error_of(&flange_with(|v| {
+        v["light"]["spectrum"] = serde_json::json!({ "rainbow": {} });
+    }));
+    assert!(e.contains("light.spectrum"), "{e}");
+}

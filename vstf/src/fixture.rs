@@ -629,6 +629,17 @@ fn event(a: [f64; 4]) -> Event {
     Event::new(a[0], DVec3::new(a[1], a[2], a[3]))
 }
 
+/// A spectrum's own check, its message naming the field under `path`.
+fn spectrum_ok(
+    path: &str,
+    s: Option<&renderer::spectrum::Spectrum>,
+) -> Result<(), (String, String)> {
+    match s.map(|s| s.validate()) {
+        Some(Err(m)) => Err((path.to_string(), m)),
+        _ => Ok(()),
+    }
+}
+
 /// The motion a worldline spec gives; errors name the field under `at`.
 fn motion(w: &WorldlineSpec, mesh: &Mesh, at: &str) -> Result<Motion, (String, String)> {
     let field = |f: &str| format!("{at}.{f}");
@@ -716,10 +727,13 @@ fn build_scene(spec: &FixtureSpec, file: &Path) -> Result<Scene, (String, String
         ));
     }
     finite3("light.position", spec.light.position)?;
+    spectrum_ok("light.spectrum", spec.light.spectrum.as_ref())?;
     let mut objects = Vec::new();
     for (i, o) in spec.objects.iter().enumerate() {
         let at = |f: &str| format!("objects[{i}].{f}");
         let mesh = build_mesh(&o.mesh, &at("mesh"), file)?;
+        spectrum_ok(&at("material.spectrum"), o.material.spectrum.as_ref())?;
+        spectrum_ok(&at("material.emission"), o.material.emission.as_ref())?;
         let motion = match (&o.worldline, o.position) {
             (None, p) => {
                 let p = p.unwrap_or(DVec3::ZERO);

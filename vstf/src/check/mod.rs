@@ -373,6 +373,7 @@ pub fn difference(a: &Reading, b: &Reading) -> Reading {
 pub mod aberration;
 pub mod accelerated;
 pub mod blink;
+pub mod doppler;
 pub mod relativity;
 pub mod retarded;
 pub mod sphere;
@@ -424,6 +425,7 @@ pub const CHECKS: &[(&str, Check)] = &[
     ("sphere-relativistic", sphere::relativistic),
     ("sphere-classical", sphere::classical),
     ("accelerated", accelerated::run),
+    ("doppler", doppler::run),
 ];
 
 /// Runs the checks of the named fixtures (all when empty), comparing
