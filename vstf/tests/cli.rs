@@ -332,3 +332,34 @@ fn bench_quick_prints_every_figure() {
         assert!(text.contains(section), "{section:?} missing from:\n{text}");
     }
 }
+
+/// --doppler and --searchlight change the picture of moving surfaces and
+/// leave static ones alone; keyframed scenes render.
+#[test]
+fn doppler_and_searchlight_flags_change_moving_colours() {
+    let dir = std::env::temp_dir().join(format!("vstf-cli-doppler-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let render = |fixture: &str, flags: &[&str], name: &str| {
+        let out = dir.join(name);
+        let status = vstf()
+            .args(["render", fixture, "--out"])
+            .arg(&out)
+            .args(["--width", "80", "--height", "60", "--spp", "1"])
+            .args(flags)
+            .status()
+            .unwrap();
+        assert!(status.success(), "{fixture} {flags:?}");
+        image::open(&out).unwrap().to_rgb8()
+    };
+    // The accelerated fixture's plates move at up to 0.99c.
+    let plain = render("accelerated", &[], "plain.png");
+    let shifted = render("accelerated", &["--doppler"], "shifted.png");
+    let lit = render("accelerated", &["--searchlight"], "lit.png");
+    assert_ne!(plain, shifted);
+    assert_ne!(plain, lit);
+    // The stage is static and the camera at rest: every factor is 1.
+    let a = render("stage", &["--searchlight"], "stage.png");
+    let b = render("stage", &[], "stage-plain.png");
+    assert_eq!(a, b, "the searchlight of static surfaces is 1");
+    std::fs::remove_dir_all(&dir).ok();
+}
