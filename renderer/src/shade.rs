@@ -358,6 +358,11 @@ impl Shader<'_> {
     fn shade_traced<T: Trace>(&self, ray: &Ray, hit: &Hit, depth: u32, trace: &mut T) -> DVec3 {
         let lit = self.lit(ray, hit, trace);
         let m = &self.db.objects()[lit.object as usize].material;
+        if self.effects.searchlight && (lit.out <= 0.0 || lit.from_light <= 0.0) {
+            // A superluminal decoupled surface running into its own light:
+            // no Doppler factor exists.
+            return DVec3::ZERO;
+        }
         let albedo = m.color_at(lit.tau);
         let ambient = albedo * self.light.ambient;
         let (mut diffuse, mut specular) = (DVec3::ZERO, 0.0);

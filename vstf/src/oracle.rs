@@ -202,6 +202,12 @@ impl PointHyperbola {
     pub fn at(&self, t: f64) -> DVec3 {
         self.centre + self.n * self.big_a.hypot(t - self.centre_t)
     }
+
+    /// Lab velocity at lab time `t`: n T / sqrt(A^2 + T^2).
+    pub fn velocity(&self, t: f64) -> DVec3 {
+        let big_t = t - self.centre_t;
+        self.n * (big_t / self.big_a.hypot(big_t))
+    }
 }
 
 /// Where the camera at (`tc`, `camera`) sees a point under hyperbolic

@@ -7,13 +7,13 @@
 //! ([`crate::oracle::retarded_hyperbolic`]). The Lorentz-decoupled plate
 //! moves every point on the same hyperbola; the Born-rigid one gives the
 //! point at rest-frame offset xi its own, A = 1/a + xi about the same
-//! centre. The tolerance adds the keyframes' stated error bound to the
-//! measurement's.
+//! centre. The tolerance adds the keyframes' stated error bound, as it
+//! moves the seen point, to the measurement's.
 
 use super::{background, is_background, trace_rows, Edge, Effort, FixtureReport, Row, Setup};
 use crate::fixture::{Fixture, Overrides};
 use crate::measure::{edge, Plane};
-use crate::oracle::{retarded_hyperbolic, PointHyperbola};
+use crate::oracle::{retarded_hyperbolic, PointHyperbola, Retarded};
 use glam::DVec3;
 use renderer::{Hyperbolic, Motion, ObjectKind};
 
@@ -43,6 +43,15 @@ fn point(h: &Hyperbolic, r: DVec3, born_rigid: bool) -> PointHyperbola {
         big_a: p.big_a + xi,
         ..p
     }
+}
+
+/// How far the seen point can move when the path is off by up to
+/// `delta` along the motion: the light-cone intersection slides along the
+/// worldline, so the seen position moves by delta / (1 - v.k), k the unit
+/// vector from the emission towards the camera.
+fn seen_shift(p: &PointHyperbola, seen: &Retarded, camera: DVec3, delta: f64) -> f64 {
+    let k = (camera - seen.x).normalize();
+    delta / (1.0 - p.velocity(seen.t).dot(k))
 }
 
 pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
@@ -102,7 +111,13 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
                     reading.value,
                     expected.x.x,
                     None,
-                    reading.tolerance + h.tolerance,
+                    reading.tolerance
+                        + seen_shift(
+                            &point(&h, DVec3::new(x, mid, 0.0), born),
+                            &expected,
+                            cam,
+                            h.tolerance,
+                        ),
                     "l.units",
                 ));
             }
