@@ -54,6 +54,7 @@ pub enum Output {
 }
 
 impl Output {
+    /// A `.gif` or `.png`/`.apng` file, else a folder of PNG frames.
     pub fn from_path(p: &Path) -> Output {
         match p
             .extension()
@@ -83,6 +84,7 @@ impl Output {
     }
 }
 
+/// The PNG of frame `i` in a frames folder.
 pub fn frame_path(dir: &Path, i: usize) -> PathBuf {
     dir.join(format!("frame-{i:05}.png"))
 }

@@ -187,21 +187,46 @@ fn memory() -> (u64, u64) {
     (field("VmRSS:"), field("VmHWM:"))
 }
 
+/// Sizes of one benchmark run.
+struct Plan {
+    quick: bool,
+    /// Image size for sections 1, 2 and 4.
+    w: u32,
+    h: u32,
+    /// Timed repetitions; the best is kept.
+    runs: usize,
+}
+
 /// Runs the benchmark and returns the report. `quick` uses smaller images
 /// and scenes (for a smoke test); the README quotes a full run.
 pub fn run(quick: bool) -> Result<String, String> {
-    let mut out = String::new();
     let (w, h) = if quick { (160, 90) } else { (640, 360) };
-    let runs = if quick { 1 } else { 3 };
+    let plan = Plan {
+        quick,
+        w,
+        h,
+        runs: if quick { 1 } else { 3 },
+    };
+    let mut out = String::new();
     let threads = rayon::current_num_threads();
     let _ = writeln!(
         out,
-        "vstf bench ({} run, {threads} threads; best of {runs})",
-        if quick { "quick" } else { "full" }
+        "vstf bench ({} run, {threads} threads; best of {})",
+        if quick { "quick" } else { "full" },
+        plan.runs
     );
+    // 5 first, while the process is small.
+    memory_per_tetrahedron(&plan, &mut out)?;
+    rays_per_second(&plan, &mut out)?;
+    against_brute_force(&plan, &mut out)?;
+    growth(&plan, &mut out)?;
+    teaser_frame(&plan, &mut out)?;
+    Ok(out)
+}
 
-    // 5 first, while the process is small: peak memory per million tetrahedra.
-    let n_mem = if quick { 2_800 } else { 27_778 };
+/// 5. Peak memory per million tetrahedra.
+fn memory_per_tetrahedron(plan: &Plan, out: &mut String) -> Result<(), String> {
+    let n_mem = if plan.quick { 2_800 } else { 27_778 };
     let (rss0, _) = memory();
     let scene = boxes(n_mem, 5);
     let db = Database::build(&scene, false).map_err(|e| e.to_string())?;
@@ -210,8 +235,12 @@ pub fn run(quick: bool) -> Result<String, String> {
     drop(db);
     let per_million = (peak.saturating_sub(rss0)) as f64 / 1e6 / (tets as f64 / 1e6);
     let _ = writeln!(out, "\n5. memory: building {tets} tetrahedra raised the peak by {:.0} MB: {per_million:.0} MB per million tetrahedra", (peak.saturating_sub(rss0)) as f64 / 1e6);
+    Ok(())
+}
 
-    // 1. Rays per second; 2. relativistic against infinite.
+/// 1. Rays per second; 2. relativistic against infinite.
+fn rays_per_second(plan: &Plan, out: &mut String) -> Result<(), String> {
+    let (w, h, runs) = (plan.w, plan.h, plan.runs);
     let _ = writeln!(
         out,
         "\n1. primary rays per second at {w}x{h}, 1 sample per pixel"
@@ -246,10 +275,17 @@ pub fn run(quick: bool) -> Result<String, String> {
     for (name, r) in ratios {
         let _ = writeln!(out, "   {name:10} {r:.2}x");
     }
+    Ok(())
+}
 
-    // 3. Accelerated against brute force, on many moving boxes.
-    let counts: &[usize] = if quick { &[28, 278] } else { &[28, 278, 2_778] };
-    let (bw, bh) = if quick { (24, 18) } else { (48, 36) };
+/// 3. Accelerated against brute force, on many moving boxes.
+fn against_brute_force(plan: &Plan, out: &mut String) -> Result<(), String> {
+    let counts: &[usize] = if plan.quick {
+        &[28, 278]
+    } else {
+        &[28, 278, 2_778]
+    };
+    let (bw, bh) = if plan.quick { (24, 18) } else { (48, 36) };
     let _ = writeln!(
         out,
         "\n3. accelerated against brute force, N moving boxes, {bw}x{bh} (goal >= 100x at 10k)"
@@ -267,7 +303,7 @@ pub fn run(quick: bool) -> Result<String, String> {
         let brute = best_of(1, || drop(render_boxes(&db, &scene, &small)));
         db.set_traversal(Traversal::Bvh);
         let reps = 20;
-        let bvh = best_of(runs, || {
+        let bvh = best_of(plan.runs, || {
             (0..reps).for_each(|_| drop(render_boxes(&db, &scene, &small)))
         }) / reps as f64;
         let _ = writeln!(
@@ -277,9 +313,13 @@ pub fn run(quick: bool) -> Result<String, String> {
             brute / bvh
         );
     }
+    Ok(())
+}
 
-    // 4. Growth with the tetrahedron count at a constant picture, and build time.
-    let ks: &[u32] = if quick { &[1, 3] } else { &[1, 3, 10, 32] };
+/// 4. Growth with the tetrahedron count at a constant picture, and build time.
+fn growth(plan: &Plan, out: &mut String) -> Result<(), String> {
+    let (w, h) = (plan.w, plan.h);
+    let ks: &[u32] = if plan.quick { &[1, 3] } else { &[1, 3, 10, 32] };
     let _ = writeln!(out, "\n4. the same 28 moving boxes, faces cut k x k, at {w}x{h} (goal: frame time about logarithmic)");
     let _ = writeln!(
         out,
@@ -292,7 +332,7 @@ pub fn run(quick: bool) -> Result<String, String> {
         let t = Instant::now();
         let db = Database::build(&scene, false).map_err(|e| e.to_string())?;
         let build = t.elapsed().as_secs_f64();
-        let frame = best_of(runs, || {
+        let frame = best_of(plan.runs, || {
             drop(render_boxes(&db, &scene, &boxes_camera(w, h)))
         });
         let n = db.tetrahedra().len();
@@ -310,16 +350,20 @@ pub fn run(quick: bool) -> Result<String, String> {
             build / frame
         );
     }
-    // 6. The main job's frame goal.
-    let (fw, fh) = if quick { (480, 270) } else { (1920, 1080) };
+    Ok(())
+}
+
+/// 6. The main job's frame goal.
+fn teaser_frame(plan: &Plan, out: &mut String) -> Result<(), String> {
+    let (fw, fh) = if plan.quick { (480, 270) } else { (1920, 1080) };
     let (f, view) = fixture_view("teaser", fw, fh, Model::RELATIVISTIC)?;
     let t = Instant::now();
     let db = crate::run::database(&f, true, Traversal::Bvh)?;
     let build = t.elapsed().as_secs_f64();
-    let frame = best_of(runs, || drop(crate::run::render_with(&db, &f, &view)));
+    let frame = best_of(plan.runs, || drop(crate::run::render_with(&db, &f, &view)));
     let _ = writeln!(
         out,
         "\n6. one {fw}x{fh} teaser frame, relativistic, shadows and reflections, 1 sample per pixel: {frame:.2} s (+ {build:.3} s to build the database once; goal < 2 s)"
     );
-    Ok(out)
+    Ok(())
 }

@@ -14,14 +14,21 @@ use std::fmt::Write as _;
 /// Everything recorded for one pixel.
 #[derive(Clone, Debug, Serialize)]
 pub struct PixelLog {
+    /// Fixture name.
     pub fixture: String,
+    /// Light-speed model of the view.
     pub model: String,
+    /// Camera lab time, t.units.
     pub camera_t: f64,
+    /// Camera lab position at `camera_t`.
     pub camera: DVec3,
+    /// Pixel column and row.
     pub pixel: [u32; 2],
+    /// Every variable recorded along the pixel's rays, in order.
     pub steps: Vec<Step>,
     /// Linear colour, and as stored in the 8-bit image.
     pub color: DVec3,
+    /// The colour as stored in the 8-bit image.
     pub rgb8: [u8; 3],
 }
 
@@ -192,10 +199,13 @@ fn spectrum_line(nm: &[f64], values: &[f64]) -> String {
 pub struct Difference {
     /// Line number (1-based) in the logs.
     pub line: usize,
+    /// The pixel, as written in the log (`[x,y]`).
     pub pixel: String,
     /// JSON path of the field, e.g. `steps[4].event.t`.
     pub path: String,
+    /// The value in the first log.
     pub a: String,
+    /// The value in the second log.
     pub b: String,
 }
 

@@ -18,7 +18,9 @@ use std::path::{Path, PathBuf};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Fuzzy {
+    /// Largest channel difference allowed in any pixel (0-255).
     pub max_diff: u8,
+    /// Most pixels allowed to differ at all.
     pub max_pixels: u64,
 }
 
@@ -31,13 +33,19 @@ impl fmt::Display for Fuzzy {
 /// The result of comparing one view with its golden.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Comparison {
+    /// Fixture name.
     pub fixture: String,
+    /// View name within the fixture.
     pub view: String,
+    /// The fixture's stated tolerance.
     pub allowed: Fuzzy,
     /// `None` when there is no golden (or it has another size).
     pub max_diff: Option<u8>,
+    /// Number of pixels that differ at all.
     pub differing: u64,
+    /// Whether no golden exists for the view.
     pub missing: bool,
+    /// Within the tolerance.
     pub pass: bool,
     /// Where the pending actual, expected and diff images were written.
     pub pending: Option<PathBuf>,
@@ -123,8 +131,11 @@ pub fn slug(s: &str) -> String {
 /// A pending image waiting for approval.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pending {
+    /// Fixture name.
     pub fixture: String,
+    /// View name within the fixture.
     pub view: String,
+    /// The pending actual image.
     pub actual: PathBuf,
     /// Whether a golden exists (then this is a change, else a new image).
     pub replaces: bool,
@@ -133,7 +144,9 @@ pub struct Pending {
 /// Where goldens and pending images live.
 #[derive(Clone, Debug)]
 pub struct Store {
+    /// Approved images, `<fixture>/<view>.png`.
     pub golden: PathBuf,
+    /// Pending images, `<fixture>/<view>/{actual,expected,diff}.png`.
     pub pending: PathBuf,
 }
 
@@ -149,12 +162,14 @@ impl Store {
         }
     }
 
+    /// The approved image of a view.
     pub fn golden_path(&self, fixture: &str, view: &str) -> PathBuf {
         self.golden
             .join(slug(fixture))
             .join(format!("{}.png", slug(view)))
     }
 
+    /// The folder of a view's pending images.
     pub fn pending_dir(&self, fixture: &str, view: &str) -> PathBuf {
         self.pending.join(slug(fixture)).join(slug(view))
     }
