@@ -3,6 +3,10 @@
 //! flow: the 4D database and the rays that meet it, the images rendered from
 //! it, and the VSTF harness that measures and judges them.
 
+// Float comparisons everywhere use approx's macros with explicit tolerances.
+#[macro_use]
+extern crate approx;
+
 /// Temporal extrusion, light-cone intersection, analytic spheres and
 /// keyframed motion: what the 4D database holds and what rays find in it.
 mod spacetime {
