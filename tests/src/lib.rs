@@ -63,6 +63,8 @@ pub fn scene(objects: Vec<SceneObject>) -> Scene {
     }
 }
 
+/// An object named `name` of the given kind, mesh and motion, matte orange
+/// (0.8, 0.5, 0.2), neither an analytic sphere nor blinking.
 pub fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> SceneObject {
     SceneObject {
         sphere: None,

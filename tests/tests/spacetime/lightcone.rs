@@ -95,8 +95,8 @@ fn normalized_light_cone_direction_has_t_minus_sqrt2_over_2() {
     for _ in 0..100 {
         let r = random_ray(&mut rng, LightSpeed::Finite);
         let n = r.normalized_direction();
-        assert!((n.t + std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-15);
-        assert!(n.interval().abs() < 1e-15);
+        assert_abs_diff_eq!(n.t, -std::f64::consts::FRAC_1_SQRT_2, epsilon = 1e-15);
+        assert_abs_diff_eq!(n.interval(), 0.0, epsilon = 1e-15);
     }
 }
 
@@ -127,7 +127,7 @@ fn hits_lie_on_the_light_cone_inside_their_tetrahedron() {
                 "{:?}",
                 hit.bary
             );
-            assert!((hit.bary.iter().sum::<f64>() - 1.0).abs() < 1e-9);
+            assert_abs_diff_eq!(hit.bary.iter().sum::<f64>(), 1.0, epsilon = 1e-9);
             // Rebuild the event from the barycentric coordinates alone.
             let v = db.tetrahedra()[hit.tet as usize].vertices;
             let from_bary = (0..4).fold(glam::DVec4::ZERO, |acc, i| {
@@ -138,12 +138,12 @@ fn hits_lie_on_the_light_cone_inside_their_tetrahedron() {
                     .map(|e| e.to_xyzt().abs().max_element())
                     .fold(0.0, f64::max);
             assert!(
-                (from_bary - hit.event.to_xyzt()).abs().max_element() < 1e-9 * scale,
+                abs_diff_eq!(from_bary, hit.event.to_xyzt(), epsilon = 1e-9 * scale),
                 "event off its tetrahedron"
             );
             let d = Event::from_xyzt(from_bary) - ray.origin;
             assert!(
-                d.interval().abs() < 1e-9 * (d.t * d.t).max(1.0),
+                abs_diff_eq!(d.interval(), 0.0, epsilon = 1e-9 * (d.t * d.t).max(1.0)),
                 "not null: {}",
                 d.interval()
             );
@@ -190,7 +190,7 @@ fn tetrahedron_solve_agrees_with_comoving_closed_form() {
                     let e = ray.at(s);
                     let scale = 1.0 + e.t.abs() + e.x.abs().max_element();
                     assert!(
-                        (e.to_xyzt() - h.event.to_xyzt()).abs().max_element() < 1e-9 * scale,
+                        abs_diff_eq!(e.to_xyzt(), h.event.to_xyzt(), epsilon = 1e-9 * scale),
                         "events differ: {e:?} vs {:?}",
                         h.event
                     );

@@ -78,7 +78,11 @@ fn the_log_holds_the_variables_along_the_ray() {
         } = s
         {
             assert!(
-                (normalized.t + std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-12,
+                abs_diff_eq!(
+                    normalized.t,
+                    -std::f64::consts::FRAC_1_SQRT_2,
+                    epsilon = 1e-12
+                ),
                 "not on a light cone"
             );
             assert_eq!(direction.t, -1.0);
@@ -92,7 +96,7 @@ fn the_log_holds_the_variables_along_the_ray() {
         {
             let d = *event - view.camera.event;
             assert!(
-                d.interval().abs() < 1e-9 * d.t * d.t,
+                abs_diff_eq!(d.interval(), 0.0, epsilon = 1e-9 * d.t * d.t),
                 "the primary hit is off the light cone"
             );
         }
@@ -278,15 +282,15 @@ fn doppler_factors_and_spectra_are_logged() {
         });
         let (d, nm, radiance, g) = doppler.expect("no Doppler step for a hit");
         assert!(
-            (d - expected).abs() < 1e-12,
+            abs_diff_eq!(d, expected, epsilon = 1e-12),
             "{object}: D {d} vs {expected}"
         );
-        assert!((g - gamma).abs() < 1e-12);
+        assert_abs_diff_eq!(g, gamma, epsilon = 1e-12);
         assert_eq!(nm.len(), band.len());
         assert_eq!(radiance.len(), band.len());
         for (s, b) in nm.iter().zip(band) {
             assert!(
-                (s - b * d).abs() < 1e-9,
+                abs_diff_eq!(*s, b * d, epsilon = 1e-9),
                 "surface-frame wavelengths are the band times D"
             );
         }

@@ -189,13 +189,17 @@ fn a_flange_shifted_by_a_hundredth_is_caught() {
     let honest = vstf::check::retarded::measure_foot(&f, model, 940.0, &Effort::QUICK).unwrap();
     let moved =
         vstf::check::retarded::measure_foot(&shifted, model, 940.0, &Effort::QUICK).unwrap();
-    assert!((honest.value - expected).abs() <= honest.tolerance);
+    assert_abs_diff_eq!(honest.value, expected, epsilon = honest.tolerance);
     assert!(
-        (moved.value - expected).abs() > moved.tolerance,
+        abs_diff_ne!(moved.value, expected, epsilon = moved.tolerance),
         "a 0.01 shift went unnoticed (tolerance {})",
         moved.tolerance
     );
-    assert!((moved.value - honest.value - 0.01).abs() < 2.0 * moved.tolerance);
+    assert_abs_diff_eq!(
+        moved.value - honest.value,
+        0.01,
+        epsilon = 2.0 * moved.tolerance
+    );
 }
 
 #[test]

@@ -1,4 +1,4 @@
-//! Keyframed motion (issue 6, item 5): every hit on a keyframed object lies
+//! Keyframed motion: every hit on a keyframed object lies
 //! on its triangle as interpolated at the hit's lab time, a closed mesh stays
 //! closed in spacetime while it turns, and the hierarchy finds exactly what
 //! brute force finds.

@@ -241,7 +241,7 @@ fn the_shutter_blurs_a_moving_edge_over_its_travel() {
     );
     let got = ramp(&blurred) as f64;
     assert!(
-        (got - expected).abs() <= 0.2 * expected + 2.0,
+        abs_diff_eq!(got, expected, epsilon = 0.2 * expected + 2.0),
         "blur spans {got} pixels, expected about {expected:.1}"
     );
 }
@@ -278,14 +278,14 @@ fn a_v_obj_clock_and_lifetime_are_dilated() {
     let cls = Database::build(&scene, false).unwrap();
     let (r, c) = (&rel.objects()[0], &cls.objects()[0]);
     assert!(
-        (r.lifetime().1 - r.lifetime().0 - 10.0).abs() < 1e-12,
+        abs_diff_eq!(r.lifetime().1 - r.lifetime().0, 10.0, epsilon = 1e-12),
         "lab lifetime gamma * 8"
     );
-    assert!((c.lifetime().1 - c.lifetime().0 - 8.0).abs() < 1e-12);
+    assert_abs_diff_eq!(c.lifetime().1 - c.lifetime().0, 8.0, epsilon = 1e-12);
     // 5 lab t.units along the reference point's worldline are 4 of its own.
     let e = Event::new(5.0, v * 5.0);
-    assert!((r.proper_time(e) - 4.0).abs() < 1e-12);
-    assert!((c.proper_time(e) - 5.0).abs() < 1e-12);
+    assert_abs_diff_eq!(r.proper_time(e), 4.0, epsilon = 1e-12);
+    assert_abs_diff_eq!(c.proper_time(e), 5.0, epsilon = 1e-12);
     // The blink follows proper time: on in [0, 1), off in [1, 2) of each period.
     let m = &r.material;
     assert_eq!(
@@ -306,5 +306,8 @@ fn a_v_obj_clock_and_lifetime_are_dilated() {
         .collect();
     let len =
         xs.iter().cloned().fold(f64::MIN, f64::max) - xs.iter().cloned().fold(f64::MAX, f64::min);
-    assert!((len - 1.6).abs() < 1e-12, "contracted length {len}");
+    assert!(
+        abs_diff_eq!(len, 1.6, epsilon = 1e-12),
+        "contracted length {len}"
+    );
 }

@@ -51,7 +51,7 @@ fn three_tetrahedra_tile_the_prism() {
         let sum: f64 = tets.iter().map(tetrahedron_volume).sum();
         let expected = prism_volume(bottom[1] - bottom[0], bottom[2] - bottom[0], e);
         assert!(
-            (sum - expected).abs() <= 1e-9 * expected,
+            abs_diff_eq!(sum, expected, epsilon = 1e-9 * expected),
             "tets {sum} vs prism {expected}"
         );
         // Every interior point of the prism lies in exactly one tetrahedron.

@@ -73,9 +73,15 @@ fn analytic_hits_lie_on_the_light_cone_and_the_contracted_sphere() {
             };
             hits += 1;
             let d = h.event - cam;
-            assert!(d.interval().abs() < 1e-9 * d.t * d.t, "off the light cone");
+            assert!(
+                abs_diff_eq!(d.interval(), 0.0, epsilon = 1e-9 * d.t * d.t),
+                "off the light cone"
+            );
             let r = rest_offset(h.event, v, lorentz).length();
-            assert!((r - 1.5).abs() < 1e-9, "hit at rest radius {r}");
+            assert!(
+                abs_diff_eq!(r, 1.5, epsilon = 1e-9),
+                "hit at rest radius {r}"
+            );
             let n = db.surface(&h).normal;
             assert!(
                 n.dot(h.event.x - (DVec3::new(0.0, 0.0, -8.0) + v * h.event.t)) > 0.0,
@@ -109,7 +115,7 @@ fn analytic_and_tessellated_spheres_agree() {
             compared += 1;
             // 96 segments: the facets lie within 1.5 (1 - cos(pi / 48)) of the sphere.
             assert!(
-                (a.s - b.s).abs() < 0.01,
+                abs_diff_eq!(a.s, b.s, epsilon = 0.01),
                 "analytic {} vs tessellated {}",
                 a.s,
                 b.s

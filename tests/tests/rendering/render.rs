@@ -169,7 +169,7 @@ fn a_moving_point_is_seen_at_its_retarded_position() {
             .closest_hit(&ray, (0.0, f64::INFINITY))
             .expect("the ray towards the retarded position misses");
         assert!(
-            (hit.event.t - seen.t).abs() < 1e-9 * seen.t.abs().max(1.0),
+            abs_diff_eq!(hit.event.t, seen.t, epsilon = 1e-9 * seen.t.abs().max(1.0)),
             "t {} vs {}",
             hit.event.t,
             seen.t
@@ -239,7 +239,7 @@ fn a_small_moving_marker_is_drawn_where_its_retarded_position_projects() {
     let (cx, cy) = (sx / n, sy / n);
     // The marker is ~8 px across; its silhouette's centroid sits within a pixel of its centre's image.
     assert!(
-        (cx - px).abs() < 1.0 && (cy - py).abs() < 1.0,
+        abs_diff_eq!(cx, px, epsilon = 1.0) && abs_diff_eq!(cy, py, epsilon = 1.0),
         "centroid ({cx}, {cy}) vs retarded ({px}, {py})"
     );
 }

@@ -1,0 +1,32 @@
+//! The workspace's integration tests, built as one binary (linking the
+//! renderer and the VSTF once rather than once per file). Modules follow the
+//! flow: the 4D database and the rays that meet it, the images rendered from
+//! it, and the VSTF harness that measures and judges them.
+
+// Float comparisons everywhere use approx's macros with explicit tolerances.
+#[macro_use]
+extern crate approx;
+
+/// Temporal extrusion, light-cone intersection, analytic spheres and
+/// keyframed motion: what the 4D database holds and what rays find in it.
+mod spacetime {
+    mod extrusion;
+    mod keyframes;
+    mod lightcone;
+    mod sphere;
+}
+
+/// Whole images and the shading of their pixels: light-speed models,
+/// determinism, retarded positions, shadows, mirrors, motion blur and clocks.
+mod rendering {
+    mod render;
+    mod shading;
+}
+
+/// The VSTF itself: fixture errors, the per-pixel debug log, and the checks
+/// with their snapshotted table and golden images.
+mod harness {
+    mod debug;
+    mod fixture_errors;
+    mod vstf_check;
+}

@@ -1,0 +1,85 @@
+//! `vstf animate`: frames that differ only by the camera's t, from one 4D
+//! database, with a progress bar and Ctrl-C keeping the frames finished.
+
+use super::args::AnimateArgs;
+use renderer::Traversal;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Instant;
+use vstf::fixture::{Fixture, Overrides};
+
+/// Renders the frames, assembles the GIF or APNG asked for and reports the
+/// timings; an interruption leaves the finished frames and fails.
+pub fn run(args: AnimateArgs) -> Result<(), String> {
+    let AnimateArgs {
+        fixture,
+        frames,
+        step,
+        out,
+        fps,
+        view,
+    } = args;
+    if view.camera_t.is_some() {
+        return Err("animate takes its camera times from --frames, not --camera-t".into());
+    }
+    let times = vstf::animate::frame_times(frames.0, frames.1, step)?;
+    let fixture = Fixture::load(&fixture).map_err(|e| e.to_string())?;
+    let overrides = Overrides {
+        camera_t: Some(times[0]),
+        ..view.overrides(&fixture)?
+    };
+    let view = vstf::run::view(&fixture, &overrides)?;
+    let output = vstf::animate::Output::from_path(&out);
+    let stop = stop_on_ctrl_c()?;
+    let started = Instant::now();
+    let db = vstf::run::database(&fixture, view.model.lorentz, Traversal::Bvh)?;
+    let build = started.elapsed().as_secs_f64();
+    let bar = progress_bar(times.len());
+    let done = vstf::animate::render_frames(&fixture, &view, &db, &times, &output, &stop, |n| {
+        bar.set_position(n as u64)
+    })?;
+    bar.finish_and_clear();
+    let dir = output.frames_dir();
+    if done < times.len() {
+        return Err(format!(
+            "interrupted: {done} of {} frames finished, in {}",
+            times.len(),
+            dir.display()
+        ));
+    }
+    vstf::animate::finish(&output, done, fps)?;
+    eprintln!(
+        "animated {} ({} frames, t = {}..{} step {step}, {} model, {}x{}): database built once in {build:.2} s, {:.2} s in all -> {}",
+        fixture.name,
+        done,
+        frames.0,
+        frames.1,
+        view.model,
+        view.camera.width,
+        view.camera.height,
+        started.elapsed().as_secs_f64(),
+        out.display()
+    );
+    Ok(())
+}
+
+/// A flag that Ctrl-C raises, for the renderer to stop between frames.
+fn stop_on_ctrl_c() -> Result<Arc<AtomicBool>, String> {
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))
+        .map_err(|e| format!("cannot handle Ctrl-C: {e}"))?;
+    Ok(stop)
+}
+
+/// A bar of `frames` frames with rate, elapsed time and time left.
+fn progress_bar(frames: usize) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(frames as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} frames  {per_sec}  {elapsed} elapsed, {eta} left",
+        )
+        .expect("a valid template"),
+    );
+    bar
+}

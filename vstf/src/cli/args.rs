@@ -1,0 +1,226 @@
+//! The command line's grammar: subcommands, their flags and the parsers of
+//! flag values. Each `///` on a flag is its `--help` text.
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser)]
+#[command(
+    name = "vstf",
+    version,
+    about = "Visual Software Test Fixture for a spacetime ray tracer"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+// What `--model` names: the light-speed model to render with.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum ModelArg {
+    Infinite,
+    Classical,
+    Relativistic,
+}
+
+/// Flags that override a fixture's view.
+#[derive(clap::Args, Clone, Debug)]
+pub struct ViewArgs {
+    /// Light-speed model (default: the fixture's).
+    #[arg(long, value_enum)]
+    pub model: Option<ModelArg>,
+    /// Insert V_obj objects Lorentz-transformed (with --model infinite: the
+    /// contracted objects as they are at t_c).
+    #[arg(long)]
+    pub lorentz: bool,
+    /// Camera lab time, t.units.
+    #[arg(long, allow_hyphen_values = true)]
+    pub camera_t: Option<f64>,
+    /// Image width, pixels.
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height, pixels.
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Samples per pixel (4D anti-aliasing).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Doppler-shift the colours: spectral rendering, wavelengths followed
+    /// along each leg of the light's path (off by default: it can hide the
+    /// geometry).
+    #[arg(long)]
+    pub doppler: bool,
+    /// Scale intensities by the searchlight effect (powers of the Doppler
+    /// factor; see docs/physics.md).
+    #[arg(long)]
+    pub searchlight: bool,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Render one view of a fixture to a PNG.
+    Render(RenderArgs),
+    /// Render every fixture (or the named ones), measure the images and check
+    /// them against first-principles physics; exits non-zero if a row fails.
+    Check(CheckArgs),
+    /// Approve pending images (from failed or missing golden comparisons of
+    /// `vstf check`) as the new golden images. Refused when CI is set.
+    Approve(ApproveArgs),
+    /// Print every variable along one pixel's rays, or log a region's pixels
+    /// as JSON lines.
+    Debug(DebugArgs),
+    /// Compare two debug logs; exits non-zero when they differ beyond the tolerance.
+    DebugDiff(DebugDiffArgs),
+    /// Render an animation: frames differ only by the camera's t, and the 4D
+    /// database is built once.
+    Animate(AnimateArgs),
+    /// Measure rendering speed: rays per second, relativistic against
+    /// infinite light speed, BVH against brute force, growth with scene size,
+    /// build time and memory.
+    Bench {
+        /// Small images and scenes (a smoke test, not figures to quote).
+        #[arg(long)]
+        quick: bool,
+    },
+    /// List the fixtures in fixtures/.
+    List,
+}
+
+// The argument structs below carry `//`, not `///`: clap would take a doc
+// comment for the subcommand's help, which the `Command` variant gives.
+
+// `vstf render`.
+#[derive(clap::Args)]
+pub struct RenderArgs {
+    /// A fixture JSON file, or the name of one in fixtures/.
+    pub fixture: String,
+    /// Output PNG.
+    #[arg(long)]
+    pub out: PathBuf,
+    #[command(flatten)]
+    pub view: ViewArgs,
+    /// Test every tetrahedron for every ray (no acceleration structure).
+    #[arg(long)]
+    pub brute_force: bool,
+}
+
+// `vstf check`.
+#[derive(clap::Args)]
+pub struct CheckArgs {
+    /// Fixture names (default: all checked fixtures).
+    pub fixtures: Vec<String>,
+    /// Also write the rows as a JSON array to this file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Also write a static HTML report (index.html and images) into this folder.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// Smaller probes and fewer samples (what `cargo test` uses).
+    #[arg(long)]
+    pub quick: bool,
+}
+
+// `vstf approve`.
+#[derive(clap::Args)]
+pub struct ApproveArgs {
+    /// Fixtures whose pending images to approve.
+    pub fixtures: Vec<String>,
+    /// Approve every pending image.
+    #[arg(long, conflicts_with = "fixtures")]
+    pub all: bool,
+    /// Only list what is pending.
+    #[arg(long, conflicts_with_all = ["fixtures", "all"])]
+    pub list: bool,
+}
+
+// `vstf debug`.
+#[derive(clap::Args)]
+pub struct DebugArgs {
+    /// A fixture JSON file, or the name of one in fixtures/.
+    pub fixture: String,
+    /// The pixel to trace, X,Y (from the top left).
+    #[arg(long, value_parser = parse_pair, required_unless_present = "region", conflicts_with = "region")]
+    pub pixel: Option<(u32, u32)>,
+    /// A region to log, X0,Y0,X1,Y1 (inclusive).
+    #[arg(long, value_parser = parse_region, requires = "log")]
+    pub region: Option<(u32, u32, u32, u32)>,
+    /// Write one JSON object per pixel to this file.
+    #[arg(long)]
+    pub log: Option<PathBuf>,
+    #[command(flatten)]
+    pub view: ViewArgs,
+    /// Test every tetrahedron for every ray (no acceleration structure).
+    #[arg(long)]
+    pub brute_force: bool,
+}
+
+// `vstf debug-diff`.
+#[derive(clap::Args)]
+pub struct DebugDiffArgs {
+    pub a: PathBuf,
+    pub b: PathBuf,
+    /// Relative tolerance on numbers: |a - b| <= tol * max(1, |a|, |b|).
+    #[arg(long, default_value_t = 0.0)]
+    pub tol: f64,
+    /// Skip steps of this kind (e.g. candidate, which a change of traversal changes).
+    #[arg(long)]
+    pub ignore: Vec<String>,
+    /// How many differing pixels to print.
+    #[arg(long, default_value_t = 10)]
+    pub show: usize,
+}
+
+// `vstf animate`.
+#[derive(clap::Args)]
+pub struct AnimateArgs {
+    /// A fixture JSON file, or the name of one in fixtures/.
+    pub fixture: String,
+    /// Camera times A..B (inclusive).
+    #[arg(long, value_parser = vstf::animate::parse_range, allow_hyphen_values = true)]
+    pub frames: (f64, f64),
+    /// Camera time between frames, t.units.
+    #[arg(long, default_value_t = 1.0)]
+    pub step: f64,
+    /// A folder (PNG sequence), FILE.gif (animated GIF) or FILE.png (APNG).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Frames per second of the GIF or APNG.
+    #[arg(long, default_value_t = 10)]
+    pub fps: u32,
+    #[command(flatten)]
+    pub view: ViewArgs,
+}
+
+/// Parses `--pixel X,Y`.
+fn parse_pair(s: &str) -> Result<(u32, u32), String> {
+    let v: Vec<u32> = s
+        .split(',')
+        .map(|p| {
+            p.trim()
+                .parse::<u32>()
+                .map_err(|_| format!("{s:?}: expected X,Y"))
+        })
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [x, y] => Ok((x, y)),
+        _ => Err(format!("{s:?}: expected X,Y")),
+    }
+}
+
+/// Parses `--region X0,Y0,X1,Y1`, corners in order.
+fn parse_region(s: &str) -> Result<(u32, u32, u32, u32), String> {
+    let v: Vec<u32> = s
+        .split(',')
+        .map(|p| {
+            p.trim()
+                .parse::<u32>()
+                .map_err(|_| format!("{s:?}: expected X0,Y0,X1,Y1"))
+        })
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [x0, y0, x1, y1] if x0 <= x1 && y0 <= y1 => Ok((x0, y0, x1, y1)),
+        _ => Err(format!(
+            "{s:?}: expected X0,Y0,X1,Y1 with X0 <= X1 and Y0 <= Y1"
+        )),
+    }
+}

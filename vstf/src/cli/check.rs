@@ -1,0 +1,50 @@
+//! `vstf check`: every fixture rendered, measured and checked against
+//! first-principles physics and its golden images.
+
+use super::args::CheckArgs;
+use std::time::Instant;
+use vstf::check::{Effort, Row};
+use vstf::golden::{Comparison, Store};
+
+/// Prints the table of rows and the golden comparisons, writes the JSON and
+/// HTML reports asked for, and fails if any row or image fails.
+pub fn run(args: CheckArgs) -> Result<(), String> {
+    let CheckArgs {
+        fixtures,
+        json,
+        report,
+        quick,
+    } = args;
+    let effort = if quick { Effort::QUICK } else { Effort::FULL };
+    let started = Instant::now();
+    let store = Store::workspace();
+    let reports = vstf::check::run(&fixtures, &effort, &store)?;
+    let rows: Vec<Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
+    print!("{}", vstf::report::table(&rows));
+    let goldens: Vec<&Comparison> = reports.iter().flat_map(|r| &r.goldens).collect();
+    for g in &goldens {
+        println!("{g}");
+    }
+    let failed = goldens.iter().filter(|g| !g.pass).count();
+    println!("golden: {} passed, {failed} failed", goldens.len() - failed);
+    if failed > 0 {
+        eprintln!("golden images differ or are missing: look at the pending images under {}, then `vstf approve --list` and `vstf approve FIXTURE...` if the change is right", store.pending.display());
+    }
+    eprintln!(
+        "checked {} fixtures in {:.1} s",
+        reports.len(),
+        started.elapsed().as_secs_f64()
+    );
+    if let Some(path) = json {
+        vstf::output::write_atomic(&path, vstf::report::json(&rows).as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    }
+    if let Some(dir) = report {
+        vstf::report::html(&dir, &reports)?;
+        eprintln!("report: {}", dir.join("index.html").display());
+    }
+    if rows.iter().any(|r| !r.pass) || failed > 0 {
+        return Err("some checks failed".into());
+    }
+    Ok(())
+}

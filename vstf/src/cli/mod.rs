@@ -1,0 +1,14 @@
+//! The `vstf` command line: [`args`] is its grammar, [`view`] turns the view
+//! flags into a fixture's view and database, and each subcommand has its
+//! module: [`render`], [`check`], [`approve`], [`debug`] (with
+//! `debug-diff`), [`animate`], [`bench`] and [`list`].
+
+pub mod animate;
+pub mod approve;
+pub mod args;
+pub mod bench;
+pub mod check;
+pub mod debug;
+pub mod list;
+pub mod render;
+pub mod view;

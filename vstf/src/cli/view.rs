@@ -1,0 +1,62 @@
+//! From the view flags to what rendering needs: the fixture, its view with
+//! the flags applied, and its 4D database.
+
+use super::args::{ModelArg, ViewArgs};
+use renderer::{Database, Model, Traversal};
+use vstf::fixture::{Fixture, Overrides, View};
+
+impl ViewArgs {
+    /// The fixture overrides these flags ask for.
+    pub fn overrides(&self, fixture: &Fixture) -> Result<Overrides, String> {
+        Ok(Overrides {
+            model: model_of(self.model, self.lorentz, fixture)?,
+            camera_t: self.camera_t,
+            width: self.width,
+            height: self.height,
+            spp: self.spp,
+            doppler: self.doppler,
+            searchlight: self.searchlight,
+        })
+    }
+}
+
+/// The model `--model` and `--lorentz` ask for; `--lorentz` alone turns on
+/// the Lorentz transform in the fixture's own model.
+fn model_of(
+    arg: Option<ModelArg>,
+    lorentz: bool,
+    fixture: &Fixture,
+) -> Result<Option<Model>, String> {
+    let base = match arg {
+        Some(ModelArg::Infinite) => Some(Model::INFINITE),
+        Some(ModelArg::Classical) => Some(Model::CLASSICAL),
+        Some(ModelArg::Relativistic) => Some(Model::RELATIVISTIC),
+        None if lorentz => Some(
+            fixture
+                .model(&Overrides::default())
+                .map_err(|(p, m)| format!("{p}: {m}"))?,
+        ),
+        None => None,
+    };
+    Ok(base.map(|m| Model {
+        lorentz: m.lorentz || lorentz,
+        ..m
+    }))
+}
+
+/// Loads a fixture, applies the view flags and builds the database.
+pub fn prepare(
+    name: &str,
+    args: &ViewArgs,
+    brute_force: bool,
+) -> Result<(Fixture, View, Database), String> {
+    let fixture = Fixture::load(name).map_err(|e| e.to_string())?;
+    let view = vstf::run::view(&fixture, &args.overrides(&fixture)?)?;
+    let traversal = if brute_force {
+        Traversal::BruteForce
+    } else {
+        Traversal::Bvh
+    };
+    let db = vstf::run::database(&fixture, view.model.lorentz, traversal)?;
+    Ok((fixture, view, db))
+}
