@@ -11,9 +11,10 @@
 //! edge falls on the grid 10 l.units ahead.
 
 use super::{
-    background, is_background, trace_rows, Edge, Effort, FixtureReport, Reading, Row, Setup,
+    background, fixture_model, is_background, trace_rows, Edge, Effort, Findings, Quantity,
+    Reading, Setup, Unit, ViewReport,
 };
-use crate::fixture::{Fixture, Overrides};
+use crate::fixture::Fixture;
 use crate::measure::{edge, Plane};
 use crate::oracle::{
     aberrate_galilean, aberrate_lorentz, body_point, contract, extremes_on_polygon, retarded,
@@ -273,205 +274,408 @@ fn coarse_strip(
     ))
 }
 
-pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
-    let control = Fixture::load(NAME).map_err(|e| e.to_string())?;
-    let base = control
-        .model(&Overrides::default())
-        .map_err(|(p, m)| format!("{p}: {m}"))?;
-    let mut rows = Vec::new();
-    let mut views = Vec::new();
-    let mut cases: Vec<(String, Option<Season>, f64, Model)> =
-        vec![("at rest".into(), None, 0.0, base)];
-    for beta in [0.5, 0.866] {
-        for model in [Model::CLASSICAL, Model::RELATIVISTIC] {
-            for s in SEASONS {
-                cases.push((format!("{} {beta}c {model}", s.name), Some(s), beta, model));
-            }
+/// One view of the cube: the Earth's season at speed `beta` (None: the
+/// control view, at rest) under `model`.
+#[derive(Clone, Copy)]
+struct Case {
+    season: Option<Season>,
+    beta: f64,
+    model: Model,
+}
+
+impl Case {
+    /// The view's name, prefixing its quantities.
+    fn label(&self) -> String {
+        match self.season {
+            None => "at rest".into(),
+            Some(s) => format!("{} {}c {}", s.name, self.beta, self.model),
         }
     }
-    let rest_right = (0.5f64).atan().to_degrees();
-    for (label, season, beta, model) in cases {
-        let u = season.map_or(DVec3::ZERO, |s| -s.earth * beta);
-        let (f, centre) = moving(&control, u, model)?;
-        let setup = Setup {
-            fixture: &f,
-            model,
-            camera_t: 0.0,
-        };
-        let (coarse_l, coarse_r) = coarse_edges(&setup)?;
-        let left = measure_edge(&setup, coarse_l, false, effort)?;
-        let right = measure_edge(&setup, coarse_r, true, effort)?;
-        let (exp_l, exp_r) = expected_edges(centre, u, model.lorentz);
-        let row = |q: &str, m: &Reading, e: f64, paper: Option<f64>, unit: &str| {
-            Row::new(
-                NAME,
-                &format!("{label}: {q}"),
-                m.value,
-                e,
-                paper,
-                m.tolerance,
-                unit,
-            )
-        };
-        rows.push(row("left edge azimuth", &left, exp_l, None, "deg"));
-        rows.push(row("right edge azimuth", &right, exp_r, None, "deg"));
-        if let Some(s) = season {
-            // The same season seen the paper's way: the Earth moving, the star at rest.
-            let w = s.earth * beta;
-            let fe = earth_moving(&control, w);
-            let earth = Setup {
-                fixture: &fe,
-                model,
-                camera_t: 0.0,
-            };
-            let (cl, cr) = coarse_edges(&earth)?;
-            let (el, er) = (
-                measure_edge(&earth, cl, false, effort)?,
-                measure_edge(&earth, cr, true, effort)?,
-            );
-            let (xl, xr) = expected_edges_earth_moving(rest_centre(&control)?, w, model.lorentz);
-            rows.push(row("Earth moving: left edge azimuth", &el, xl, None, "deg"));
-            rows.push(row(
-                "Earth moving: right edge azimuth",
-                &er,
-                xr,
-                None,
-                "deg",
-            ));
-            if s.name == "receding" && beta == 0.866 && !model.lorentz {
-                // The paper prints 93.6 for the relativistic view; it is this one's.
-                let from_motion = Reading {
-                    value: 180.0 - er.value,
-                    tolerance: er.tolerance,
-                };
-                rows.push(row(
-                    "Earth moving: right edge angle from the direction of motion",
-                    &from_motion,
-                    180.0 - xr,
-                    Some(93.6),
-                    "deg",
-                ));
-            }
-            if s.name == "moving left" && beta == 0.5 {
-                let paper = if model.lorentz { 30.0 } else { 26.565 };
-                let migration = Reading {
-                    value: rest_right - er.value,
-                    tolerance: er.tolerance,
-                };
-                rows.push(row(
-                    "Earth moving: right edge migration",
-                    &migration,
-                    rest_right - xr,
-                    Some(paper),
-                    "deg",
-                ));
+
+    /// Every view in report order: at rest (under the fixture's model),
+    /// then each speed, model and season.
+    fn all(base: Model) -> Vec<Case> {
+        let mut cases = vec![Case {
+            season: None,
+            beta: 0.0,
+            model: base,
+        }];
+        for beta in [0.5, 0.866] {
+            for model in [Model::CLASSICAL, Model::RELATIVISTIC] {
+                for s in SEASONS {
+                    cases.push(Case {
+                        season: Some(s),
+                        beta,
+                        model,
+                    });
+                }
             }
         }
-        // On the grid 10 l.units ahead, in grid marks (l.units).
-        let on_grid = |deg: f64| 10.0 * deg.to_radians().tan();
+        cases
+    }
+}
+
+/// The silhouette's edges on the horizon as measured, and the azimuths
+/// (left, right) first principles expect for them.
+struct Seen {
+    left: Reading,
+    right: Reading,
+    expected: (f64, f64),
+}
+
+/// How a season is seen: as the cube moving past the camera at rest, or
+/// (the paper's way) as the Earth moving past the cube at rest.
+#[derive(Clone, Copy, PartialEq)]
+enum Frame {
+    CubeMoving,
+    EarthMoving,
+}
+
+/// Where the control view's right edge lies, degrees: the near face's
+/// corner, half a side across at one side's distance, atan(1/2).
+fn rest_right() -> f64 {
+    (0.5f64).atan().to_degrees()
+}
+
+/// Where the control view's right edge lies on the grid 10 l.units ahead:
+/// 10 tan(atan 1/2) = 5 grid marks.
+const REST_ON_GRID: f64 = 5.0;
+
+/// An azimuth carried onto the grid 10 l.units ahead, grid marks.
+fn on_grid(deg: f64) -> f64 {
+    10.0 * deg.to_radians().tan()
+}
+
+/// A quantity derived from the silhouette's edges, as the paper reports them.
+#[derive(Clone, Copy)]
+enum Derived {
+    /// The right edge on the grid 10 l.units ahead.
+    OnGrid,
+    /// How far the right edge has moved on the grid from the control view's 5 marks.
+    GridShift,
+    /// The angle between the left and right edges.
+    Subtended,
+    /// The right edge's angle from +z, the direction of the Earth's motion
+    /// when receding: 180 degrees minus its azimuth.
+    FromMotion,
+    /// How far the right edge has moved from its control-view azimuth.
+    Migration,
+}
+
+impl Derived {
+    /// The derived value, measured (with its uncertainty) and expected.
+    fn of(self, seen: &Seen) -> (Reading, f64) {
+        let (right, (exp_l, exp_r)) = (seen.right, seen.expected);
+        // d(on_grid)/d(deg) = 10 sec^2 * pi / 180.
         let slope =
             10.0 * (1.0 + right.value.to_radians().tan().powi(2)) * std::f64::consts::PI / 180.0;
         let grid = Reading {
             value: on_grid(right.value),
             tolerance: right.tolerance * slope,
         };
-        let is = |name: &str, b: f64, m: Model| {
-            season.is_some_and(|s| s.name == name) && beta == b && model == m
-        };
-        match () {
-            _ if season.is_none() => {
-                rows.push(row(
-                    "right edge on the grid",
-                    &grid,
-                    on_grid(exp_r),
-                    Some(5.0),
-                    "grid marks",
-                ));
-                let width = Reading {
-                    value: right.value - left.value,
-                    tolerance: right.tolerance.hypot(left.tolerance),
-                };
-                rows.push(row(
-                    "angle subtended by the silhouette",
-                    &width,
-                    exp_r - exp_l,
-                    Some(45.0),
-                    "deg",
-                ));
-                let from_motion = Reading {
-                    value: 180.0 - right.value,
-                    tolerance: right.tolerance,
-                };
-                rows.push(row(
-                    "right edge angle from +z (receding motion)",
-                    &from_motion,
-                    180.0 - exp_r,
-                    Some(153.4),
-                    "deg",
-                ));
-            }
-            _ if is("moving left", 0.5, Model::CLASSICAL)
-                || is("moving left", 0.5, Model::RELATIVISTIC) =>
-            {
-                let (paper_marks, paper_deg) = if model.lorentz {
-                    (5.77, 30.0)
-                } else {
-                    (5.0, 26.565)
-                };
-                let shift = Reading {
-                    value: 5.0 - grid.value,
-                    tolerance: grid.tolerance,
-                };
-                rows.push(row(
-                    "right edge displacement on the grid",
-                    &shift,
-                    5.0 - on_grid(exp_r),
-                    Some(paper_marks),
-                    "grid marks",
-                ));
-                let migration = Reading {
-                    value: rest_right - right.value,
-                    tolerance: right.tolerance,
-                };
-                rows.push(row(
-                    "right edge migration",
-                    &migration,
-                    rest_right - exp_r,
-                    Some(paper_deg),
-                    "deg",
-                ));
-            }
-            _ if is("receding", 0.866, Model::RELATIVISTIC) => {
-                let from_motion = Reading {
-                    value: 180.0 - right.value,
-                    tolerance: right.tolerance,
-                };
-                rows.push(row(
-                    "right edge angle from the direction of motion",
-                    &from_motion,
-                    180.0 - exp_r,
-                    Some(93.6),
-                    "deg",
-                ));
-            }
-            _ => rows.push(row(
-                "right edge on the grid",
-                &grid,
-                on_grid(exp_r),
-                None,
-                "grid marks",
-            )),
+        let shifted = |value: f64, tolerance: f64| Reading { value, tolerance };
+        match self {
+            Derived::OnGrid => (grid, on_grid(exp_r)),
+            Derived::GridShift => (
+                shifted(REST_ON_GRID - grid.value, grid.tolerance),
+                REST_ON_GRID - on_grid(exp_r),
+            ),
+            Derived::Subtended => (
+                shifted(
+                    right.value - seen.left.value,
+                    right.tolerance.hypot(seen.left.tolerance),
+                ),
+                exp_r - exp_l,
+            ),
+            Derived::FromMotion => (shifted(180.0 - right.value, right.tolerance), 180.0 - exp_r),
+            Derived::Migration => (
+                shifted(rest_right() - right.value, right.tolerance),
+                rest_right() - exp_r,
+            ),
         }
-        let marks: Vec<DVec3> = [exp_l, exp_r]
-            .iter()
-            .map(|a| DVec3::new(a.to_radians().sin(), 0.0, -a.to_radians().cos()))
-            .collect();
-        views.push(setup.full_view(&label, &marks)?);
     }
-    Ok(FixtureReport::new(
-        NAME,
-        &control.spec.description,
-        views,
-        rows,
+
+    /// The unit of the derived value.
+    fn unit(self) -> Unit {
+        match self {
+            Derived::OnGrid | Derived::GridShift => Unit::GridMarks,
+            _ => Unit::Degrees,
+        }
+    }
+}
+
+/// A figure the paper prints for one view: the view (season name, speed
+/// and model; None for the control view, and for either model), the way
+/// it is seen, the quantity's name and what it is, and the figure.
+struct Figure {
+    season: Option<&'static str>,
+    beta: f64,
+    model: Option<Model>,
+    frame: Frame,
+    name: &'static str,
+    derived: Derived,
+    paper: f64,
+}
+
+impl Figure {
+    fn applies(&self, case: &Case, frame: Frame) -> bool {
+        self.frame == frame
+            && self.season == case.season.map(|s| s.name)
+            && (case.season.is_none() || self.beta == case.beta)
+            && self.model.is_none_or(|m| m == case.model)
+    }
+}
+
+/// The paper's figures (4.1.3-4.1.4, Figures 11-16). The control view:
+/// the right edge at 5 grid marks, a 45 degree silhouette, its right edge
+/// 153.4 degrees from +z. Moving left at 0.5c, the right edge migrates by
+/// 26.565 degrees (classical: 5 grid marks) or 30 degrees (relativistic:
+/// 5.77 marks). Receding at 0.866c the paper prints 93.6 degrees from the
+/// direction of motion for the relativistic view; first principles give it
+/// to the classical one (docs/physics.md).
+const FIGURES: &[Figure] = &[
+    Figure {
+        season: None,
+        beta: 0.0,
+        model: None,
+        frame: Frame::CubeMoving,
+        name: "right edge on the grid",
+        derived: Derived::OnGrid,
+        paper: 5.0,
+    },
+    Figure {
+        season: None,
+        beta: 0.0,
+        model: None,
+        frame: Frame::CubeMoving,
+        name: "angle subtended by the silhouette",
+        derived: Derived::Subtended,
+        paper: 45.0,
+    },
+    Figure {
+        season: None,
+        beta: 0.0,
+        model: None,
+        frame: Frame::CubeMoving,
+        name: "right edge angle from +z (receding motion)",
+        derived: Derived::FromMotion,
+        paper: 153.4,
+    },
+    Figure {
+        season: Some("receding"),
+        beta: 0.866,
+        model: Some(Model::CLASSICAL),
+        frame: Frame::EarthMoving,
+        name: "Earth moving: right edge angle from the direction of motion",
+        derived: Derived::FromMotion,
+        paper: 93.6,
+    },
+    Figure {
+        season: Some("moving left"),
+        beta: 0.5,
+        model: Some(Model::CLASSICAL),
+        frame: Frame::EarthMoving,
+        name: "Earth moving: right edge migration",
+        derived: Derived::Migration,
+        paper: 26.565,
+    },
+    Figure {
+        season: Some("moving left"),
+        beta: 0.5,
+        model: Some(Model::RELATIVISTIC),
+        frame: Frame::EarthMoving,
+        name: "Earth moving: right edge migration",
+        derived: Derived::Migration,
+        paper: 30.0,
+    },
+    Figure {
+        season: Some("moving left"),
+        beta: 0.5,
+        model: Some(Model::CLASSICAL),
+        frame: Frame::CubeMoving,
+        name: "right edge displacement on the grid",
+        derived: Derived::GridShift,
+        paper: 5.0,
+    },
+    Figure {
+        season: Some("moving left"),
+        beta: 0.5,
+        model: Some(Model::CLASSICAL),
+        frame: Frame::CubeMoving,
+        name: "right edge migration",
+        derived: Derived::Migration,
+        paper: 26.565,
+    },
+    Figure {
+        season: Some("moving left"),
+        beta: 0.5,
+        model: Some(Model::RELATIVISTIC),
+        frame: Frame::CubeMoving,
+        name: "right edge displacement on the grid",
+        derived: Derived::GridShift,
+        paper: 5.77,
+    },
+    Figure {
+        season: Some("moving left"),
+        beta: 0.5,
+        model: Some(Model::RELATIVISTIC),
+        frame: Frame::CubeMoving,
+        name: "right edge migration",
+        derived: Derived::Migration,
+        paper: 30.0,
+    },
+    Figure {
+        season: Some("receding"),
+        beta: 0.866,
+        model: Some(Model::RELATIVISTIC),
+        frame: Frame::CubeMoving,
+        name: "right edge angle from the direction of motion",
+        derived: Derived::FromMotion,
+        paper: 93.6,
+    },
+];
+
+/// The quantities of one view of the cube: its edges and the paper's
+/// figures for it.
+struct ViewTable {
+    label: String,
+    quantities: Vec<Quantity>,
+}
+
+impl ViewTable {
+    fn push(
+        &mut self,
+        name: &str,
+        (measured, expected): (Reading, f64),
+        paper: Option<f64>,
+        unit: Unit,
+    ) {
+        self.quantities.push(Quantity {
+            name: format!("{}: {name}", self.label),
+            measured,
+            expected,
+            paper,
+            unit,
+        });
+    }
+
+    /// The paper's figures for `case` seen in `frame`.
+    fn figures(&mut self, case: &Case, frame: Frame, seen: &Seen) -> usize {
+        let mut n = 0;
+        for fig in FIGURES.iter().filter(|f| f.applies(case, frame)) {
+            self.push(
+                fig.name,
+                fig.derived.of(seen),
+                Some(fig.paper),
+                fig.derived.unit(),
+            );
+            n += 1;
+        }
+        n
+    }
+}
+
+/// Measures both silhouette edges of a setup on the horizon.
+fn measure_edges(setup: &Setup, effort: &Effort) -> Result<(Reading, Reading), String> {
+    let (coarse_l, coarse_r) = coarse_edges(setup)?;
+    Ok((
+        measure_edge(setup, coarse_l, false, effort)?,
+        measure_edge(setup, coarse_r, true, effort)?,
     ))
+}
+
+/// One view: the cube moving with u = -w past the camera at rest, and
+/// (for a season) the Earth moving with w past the cube at rest; their
+/// edges, the paper's figures, and the full view.
+fn view(
+    control: &Fixture,
+    case: Case,
+    effort: &Effort,
+) -> Result<(Vec<Quantity>, ViewReport), String> {
+    let u = case.season.map_or(DVec3::ZERO, |s| -s.earth * case.beta);
+    let (f, centre) = moving(control, u, case.model)?;
+    let setup = Setup {
+        fixture: &f,
+        model: case.model,
+        camera_t: 0.0,
+    };
+    let (left, right) = measure_edges(&setup, effort)?;
+    let cube = Seen {
+        left,
+        right,
+        expected: expected_edges(centre, u, case.model.lorentz),
+    };
+    let mut table = ViewTable {
+        label: case.label(),
+        quantities: Vec::new(),
+    };
+    let deg = |r: &Reading, e: f64| (*r, e);
+    table.push(
+        "left edge azimuth",
+        deg(&cube.left, cube.expected.0),
+        None,
+        Unit::Degrees,
+    );
+    table.push(
+        "right edge azimuth",
+        deg(&cube.right, cube.expected.1),
+        None,
+        Unit::Degrees,
+    );
+    if let Some(s) = case.season {
+        let w = s.earth * case.beta;
+        let fe = earth_moving(control, w);
+        let earth = Setup {
+            fixture: &fe,
+            model: case.model,
+            camera_t: 0.0,
+        };
+        let (left, right) = measure_edges(&earth, effort)?;
+        let seen = Seen {
+            left,
+            right,
+            expected: expected_edges_earth_moving(rest_centre(control)?, w, case.model.lorentz),
+        };
+        let (xl, xr) = seen.expected;
+        table.push(
+            "Earth moving: left edge azimuth",
+            deg(&seen.left, xl),
+            None,
+            Unit::Degrees,
+        );
+        table.push(
+            "Earth moving: right edge azimuth",
+            deg(&seen.right, xr),
+            None,
+            Unit::Degrees,
+        );
+        table.figures(&case, Frame::EarthMoving, &seen);
+    }
+    if table.figures(&case, Frame::CubeMoving, &cube) == 0 {
+        table.push(
+            "right edge on the grid",
+            Derived::OnGrid.of(&cube),
+            None,
+            Unit::GridMarks,
+        );
+    }
+    let marks: Vec<DVec3> = [cube.expected.0, cube.expected.1]
+        .iter()
+        .map(|a| DVec3::new(a.to_radians().sin(), 0.0, -a.to_radians().cos()))
+        .collect();
+    let report = setup.full_view(&table.label, &marks)?;
+    Ok((table.quantities, report))
+}
+
+/// Every view of the cube: its edges against the retarded (cube moving) and
+/// aberrated (Earth moving) azimuths, and the paper's figures.
+pub fn run(control: &Fixture, effort: &Effort) -> Result<Findings, String> {
+    let mut quantities = Vec::new();
+    let mut views = Vec::new();
+    for case in Case::all(fixture_model(control)?) {
+        let (q, v) = view(control, case, effort)?;
+        quantities.extend(q);
+        views.push(v);
+    }
+    Ok(Findings { views, quantities })
 }
