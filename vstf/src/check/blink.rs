@@ -48,10 +48,14 @@ fn measured_switches(frames: &[(f64, Option<bool>)]) -> Vec<f64> {
         .collect()
 }
 
+/// One plate through the animation: for each frame, the camera time and
+/// whether the plate is seen on (None: not seen).
+type Sightings = Vec<(f64, Option<bool>)>;
+
 /// Renders the animation and reports, for each plate (in [`PLATES`] order)
 /// and each frame, whether the plate is seen on (closer to its blink
 /// colour, white) or off; None when not seen.
-fn animate(f: &Fixture, model: Model) -> Result<Vec<Vec<(f64, Option<bool>)>>, String> {
+fn animate(f: &Fixture, model: Model) -> Result<Vec<Sightings>, String> {
     let view = crate::run::view(
         f,
         &Overrides {
@@ -65,7 +69,7 @@ fn animate(f: &Fixture, model: Model) -> Result<Vec<Vec<(f64, Option<bool>)>>, S
     let times: Vec<f64> = (0..=((TO - FROM) / STEP).round() as usize)
         .map(|i| FROM + STEP * i as f64)
         .collect();
-    let mut seen: Vec<Vec<(f64, Option<bool>)>> = vec![Vec::new(), Vec::new()];
+    let mut seen: Vec<Sightings> = vec![Vec::new(), Vec::new()];
     for &t in &times {
         let img = crate::run::render_with(
             &db,

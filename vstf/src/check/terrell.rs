@@ -22,6 +22,16 @@ const HEIGHT: f64 = 4.0;
 const WIDTH: f64 = 2.0;
 const DEPTH: f64 = 2.0;
 const FRONT: &str = "flange front";
+/// The flange's corners marked in the report: the front face's four and
+/// the back face's trailing two (local coordinates).
+const CORNERS: [(f64, f64, f64); 6] = [
+    (0.0, 0.0, DEPTH),
+    (0.0, HEIGHT, DEPTH),
+    (WIDTH, 0.0, DEPTH),
+    (WIDTH, HEIGHT, DEPTH),
+    (0.0, HEIGHT, 0.0),
+    (0.0, 0.0, 0.0),
+];
 const SIDE: &str = "flange side";
 
 /// The front face's blue, whatever its shading.
@@ -197,15 +207,7 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
             unit: Unit::Ratio,
         },
     ];
-    let corners = [
-        (0.0, 0.0, DEPTH),
-        (0.0, HEIGHT, DEPTH),
-        (WIDTH, 0.0, DEPTH),
-        (WIDTH, HEIGHT, DEPTH),
-        (0.0, HEIGHT, 0.0),
-        (0.0, 0.0, 0.0),
-    ];
-    let marks: Vec<DVec3> = corners
+    let marks: Vec<DVec3> = CORNERS
         .iter()
         .filter_map(|&(x, y, z)| seen(x, y, z).ok())
         .map(|p| (p - cam).normalize())
