@@ -1,14 +1,13 @@
-//! Accelerated motion: plates under constant proper
-//! acceleration, generated into keyframes by the renderer and extruded
-//! interval by interval. Measured at three camera times: where each plate's
-//! left and right edges appear at mid-height, on the plates' plane.
-//! Expected from first principles: each edge point's hyperbola against the
-//! camera's past light cone, a line meeting a hyperbola
-//! ([`crate::oracle::retarded_hyperbolic`]). The Lorentz-decoupled plate
-//! moves every point on the same hyperbola; the Born-rigid one gives the
-//! point at rest-frame offset xi its own, A = 1/a + xi about the same
-//! centre. The tolerance adds the keyframes' stated error bound, as it
-//! moves the seen point, to the measurement's.
+//! Accelerated motion: plates under constant proper acceleration, generated
+//! into keyframes by the renderer and extruded interval by interval. Measured
+//! at three camera times: where each plate's left and right edges appear at
+//! mid-height, on the plates' plane. Expected from first principles: each
+//! edge point's hyperbola against the camera's past light cone, a line
+//! meeting a hyperbola ([`crate::oracle::retarded_hyperbolic`]). The
+//! Lorentz-decoupled plate moves every point on the same hyperbola; the
+//! Born-rigid one gives the point at rest-frame offset xi its own, A = 1/a +
+//! xi about the same centre. The tolerance adds the keyframes' stated error
+//! bound, as it moves the seen point, to the measurement's.
 
 use super::{
     background, fixture_model, is_background, trace_rows, Edge, Effort, Findings, Quantity,

@@ -1,11 +1,11 @@
-//! Time-dilated materials: plates that blink every
-//! P = 2 t.units of their own proper time, one approaching the camera at
-//! 0.5c and one receding. Measured from an animation: the period with which
-//! the camera sees them blink. Expected from first principles: each switch
-//! happens at a proper time m P on the plate's clock (time dilation puts it
-//! at lab time t0 + gamma m P for the plate's centre), and is seen one light
-//! time later (the changing light delay): approaching, the camera sees the
-//! blinking faster; receding, slower.
+//! Time-dilated materials: plates that blink every P = 2 t.units of their own
+//! proper time, one approaching the camera at 0.5c and one receding. Measured
+//! from an animation: the period with which the camera sees them blink.
+//! Expected from first principles: each switch happens at a proper time m P
+//! on the plate's clock (time dilation puts it at lab time t0 + gamma m P for
+//! the plate's centre), and is seen one light time later (the changing light
+//! delay): approaching, the camera sees the blinking faster; receding,
+//! slower.
 
 use super::{fixture_model, Effort, Findings, Quantity, Reading, Setup, Unit};
 use crate::fixture::{Fixture, Overrides};

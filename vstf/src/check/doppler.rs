@@ -1,6 +1,6 @@
-//! Doppler shift and searchlight: self-luminous panels
-//! glowing as a blackbody at T, approaching head-on, receding, and crossing
-//! the line of sight. Measured at the centre pixel of each panel's probe:
+//! Doppler shift and searchlight: self-luminous panels glowing as a blackbody
+//! at T, approaching head-on, receding, and crossing the line of sight.
+//! Measured at the centre pixel of each panel's probe:
 //! - the Doppler factor from the colour: a blackbody seen Doppler-shifted is
 //!   a blackbody at D T, so D is the temperature whose chromaticity matches
 //!   the pixel's, over T;

@@ -1,12 +1,12 @@
-//! The principle of relativity: a camera moving at v past
-//! a static cube, and the camera at rest with the cube moving at -v, seen at
-//! the same event, must give the same image in the relativistic model. The
-//! object-moving scene is the Lorentz transform of the camera-moving one
-//! (classical model: the Galilean transform). Measured from both images:
-//! where the cube's silhouette crosses the horizon, as azimuths in the
-//! camera's frame. Expected from first principles, for each scene on its
-//! own: the static cube's directions aberrated into the moving camera's
-//! frame, or the moving cube's retarded directions for the camera at rest.
+//! The principle of relativity: a camera moving at v past a static cube, and
+//! the camera at rest with the cube moving at -v, seen at the same event,
+//! must give the same image in the relativistic model. The object-moving
+//! scene is the Lorentz transform of the camera-moving one (classical model:
+//! the Galilean transform). Measured from both images: where the cube's
+//! silhouette crosses the horizon, as azimuths in the camera's frame.
+//! Expected from first principles, for each scene on its own: the static
+//! cube's directions aberrated into the moving camera's frame, or the moving
+//! cube's retarded directions for the camera at rest.
 
 use super::{
     background, difference, is_background, Edge, EdgeTrace, Effort, Findings, Quantity, Reading,

@@ -1,6 +1,6 @@
-//! A fast sphere: an analytic sphere crossing the view at
-//! 0.9c. Lorentz-contracted, its outline on the sky stays a circle
-//! (Penrose 1959, Terrell 1959); Lorentz-decoupled, it does not.
+//! A fast sphere: an analytic sphere crossing the view at 0.9c.
+//! Lorentz-contracted, its outline on the sky stays a circle (Penrose 1959,
+//! Terrell 1959); Lorentz-decoupled, it does not.
 //!
 //! Measured, in angle space: the outline's edge points from the image as
 //! directions, projected stereographically about their mean (circles on the
