@@ -46,7 +46,7 @@ pub fn table(rows: &[Row]) -> String {
                     }
                 }),
                 format!("±{}", num(r.tolerance)),
-                r.unit.clone(),
+                r.unit.to_string(),
                 if r.pass { "pass".into() } else { "FAIL".into() },
             ]
         })
@@ -164,7 +164,7 @@ pub fn html(dir: &Path, reports: &[FixtureReport]) -> Result<(), String> {
                 num(x.expected),
                 paper,
                 num(x.tolerance),
-                esc(&x.unit)
+                esc(x.unit.as_str())
             );
         }
         h.push_str("</table>");

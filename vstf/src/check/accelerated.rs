@@ -1,17 +1,19 @@
-//! Accelerated motion (issue 6, item 5): plates under constant proper
-//! acceleration, generated into keyframes by the renderer and extruded
-//! interval by interval. Measured at three camera times: where each plate's
-//! left and right edges appear at mid-height, on the plates' plane.
-//! Expected from first principles: each edge point's hyperbola against the
-//! camera's past light cone, a line meeting a hyperbola
-//! ([`crate::oracle::retarded_hyperbolic`]). The Lorentz-decoupled plate
-//! moves every point on the same hyperbola; the Born-rigid one gives the
-//! point at rest-frame offset xi its own, A = 1/a + xi about the same
-//! centre. The tolerance adds the keyframes' stated error bound, as it
-//! moves the seen point, to the measurement's.
+//! Accelerated motion: plates under constant proper acceleration, generated
+//! into keyframes by the renderer and extruded interval by interval. Measured
+//! at three camera times: where each plate's left and right edges appear at
+//! mid-height, on the plates' plane. Expected from first principles: each
+//! edge point's hyperbola against the camera's past light cone, a line
+//! meeting a hyperbola ([`crate::oracle::retarded_hyperbolic`]). The
+//! Lorentz-decoupled plate moves every point on the same hyperbola; the
+//! Born-rigid one gives the point at rest-frame offset xi its own, A = 1/a +
+//! xi about the same centre. The tolerance adds the keyframes' stated error
+//! bound, as it moves the seen point, to the measurement's.
 
-use super::{background, is_background, trace_rows, Edge, Effort, FixtureReport, Row, Setup};
-use crate::fixture::{Fixture, Overrides};
+use super::{
+    background, fixture_model, is_background, trace_rows, Edge, Effort, Findings, Quantity,
+    Reading, Setup, Unit,
+};
+use crate::fixture::Fixture;
 use crate::measure::{edge, Plane};
 use crate::oracle::{retarded_hyperbolic, PointHyperbola, Retarded};
 use glam::DVec3;
@@ -54,17 +56,15 @@ fn seen_shift(p: &PointHyperbola, seen: &Retarded, camera: DVec3, delta: f64) ->
     delta / (1.0 - p.velocity(seen.t).dot(k))
 }
 
-pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
-    let f = Fixture::load(NAME).map_err(|e| e.to_string())?;
-    let model = f
-        .model(&Overrides::default())
-        .map_err(|(p, m)| format!("{p}: {m}"))?;
-    let bg = background(&f);
-    let mut rows = Vec::new();
+/// Each plate's left and right edges at mid-height in each frame, against
+/// the retarded points of their hyperbolae.
+pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+    let model = fixture_model(f)?;
+    let mut quantities = Vec::new();
     let mut views = Vec::new();
     for tc in FRAMES {
         let setup = Setup {
-            fixture: &f,
+            fixture: f,
             model,
             camera_t: tc,
         };
@@ -81,46 +81,7 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
                 return Err(format!("{NAME}: {name} must move hyperbolically"));
             };
             let born = model.lorentz && obj.kind == ObjectKind::VObj;
-            let (look, vfov) = setup.aim(&[name], 0.15)?;
-            let (img, camera) =
-                setup.probe(&[name], look, vfov, effort.probe, effort.probe, effort.spp)?;
-            let w = i64::from(img.width());
-            let mid = y0 + HEIGHT / 2.0;
-            let range = (y0 + 0.05 * HEIGHT, y0 + 0.95 * HEIGHT);
-            for (side, x, from, step) in [
-                ("left", -HALF_WIDTH, 0, 1),
-                ("right", HALF_WIDTH, w - 1, -1),
-            ] {
-                let trace = trace_rows(
-                    &img,
-                    &camera,
-                    Plane::z(h.start.x.z),
-                    |scan| edge(&img, scan, from, step, |c| is_background(c, bg)),
-                    |p| (p.y, p.x),
-                    range,
-                );
-                let reading = Edge::fit(&trace, 2, effort)
-                    .map_err(|e| format!("{NAME} {name} {side} at t_c = {tc}: {e}"))?
-                    .at(mid);
-                let expected =
-                    retarded_hyperbolic(&point(&h, DVec3::new(x, mid, 0.0), born), tc, cam)
-                        .ok_or_else(|| format!("{NAME}: {name} is never seen at t_c = {tc}"))?;
-                rows.push(Row::new(
-                    NAME,
-                    &format!("{name} {side} edge, t_c = {tc} (x)"),
-                    reading.value,
-                    expected.x.x,
-                    None,
-                    reading.tolerance
-                        + seen_shift(
-                            &point(&h, DVec3::new(x, mid, 0.0), born),
-                            &expected,
-                            cam,
-                            h.tolerance,
-                        ),
-                    "l.units",
-                ));
-            }
+            quantities.extend(plate_edges(&setup, name, y0, &h, born, effort)?);
             for (x, y) in [
                 (-HALF_WIDTH, y0),
                 (HALF_WIDTH, y0),
@@ -136,5 +97,56 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
         }
         views.push(setup.full_view(&format!("t_c = {tc}"), &marks)?);
     }
-    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
+    Ok(Findings { views, quantities })
+}
+
+/// The left and right edges of the plate `name` (lower edge at `y0`) at
+/// mid-height, measured on a probe aimed at it, against where its edge
+/// points' hyperbolae `h` meet the camera's past light cone.
+fn plate_edges(
+    setup: &Setup,
+    name: &str,
+    y0: f64,
+    h: &Hyperbolic,
+    born: bool,
+    effort: &Effort,
+) -> Result<Vec<Quantity>, String> {
+    let (tc, cam) = (setup.camera_t, setup.camera_x());
+    let bg = background(setup.fixture);
+    let (look, vfov) = setup.aim(&[name], 0.15)?;
+    let (img, camera) = setup.probe(&[name], look, vfov, effort.probe, effort.probe, effort.spp)?;
+    let w = i64::from(img.width());
+    let mid = y0 + HEIGHT / 2.0;
+    let range = (y0 + 0.05 * HEIGHT, y0 + 0.95 * HEIGHT);
+    let mut quantities = Vec::new();
+    for (side, x, from, step) in [
+        ("left", -HALF_WIDTH, 0, 1),
+        ("right", HALF_WIDTH, w - 1, -1),
+    ] {
+        let trace = trace_rows(
+            &img,
+            &camera,
+            Plane::z(h.start.x.z),
+            |scan| edge(&img, scan, from, step, |c| is_background(c, bg)),
+            |p| (p.y, p.x),
+            range,
+        );
+        let reading = Edge::fit(&trace, 2, effort)
+            .map_err(|e| format!("{NAME} {name} {side} at t_c = {tc}: {e}"))?
+            .at(mid);
+        let edge_point = point(h, DVec3::new(x, mid, 0.0), born);
+        let expected = retarded_hyperbolic(&edge_point, tc, cam)
+            .ok_or_else(|| format!("{NAME}: {name} is never seen at t_c = {tc}"))?;
+        quantities.push(Quantity {
+            name: format!("{name} {side} edge, t_c = {tc} (x)"),
+            measured: Reading {
+                value: reading.value,
+                tolerance: reading.tolerance + seen_shift(&edge_point, &expected, cam, h.tolerance),
+            },
+            expected: expected.x.x,
+            paper: None,
+            unit: Unit::LUnits,
+        });
+    }
+    Ok(quantities)
 }

@@ -1,17 +1,17 @@
-//! Time-dilated materials (issue 6, item 3): plates that blink every
-//! P = 2 t.units of their own proper time, one approaching the camera at
-//! 0.5c and one receding. Measured from an animation: the period with which
-//! the camera sees them blink. Expected from first principles: each switch
-//! happens at a proper time m P on the plate's clock (time dilation puts it
-//! at lab time t0 + gamma m P for the plate's centre), and is seen one light
-//! time later (the changing light delay): approaching, the camera sees the
-//! blinking faster; receding, slower.
+//! Time-dilated materials: plates that blink every P = 2 t.units of their own
+//! proper time, one approaching the camera at 0.5c and one receding. Measured
+//! from an animation: the period with which the camera sees them blink.
+//! Expected from first principles: each switch happens at a proper time m P
+//! on the plate's clock (time dilation puts it at lab time t0 + gamma m P for
+//! the plate's centre), and is seen one light time later (the changing light
+//! delay): approaching, the camera sees the blinking faster; receding,
+//! slower.
 
-use super::{Effort, FixtureReport, Row, Setup};
+use super::{fixture_model, Effort, Findings, Quantity, Reading, Setup, Unit};
 use crate::fixture::{Fixture, Overrides};
 use crate::oracle::{body_point, gamma, retarded};
 use glam::DVec3;
-use renderer::{Motion, Traversal};
+use renderer::{Event, Model, Motion, Traversal};
 
 const NAME: &str = "blink";
 /// Camera times of the animation, and its step.
@@ -48,14 +48,16 @@ fn measured_switches(frames: &[(f64, Option<bool>)]) -> Vec<f64> {
         .collect()
 }
 
-/// The animation is the same at every effort: its precision is set by the frame step.
-pub fn run(_effort: &Effort) -> Result<FixtureReport, String> {
-    let f = Fixture::load(NAME).map_err(|e| e.to_string())?;
-    let model = f
-        .model(&Overrides::default())
-        .map_err(|(p, m)| format!("{p}: {m}"))?;
+/// One plate through the animation: for each frame, the camera time and
+/// whether the plate is seen on (None: not seen).
+type Sightings = Vec<(f64, Option<bool>)>;
+
+/// Renders the animation and reports, for each plate (in [`PLATES`] order)
+/// and each frame, whether the plate is seen on (closer to its blink
+/// colour, white) or off; None when not seen.
+fn animate(f: &Fixture, model: Model) -> Result<Vec<Sightings>, String> {
     let view = crate::run::view(
-        &f,
+        f,
         &Overrides {
             width: Some(96),
             height: Some(72),
@@ -63,18 +65,15 @@ pub fn run(_effort: &Effort) -> Result<FixtureReport, String> {
             ..Default::default()
         },
     )?;
-    let db = crate::run::database(&f, model.lorentz, Traversal::Bvh)?;
-    let cam = f.spec.camera.position;
+    let db = crate::run::database(f, model.lorentz, Traversal::Bvh)?;
     let times: Vec<f64> = (0..=((TO - FROM) / STEP).round() as usize)
         .map(|i| FROM + STEP * i as f64)
         .collect();
-    // Each frame: for each half of the image, whether the plate there is on
-    // (closer to its blink colour, white) or off; None when not seen.
-    let mut seen: Vec<Vec<(f64, Option<bool>)>> = vec![Vec::new(), Vec::new()];
+    let mut seen: Vec<Sightings> = vec![Vec::new(), Vec::new()];
     for &t in &times {
         let img = crate::run::render_with(
             &db,
-            &f,
+            f,
             &crate::fixture::View {
                 camera_t: t,
                 ..view
@@ -93,7 +92,108 @@ pub fn run(_effort: &Effort) -> Result<FixtureReport, String> {
             seen[k].push((t, state));
         }
     }
-    let mut rows = Vec::new();
+    Ok(seen)
+}
+
+/// A blinking plate's worldline and clock, read from the fixture.
+struct Blinker {
+    start: Event,
+    velocity: DVec3,
+    /// The blink period in the plate's proper time, t.units.
+    period: f64,
+}
+
+impl Blinker {
+    fn of(f: &Fixture, plate: &Plate) -> Result<Blinker, String> {
+        let obj = f
+            .scene
+            .objects
+            .iter()
+            .find(|o| o.name == plate.name)
+            .ok_or("no plate")?;
+        match (&obj.motion, obj.material.blink) {
+            (
+                Motion::Velocity {
+                    start, velocity, ..
+                },
+                Some(b),
+            ) => Ok(Blinker {
+                start: *start,
+                velocity: *velocity,
+                period: b.period,
+            }),
+            _ => Err(format!(
+                "{NAME}: {} must move by velocity and blink",
+                plate.name
+            )),
+        }
+    }
+}
+
+/// The blink period the camera at `cam` sees between the switches nearest
+/// the first and last of `switches`, and its uncertainty.
+fn expected_period(b: &Blinker, model: Model, cam: DVec3, switches: &[f64]) -> (f64, f64) {
+    let (start, v, period) = (b.start, b.velocity, b.period);
+    let g = if model.lorentz {
+        gamma(v.length())
+    } else {
+        1.0
+    };
+    // Switch m happens at proper time m P; the point at offset r reads it
+    // at lab time t0 + gamma (m P + gamma v.r') and is seen a light time later.
+    let seen_at = |m: f64, r: DVec3| {
+        let p = body_point(start.t, start.x, v, r, model.lorentz);
+        let offset = if model.lorentz {
+            crate::oracle::contract(r, v)
+        } else {
+            r
+        };
+        let t = start.t + g * (m * period + g * v.dot(offset));
+        t + (p.at(t) - cam).length()
+    };
+    // The switch numbers m nearest to the first and last measured switches.
+    let nearest = |t: f64| {
+        let mut m = 0.0;
+        while seen_at(m + 1.0, DVec3::ZERO) <= t {
+            m += 1.0;
+        }
+        if (seen_at(m + 1.0, DVec3::ZERO) - t).abs() < (seen_at(m, DVec3::ZERO) - t).abs() {
+            m + 1.0
+        } else {
+            m
+        }
+    };
+    let n = (switches.len() - 1) as f64;
+    let (m0, m1) = (nearest(switches[0]), nearest(switches[switches.len() - 1]));
+    let expected = (seen_at(m1, DVec3::ZERO) - seen_at(m0, DVec3::ZERO)) / (m1 - m0);
+    // Uncertainty: each switch is known to within half a frame step; the
+    // plate's extent (its corners switch at other seen times) may shift
+    // the switch seen in the average colour by up to the change of that
+    // spread between the first and last switches.
+    let corners = [
+        DVec3::new(-0.5, -0.5, 0.0),
+        DVec3::new(0.5, 0.5, 0.0),
+        DVec3::new(-0.5, 0.5, 0.0),
+        DVec3::new(0.5, -0.5, 0.0),
+    ];
+    let spread = |m: f64| {
+        corners
+            .iter()
+            .map(|&r| seen_at(m, r) - seen_at(m, DVec3::ZERO))
+            .fold(0.0f64, |a, b| a.max(b.abs()))
+    };
+    let tolerance = (STEP + (spread(m1) - spread(m0)).abs() + spread(m0).max(spread(m1))) / n;
+    (expected, tolerance)
+}
+
+/// The blink period each plate is seen with, measured from the animation
+/// against the dilated, light-delayed period. The animation is the same at
+/// every effort: its precision is set by the frame step.
+pub fn run(f: &Fixture, _effort: &Effort) -> Result<Findings, String> {
+    let model = fixture_model(f)?;
+    let cam = f.spec.camera.position;
+    let seen = animate(f, model)?;
+    let mut quantities = Vec::new();
     let mut marks = Vec::new();
     for (k, plate) in PLATES.iter().enumerate() {
         let switches = measured_switches(&seen[k]);
@@ -106,85 +206,20 @@ pub fn run(_effort: &Effort) -> Result<FixtureReport, String> {
         }
         let n = (switches.len() - 1) as f64;
         let measured = (switches[switches.len() - 1] - switches[0]) / n;
-        // First principles: switch m happens at proper time m P; the plate's
-        // centre (its reference point) reads t0 + gamma m P then.
-        let obj = f
-            .scene
-            .objects
-            .iter()
-            .find(|o| o.name == plate.name)
-            .ok_or("no plate")?;
-        let (start, v, period) = match (&obj.motion, obj.material.blink) {
-            (
-                Motion::Velocity {
-                    start, velocity, ..
-                },
-                Some(b),
-            ) => (*start, *velocity, b.period),
-            _ => {
-                return Err(format!(
-                    "{NAME}: {} must move by velocity and blink",
-                    plate.name
-                ))
-            }
-        };
-        let g = if model.lorentz {
-            gamma(v.length())
-        } else {
-            1.0
-        };
-        let seen_at = |m: f64, r: DVec3| {
-            let p = body_point(start.t, start.x, v, r, model.lorentz);
-            let offset = if model.lorentz {
-                crate::oracle::contract(r, v)
-            } else {
-                r
-            };
-            let t = start.t + g * (m * period + g * v.dot(offset));
-            t + (p.at(t) - cam).length()
-        };
-        // The switch numbers m nearest to the first and last measured switches.
-        let nearest = |t: f64| {
-            let mut m = 0.0;
-            while seen_at(m + 1.0, DVec3::ZERO) <= t {
-                m += 1.0;
-            }
-            if (seen_at(m + 1.0, DVec3::ZERO) - t).abs() < (seen_at(m, DVec3::ZERO) - t).abs() {
-                m + 1.0
-            } else {
-                m
-            }
-        };
-        let (m0, m1) = (nearest(switches[0]), nearest(switches[switches.len() - 1]));
-        let expected = (seen_at(m1, DVec3::ZERO) - seen_at(m0, DVec3::ZERO)) / (m1 - m0);
-        // Uncertainty: each switch is known to within half a frame step; the
-        // plate's extent (its corners switch at other seen times) may shift
-        // the switch seen in the average colour by up to the change of that
-        // spread between the first and last switches.
-        let corners = [
-            DVec3::new(-0.5, -0.5, 0.0),
-            DVec3::new(0.5, 0.5, 0.0),
-            DVec3::new(-0.5, 0.5, 0.0),
-            DVec3::new(0.5, -0.5, 0.0),
-        ];
-        let spread = |m: f64| {
-            corners
-                .iter()
-                .map(|&r| seen_at(m, r) - seen_at(m, DVec3::ZERO))
-                .fold(0.0f64, |a, b| a.max(b.abs()))
-        };
-        let tolerance = (STEP + (spread(m1) - spread(m0)).abs() + spread(m0).max(spread(m1))) / n;
-        rows.push(Row::new(
-            NAME,
-            &format!("{} plate: blink period seen by the camera", plate.name),
-            measured,
+        let b = Blinker::of(f, plate)?;
+        let (expected, tolerance) = expected_period(&b, model, cam, &switches);
+        quantities.push(Quantity {
+            name: format!("{} plate: blink period seen by the camera", plate.name),
+            measured: Reading {
+                value: measured,
+                tolerance,
+            },
             expected,
-            None,
-            tolerance,
-            "t.units",
-        ));
+            paper: None,
+            unit: Unit::TUnits,
+        });
         if let Some(r) = retarded(
-            &body_point(start.t, start.x, v, DVec3::ZERO, model.lorentz),
+            &body_point(b.start.t, b.start.x, b.velocity, DVec3::ZERO, model.lorentz),
             f.spec.camera.t,
             cam,
         ) {
@@ -192,10 +227,12 @@ pub fn run(_effort: &Effort) -> Result<FixtureReport, String> {
         }
     }
     let setup = Setup {
-        fixture: &f,
+        fixture: f,
         model,
         camera_t: f.spec.camera.t,
     };
-    let views = vec![setup.full_view("view", &marks)?];
-    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
+    Ok(Findings {
+        views: vec![setup.full_view("view", &marks)?],
+        quantities,
+    })
 }

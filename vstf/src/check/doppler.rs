@@ -1,6 +1,6 @@
-//! Doppler shift and searchlight (issue 6, item 2): self-luminous panels
-//! glowing as a blackbody at T, approaching head-on, receding, and crossing
-//! the line of sight. Measured at the centre pixel of each panel's probe:
+//! Doppler shift and searchlight: self-luminous panels glowing as a blackbody
+//! at T, approaching head-on, receding, and crossing the line of sight.
+//! Measured at the centre pixel of each panel's probe:
 //! - the Doppler factor from the colour: a blackbody seen Doppler-shifted is
 //!   a blackbody at D T, so D is the temperature whose chromaticity matches
 //!   the pixel's, over T;
@@ -14,8 +14,8 @@
 //! Tolerances follow from the 8-bit quantisation of the measured pixels
 //! (half a step on each channel).
 
-use super::{Effort, FixtureReport, Row, Setup};
-use crate::fixture::{Fixture, Overrides};
+use super::{fixture_model, Effort, Findings, Quantity, Reading, Setup, Unit};
+use crate::fixture::Fixture;
 use crate::measure;
 use crate::oracle::{body_point, retarded};
 use glam::{DMat3, DVec3};
@@ -93,16 +93,64 @@ fn quantisation(rgb: DVec3, f: impl Fn(DVec3) -> Option<f64>) -> f64 {
         .fold(0.0, f64::max)
 }
 
-pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
-    let f = Fixture::load(NAME).map_err(|e| e.to_string())?;
-    let model = f
-        .model(&Overrides::default())
-        .map_err(|(p, m)| format!("{p}: {m}"))?;
+/// The Doppler factor D read from the searchlight ratio `on / off` = D^power
+/// in the brightest channel of `off` (which carries the ratio best), with
+/// its uncertainty from half an 8-bit step on each value.
+fn searchlight_factor(on: DVec3, off: DVec3, power: f64) -> Reading {
+    let c = if off.x >= off.y.max(off.z) {
+        0
+    } else if off.y >= off.z {
+        1
+    } else {
+        2
+    };
+    let (a, b) = (on[c], off[c]);
+    let d = (a / b).powf(1.0 / power);
+    let h = 0.5 / 255.0;
+    Reading {
+        value: d,
+        tolerance: d / power * (h / a + h / b),
+    }
+}
+
+/// The centre pixels of one panel's probes under each variant of the colour
+/// effects (in the order of `variants`), and the lab direction they look along.
+fn panel_pixels(
+    f: &Fixture,
+    variants: &[Fixture],
+    name: &str,
+    effort: &Effort,
+) -> Result<(Vec<DVec3>, DVec3), String> {
+    let (model, tc) = (fixture_model(f)?, f.spec.camera.t);
+    let setup = Setup {
+        fixture: f,
+        model,
+        camera_t: tc,
+    };
+    let (look, vfov) = setup.aim(&[name], 0.3)?;
+    let mut seen = Vec::new();
+    for v in variants {
+        let s = Setup {
+            fixture: v,
+            model,
+            camera_t: tc,
+        };
+        let (img, camera) = s.probe(&[name], look, vfov, effort.probe / 4, effort.probe / 4, 1)?;
+        seen.push(centre(&img, &camera));
+    }
+    Ok((seen.iter().map(|s| s.0).collect(), seen[0].1))
+}
+
+/// Each panel's Doppler factor from its colour (shifted blackbody) and from
+/// the searchlight ratios (D^5 shifted, D^4 in RGB), against
+/// D = 1 / (gamma (1 - u.k)) along the centre pixel's line of sight.
+pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+    let model = fixture_model(f)?;
     let tc = f.spec.camera.t;
-    let mut rows = Vec::new();
+    let mut quantities = Vec::new();
     let mut marks = Vec::new();
     let variants = [(false, false), (false, true), (true, false), (true, true)]
-        .map(|(d, s)| with_effects(&f, d, s));
+        .map(|(d, s)| with_effects(f, d, s));
     for name in PANELS {
         let obj = f
             .scene
@@ -123,83 +171,51 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
         if let Some(r) = retarded(&middle, tc, f.spec.camera.position) {
             marks.push(r.direction);
         }
-        let setup = Setup {
-            fixture: &f,
-            model,
-            camera_t: tc,
-        };
-        let (look, vfov) = setup.aim(&[name], 0.3)?;
-        let mut seen = Vec::new();
-        for v in &variants {
-            let s = Setup {
-                fixture: v,
-                model,
-                camera_t: tc,
-            };
-            let (img, camera) =
-                s.probe(&[name], look, vfov, effort.probe / 4, effort.probe / 4, 1)?;
-            seen.push(centre(&img, &camera));
-        }
-        let [(plain, dir), (rgb_lit, _), (shifted, _), (shifted_lit, _)] =
-            [seen[0], seen[1], seen[2], seen[3]];
+        let (pixels, dir) = panel_pixels(f, &variants, name, effort)?;
+        let [plain, rgb_lit, shifted, shifted_lit] = [pixels[0], pixels[1], pixels[2], pixels[3]];
         let gamma = 1.0 / (1.0 - u.length_squared()).sqrt();
         let expected = 1.0 / (gamma * (1.0 - u.dot(-dir)));
         let from_colour = |rgb: DVec3| factor_from_colour(&source, rgb);
-        rows.push(Row::new(
-            NAME,
-            &format!("{name}: D from the colour (blackbody at D T)"),
-            from_colour(shifted).unwrap_or(f64::NAN),
+        let factor = |what: &str, measured: Reading| Quantity {
+            name: format!("{name}: D from {what}"),
+            measured,
             expected,
-            None,
-            quantisation(shifted, from_colour),
-            "factor",
-        ));
-        // The brightest channel of the pair carries the ratio best.
-        let ratio = |on: DVec3, off: DVec3, power: f64| {
-            let c = if off.x >= off.y.max(off.z) {
-                0
-            } else if off.y >= off.z {
-                1
-            } else {
-                2
-            };
-            let (a, b) = (on[c], off[c]);
-            let d = (a / b).powf(1.0 / power);
-            let h = 0.5 / 255.0;
-            (d, d / power * (h / a + h / b))
+            paper: None,
+            unit: Unit::Factor,
         };
-        let (d5, t5) = ratio(shifted_lit, shifted, 5.0);
-        rows.push(Row::new(
-            NAME,
-            &format!("{name}: D from the searchlight, shifted (D^5)"),
-            d5,
-            expected,
-            None,
-            t5,
-            "factor",
-        ));
-        let (d4, t4) = ratio(rgb_lit, plain, 4.0);
-        rows.push(Row::new(
-            NAME,
-            &format!("{name}: D from the searchlight, RGB (D^4)"),
-            d4,
-            expected,
-            None,
-            t4,
-            "factor",
-        ));
+        quantities.extend([
+            factor(
+                "the colour (blackbody at D T)",
+                Reading {
+                    value: from_colour(shifted).unwrap_or(f64::NAN),
+                    tolerance: quantisation(shifted, from_colour),
+                },
+            ),
+            factor(
+                "the searchlight, shifted (D^5)",
+                searchlight_factor(shifted_lit, shifted, 5.0),
+            ),
+            factor(
+                "the searchlight, RGB (D^4)",
+                searchlight_factor(rgb_lit, plain, 4.0),
+            ),
+        ]);
     }
     let setup = Setup {
-        fixture: &f,
+        fixture: f,
         model,
         camera_t: tc,
     };
-    let mut views = vec![setup.full_view("doppler", &marks)?];
     let lit = Setup {
         fixture: &variants[3],
         model,
         camera_t: tc,
     };
-    views.push(lit.full_view("doppler and searchlight", &marks)?);
-    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
+    Ok(Findings {
+        views: vec![
+            setup.full_view("doppler", &marks)?,
+            lit.full_view("doppler and searchlight", &marks)?,
+        ],
+        quantities,
+    })
 }

@@ -1,16 +1,16 @@
-//! The principle of relativity (issue 6, item 1): a camera moving at v past
-//! a static cube, and the camera at rest with the cube moving at -v, seen at
-//! the same event, must give the same image in the relativistic model. The
-//! object-moving scene is the Lorentz transform of the camera-moving one
-//! (classical model: the Galilean transform). Measured from both images:
-//! where the cube's silhouette crosses the horizon, as azimuths in the
-//! camera's frame. Expected from first principles, for each scene on its
-//! own: the static cube's directions aberrated into the moving camera's
-//! frame, or the moving cube's retarded directions for the camera at rest.
+//! The principle of relativity: a camera moving at v past a static cube, and
+//! the camera at rest with the cube moving at -v, seen at the same event,
+//! must give the same image in the relativistic model. The object-moving
+//! scene is the Lorentz transform of the camera-moving one (classical model:
+//! the Galilean transform). Measured from both images: where the cube's
+//! silhouette crosses the horizon, as azimuths in the camera's frame.
+//! Expected from first principles, for each scene on its own: the static
+//! cube's directions aberrated into the moving camera's frame, or the moving
+//! cube's retarded directions for the camera at rest.
 
 use super::{
-    background, difference, is_background, Edge, EdgeTrace, Effort, FixtureReport, Reading, Row,
-    Setup,
+    background, difference, is_background, Edge, EdgeTrace, Effort, Findings, Quantity, Reading,
+    Setup, Unit,
 };
 use crate::fixture::Fixture;
 use crate::measure::edge;
@@ -155,105 +155,120 @@ fn horizon_marks(setup: &Setup, azimuths: &[f64]) -> Vec<DVec3> {
         .collect()
 }
 
-pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
-    let f = Fixture::load(NAME).map_err(|e| e.to_string())?;
-    let c = f.spec.camera.clone();
+/// The cube's horizon cross-section about its centre.
+const SQUARE: [DVec3; 4] = [
+    DVec3::new(-HALF, 0.0, -HALF),
+    DVec3::new(HALF, 0.0, -HALF),
+    DVec3::new(HALF, 0.0, HALF),
+    DVec3::new(-HALF, 0.0, HALF),
+];
+
+/// Camera moving: the static cube's points are seen along their lab
+/// directions, aberrated into the camera's frame (Lorentz or Galilean).
+/// Returns the extreme azimuths (left, right).
+fn expected_camera_moving(a: &Setup) -> Result<(f64, f64), String> {
+    let c = &a.fixture.spec.camera;
     let v = c.velocity.unwrap_or(DVec3::ZERO);
-    let square = [
-        DVec3::new(-HALF, 0.0, -HALF),
-        DVec3::new(HALF, 0.0, -HALF),
-        DVec3::new(HALF, 0.0, HALF),
-        DVec3::new(-HALF, 0.0, HALF),
-    ];
-    let mut rows = Vec::new();
+    let centre = match a
+        .fixture
+        .scene
+        .objects
+        .iter()
+        .find(|o| o.name == CUBE)
+        .and_then(|o| o.motion.uniform())
+    {
+        Some((start, _)) => start.x,
+        None => return Err("relativity: no uniformly moving cube".into()),
+    };
+    let aberrate = |n: DVec3| {
+        if a.model.lorentz {
+            aberrate_lorentz(n, v)
+        } else {
+            aberrate_galilean(n, v)
+        }
+    };
+    Ok(extremes_on_polygon(&SQUARE, |r| {
+        azimuth(a, aberrate((centre + r - c.position).normalize()))
+    }))
+}
+
+/// Cube moving: the moving cube's points at their retarded positions.
+/// Returns the extreme azimuths (left, right).
+fn expected_cube_moving(b: &Setup) -> Result<(f64, f64), String> {
+    let c = &b.fixture.spec.camera;
+    let cube = b
+        .fixture
+        .scene
+        .objects
+        .iter()
+        .find(|o| o.name == CUBE)
+        .ok_or("no cube")?;
+    let (start, u) = cube
+        .motion
+        .uniform()
+        .ok_or("relativity: the cube must move uniformly")?;
+    let seen = |r: DVec3| {
+        let p = body_point(start.t, start.x, u, r, b.model.lorentz);
+        retarded(&p, c.t, c.position).map_or(f64::NAN, |s| azimuth(b, s.direction))
+    };
+    Ok(extremes_on_polygon(&SQUARE, seen))
+}
+
+/// For each model, the cube's horizon edges seen by the moving camera and
+/// by the camera at rest with the cube moving, each against its own first
+/// principles, and their differences (zero under relativity; the classical
+/// model's Galilean transform does not make them agree).
+pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+    let t = f.spec.camera.t;
+    let mut quantities = Vec::new();
     let mut views = Vec::new();
     for model in [Model::RELATIVISTIC, Model::CLASSICAL] {
-        let moving_camera = f.clone();
-        let moving_object = object_moving(&f, model)?;
+        let moving_object = object_moving(f, model)?;
         let a = Setup {
-            fixture: &moving_camera,
+            fixture: f,
             model,
-            camera_t: c.t,
+            camera_t: t,
         };
         let b = Setup {
             fixture: &moving_object,
             model,
-            camera_t: c.t,
+            camera_t: t,
         };
         let (la, ra) = measure(&a, effort)?;
         let (lb, rb) = measure(&b, effort)?;
-        // First principles. Camera moving: the static cube's points are seen
-        // along their lab directions, aberrated into the camera's frame.
-        let centre = match f
-            .scene
-            .objects
-            .iter()
-            .find(|o| o.name == CUBE)
-            .and_then(|o| o.motion.uniform())
-        {
-            Some((start, _)) => start.x,
-            None => return Err("relativity: no uniformly moving cube".into()),
-        };
-        let aberrate = |n: DVec3| {
-            if model.lorentz {
-                aberrate_lorentz(n, v)
-            } else {
-                aberrate_galilean(n, v)
-            }
-        };
-        let (ea_l, ea_r) = extremes_on_polygon(&square, |r| {
-            azimuth(&a, aberrate((centre + r - c.position).normalize()))
-        });
-        // Object moving: the moving cube's points at their retarded positions.
-        let cube_b = moving_object
-            .scene
-            .objects
-            .iter()
-            .find(|o| o.name == CUBE)
-            .ok_or("no cube")?;
-        let (start_b, u) = cube_b
-            .motion
-            .uniform()
-            .ok_or("relativity: the cube must move uniformly")?;
-        let seen_b = |r: DVec3| {
-            let p = body_point(start_b.t, start_b.x, u, r, model.lorentz);
-            retarded(&p, c.t, c.position).map_or(f64::NAN, |s| azimuth(&b, s.direction))
-        };
-        let (eb_l, eb_r) = extremes_on_polygon(&square, seen_b);
-        let m = model.to_string();
-        let row = |q: &str, r: &Reading, e: f64| {
-            Row::new(
-                NAME,
-                &format!("{m}: {q}"),
-                r.value,
-                e,
-                None,
-                r.tolerance,
-                "deg",
-            )
-        };
-        rows.push(row("left edge, camera moving", &la, ea_l));
-        rows.push(row("left edge, cube moving", &lb, eb_l));
-        rows.push(row("right edge, camera moving", &ra, ea_r));
-        rows.push(row("right edge, cube moving", &rb, eb_r));
-        rows.push(row(
-            "left edge: camera moving minus cube moving",
-            &difference(&la, &lb),
-            ea_l - eb_l,
-        ));
-        rows.push(row(
-            "right edge: camera moving minus cube moving",
-            &difference(&ra, &rb),
-            ea_r - eb_r,
-        ));
+        let (ea_l, ea_r) = expected_camera_moving(&a)?;
+        let (eb_l, eb_r) = expected_cube_moving(&b)?;
+        let table = [
+            ("left edge, camera moving", la, ea_l),
+            ("left edge, cube moving", lb, eb_l),
+            ("right edge, camera moving", ra, ea_r),
+            ("right edge, cube moving", rb, eb_r),
+            (
+                "left edge: camera moving minus cube moving",
+                difference(&la, &lb),
+                ea_l - eb_l,
+            ),
+            (
+                "right edge: camera moving minus cube moving",
+                difference(&ra, &rb),
+                ea_r - eb_r,
+            ),
+        ];
+        quantities.extend(table.map(|(q, measured, expected)| Quantity {
+            name: format!("{model}: {q}"),
+            measured,
+            expected,
+            paper: None,
+            unit: Unit::Degrees,
+        }));
         views.push(a.full_view(
-            &format!("{m}, camera moving"),
+            &format!("{model}, camera moving"),
             &horizon_marks(&a, &[ea_l, ea_r]),
         )?);
         views.push(b.full_view(
-            &format!("{m}, cube moving"),
+            &format!("{model}, cube moving"),
             &horizon_marks(&b, &[eb_l, eb_r]),
         )?);
     }
-    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
+    Ok(Findings { views, quantities })
 }

@@ -5,10 +5,10 @@
 //! apparent velocity between them.
 
 use super::{
-    background, is_background, motion_of, trace_rows, Edge, Effort, FixtureReport, Reading, Row,
-    Setup,
+    background, fixture_model, is_background, motion_of, trace_rows, Edge, Effort, Findings,
+    Quantity, Reading, Setup, Unit,
 };
-use crate::fixture::{Fixture, Overrides};
+use crate::fixture::Fixture;
 use crate::measure::{edge, Plane};
 use crate::oracle::{body_point, retarded};
 use glam::DVec3;
@@ -28,7 +28,7 @@ pub fn measure_foot(
     tc: f64,
     effort: &Effort,
 ) -> Result<Reading, String> {
-    let (start, _, _) = motion_of(f, "flange", model)?;
+    let start = motion_of(f, "flange", model)?.start;
     let setup = Setup {
         fixture: f,
         model,
@@ -61,71 +61,89 @@ pub fn measure_foot(
 /// Where first principles put the foot of the right edge at camera time
 /// `tc`: its worldline against the camera's past light cone.
 pub fn expected_foot(f: &Fixture, model: Model, tc: f64) -> Result<DVec3, String> {
-    let (start, v, lorentz) = motion_of(f, "flange", model)?;
-    let foot = body_point(start.t, start.x, v, DVec3::new(WIDTH, 0.0, DEPTH), lorentz);
+    let m = motion_of(f, "flange", model)?;
+    let foot = body_point(
+        m.start.t,
+        m.start.x,
+        m.velocity,
+        DVec3::new(WIDTH, 0.0, DEPTH),
+        m.contracted,
+    );
     retarded(&foot, tc, f.spec.camera.position)
         .map(|r| r.x)
         .ok_or_else(|| "the right edge is never seen".into())
 }
 
-pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
-    let f = Fixture::load(NAME).map_err(|e| e.to_string())?;
-    let model = f
-        .model(&Overrides::default())
-        .map_err(|(p, m)| format!("{p}: {m}"))?;
-    let (start, v, lorentz) = motion_of(&f, "flange", model)?;
-    let mut rows = Vec::new();
+/// The frames measured: (frame number, camera time, the paper's figure for
+/// where the right edge stands on the stage).
+const FRAMES: [(u32, f64, f64); 2] = [(920, 940.0, 0.0), (1151, 1171.0, 2.0)];
+
+/// The paper's apparent velocity of the flange between the two frames.
+const PAPER_VELOCITY: f64 = 0.008658;
+
+/// The flange's right edge on the stage in both frames, and its apparent
+/// velocity between them, against the retarded positions of its foot.
+pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+    let model = fixture_model(f)?;
+    let mut quantities = Vec::new();
     let mut views = Vec::new();
     let mut seen = Vec::new();
-    for (frame, tc, paper) in [(920, 940.0, 0.0), (1151, 1171.0, 2.0)] {
+    for (frame, tc, paper) in FRAMES {
         let setup = Setup {
-            fixture: &f,
+            fixture: f,
             model,
             camera_t: tc,
         };
-        let cam = setup.camera_x();
-        let reading = measure_foot(&f, model, tc, effort)?;
-        let expected = expected_foot(&f, model, tc)?;
-        rows.push(Row::new(
-            NAME,
-            &format!("right edge on the stage, frame {frame} (x)"),
-            reading.value,
-            expected.x,
-            Some(paper),
-            reading.tolerance,
-            "l.units",
-        ));
+        let reading = measure_foot(f, model, tc, effort)?;
+        let expected = expected_foot(f, model, tc)?;
+        quantities.push(Quantity {
+            name: format!("right edge on the stage, frame {frame} (x)"),
+            measured: reading,
+            expected: expected.x,
+            paper: Some(paper),
+            unit: Unit::LUnits,
+        });
         seen.push((reading, expected.x));
-        let corners = [
-            (0.0, 0.0, DEPTH),
-            (WIDTH, 0.0, DEPTH),
-            (0.0, HEIGHT, DEPTH),
-            (WIDTH, HEIGHT, DEPTH),
-            (0.0, HEIGHT, 0.0),
-        ];
-        let marks: Vec<DVec3> = corners
-            .iter()
-            .filter_map(|&(x, y, z)| {
-                retarded(
-                    &body_point(start.t, start.x, v, DVec3::new(x, y, z), lorentz),
-                    tc,
-                    cam,
-                )
-            })
-            .map(|r| r.direction)
-            .collect();
-        views.push(setup.full_view(&format!("frame {frame}"), &marks)?);
+        views.push(setup.full_view(&format!("frame {frame}"), &corner_marks(&setup)?)?);
     }
-    let dt = 1171.0 - 940.0;
+    let dt = FRAMES[1].1 - FRAMES[0].1;
     let (a, b) = (&seen[0], &seen[1]);
-    rows.push(Row::new(
-        NAME,
-        "apparent velocity, frames 920 -> 1151",
-        (b.0.value - a.0.value) / dt,
-        (b.1 - a.1) / dt,
-        Some(0.008658),
-        (a.0.tolerance.powi(2) + b.0.tolerance.powi(2)).sqrt() / dt,
-        "l.units/t.unit",
-    ));
-    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
+    quantities.push(Quantity {
+        name: "apparent velocity, frames 920 -> 1151".into(),
+        measured: Reading {
+            value: (b.0.value - a.0.value) / dt,
+            tolerance: (a.0.tolerance.powi(2) + b.0.tolerance.powi(2)).sqrt() / dt,
+        },
+        expected: (b.1 - a.1) / dt,
+        paper: Some(PAPER_VELOCITY),
+        unit: Unit::LUnitsPerTUnit,
+    });
+    Ok(Findings { views, quantities })
+}
+
+/// Where the flange's corners are seen from the camera event of `setup`:
+/// the lab directions of their retarded positions.
+fn corner_marks(setup: &Setup) -> Result<Vec<DVec3>, String> {
+    let m = motion_of(setup.fixture, "flange", setup.model)?;
+    let corners = [
+        (0.0, 0.0, DEPTH),
+        (WIDTH, 0.0, DEPTH),
+        (0.0, HEIGHT, DEPTH),
+        (WIDTH, HEIGHT, DEPTH),
+        (0.0, HEIGHT, 0.0),
+    ];
+    Ok(corners
+        .iter()
+        .filter_map(|&(x, y, z)| {
+            let p = body_point(
+                m.start.t,
+                m.start.x,
+                m.velocity,
+                DVec3::new(x, y, z),
+                m.contracted,
+            );
+            retarded(&p, setup.camera_t, setup.camera_x())
+        })
+        .map(|r| r.direction)
+        .collect())
 }

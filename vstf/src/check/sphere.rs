@@ -1,6 +1,6 @@
-//! A fast sphere (issue 6, item 4): an analytic sphere crossing the view at
-//! 0.9c. Lorentz-contracted, its outline on the sky stays a circle
-//! (Penrose 1959, Terrell 1959); Lorentz-decoupled, it does not.
+//! A fast sphere: an analytic sphere crossing the view at 0.9c.
+//! Lorentz-contracted, its outline on the sky stays a circle (Penrose 1959,
+//! Terrell 1959); Lorentz-decoupled, it does not.
 //!
 //! Measured, in angle space: the outline's edge points from the image as
 //! directions, projected stereographically about their mean (circles on the
@@ -15,8 +15,10 @@
 //! outline direction is one whose ray is tangent to it, found by bisection
 //! along each direction from the centre.
 
-use super::{background, is_background, Effort, FixtureReport, Row, Setup};
-use crate::fixture::{Fixture, Overrides};
+use super::{
+    background, fixture_model, is_background, Effort, Findings, Quantity, Reading, Setup, Unit,
+};
+use crate::fixture::Fixture;
 use crate::measure::{edge, Scan};
 use crate::oracle::aberrate_lorentz;
 use glam::{DVec2, DVec3};
@@ -199,19 +201,32 @@ fn expected_classical(centre0: DVec3, t0: f64, u: DVec3, radius: f64, cam: Event
         .collect()
 }
 
-pub fn relativistic(effort: &Effort) -> Result<FixtureReport, String> {
-    run("sphere-relativistic", effort)
+/// The angular extent (max - min) of directions under `f`, degrees.
+fn span(d: &[DVec3], f: impl Fn(&DVec3) -> f64) -> f64 {
+    let (lo, hi) = d
+        .iter()
+        .map(f)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+    hi - lo
 }
 
-pub fn classical(effort: &Effort) -> Result<FixtureReport, String> {
-    run("sphere-classical", effort)
+/// Azimuth of a lab direction (about +y, from -z towards +x), degrees.
+fn azimuth(v: &DVec3) -> f64 {
+    v.x.atan2(-v.z).to_degrees()
 }
 
-fn run(name: &str, effort: &Effort) -> Result<FixtureReport, String> {
-    let f = Fixture::load(name).map_err(|e| e.to_string())?;
-    let model = f
-        .model(&Overrides::default())
-        .map_err(|(p, m)| format!("{p}: {m}"))?;
+/// Elevation of a lab direction above the x-z plane, degrees.
+fn elevation(v: &DVec3) -> f64 {
+    v.y.atan2(v.x.hypot(v.z)).to_degrees()
+}
+
+/// The sphere's outline on the sky, measured and expected: its extent
+/// along and across the motion, and (contracted, where it is a circle) the
+/// fitted circle's radius and the outline's RMS deviation from a circle.
+pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+    let model = fixture_model(f)?;
     let obj = f
         .scene
         .objects
@@ -225,7 +240,7 @@ fn run(name: &str, effort: &Effort) -> Result<FixtureReport, String> {
         .ok_or("the sphere must move uniformly")?;
     let contracted = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
     let setup = Setup {
-        fixture: &f,
+        fixture: f,
         model,
         camera_t: f.spec.camera.t,
     };
@@ -244,69 +259,60 @@ fn run(name: &str, effort: &Effort) -> Result<FixtureReport, String> {
     // spread of them.
     let sigma = px / effort.strata() / 12f64.sqrt();
     let n = dirs.len() as f64;
-    let tol_radius = 3.0 * sigma / n.sqrt() * 2.0;
-    let tol_rms = 3.0 * sigma;
     // The outline's extent: width along the motion (azimuth) and height
     // across it (elevation), from its extreme points, which do not depend
     // on how the outline is sampled. Each extreme is one edge point, taken
     // from scans that cross the outline squarely there: rows for the width,
     // columns for the height.
-    let az = |v: &DVec3| v.x.atan2(-v.z).to_degrees();
-    let el = |v: &DVec3| v.y.atan2(v.x.hypot(v.z)).to_degrees();
-    let span = |d: &[DVec3], f: &dyn Fn(&DVec3) -> f64| {
-        let (lo, hi) = d
-            .iter()
-            .map(f)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                (a.min(x), b.max(x))
-            });
-        hi - lo
-    };
-    let (mw, mh) = (span(&row_dirs, &az), span(&col_dirs, &el));
-    let (ew, eh) = (span(&expected_dirs, &az), span(&expected_dirs, &el));
     let tol_extent = 3.0 * sigma * 2f64.sqrt();
-    let mut rows = vec![
-        Row::new(
-            name,
-            "angular width of the outline along the motion",
-            mw,
-            ew,
-            None,
-            tol_extent,
-            "deg",
-        ),
-        Row::new(
-            name,
-            "angular height of the outline across the motion",
-            mh,
-            eh,
-            None,
-            tol_extent,
-            "deg",
-        ),
+    let mut quantities = vec![
+        Quantity {
+            name: "angular width of the outline along the motion".into(),
+            measured: Reading {
+                value: span(&row_dirs, azimuth),
+                tolerance: tol_extent,
+            },
+            expected: span(&expected_dirs, azimuth),
+            paper: None,
+            unit: Unit::Degrees,
+        },
+        Quantity {
+            name: "angular height of the outline across the motion".into(),
+            measured: Reading {
+                value: span(&col_dirs, elevation),
+                tolerance: tol_extent,
+            },
+            expected: span(&expected_dirs, elevation),
+            paper: None,
+            unit: Unit::Degrees,
+        },
     ];
     if contracted {
         // A circle: the fitted circle does not depend on the sampling.
-        rows.push(Row::new(
-            name,
-            "angular radius of the outline (fitted circle)",
-            measured.radius_deg,
-            expected.radius_deg,
-            None,
-            tol_radius,
-            "deg",
-        ));
-        rows.push(Row::new(
-            name,
-            "RMS deviation of the outline from a circle",
-            measured.rms_deg,
-            expected.rms_deg,
-            None,
-            tol_rms,
-            "deg",
-        ));
+        quantities.push(Quantity {
+            name: "angular radius of the outline (fitted circle)".into(),
+            measured: Reading {
+                value: measured.radius_deg,
+                tolerance: 3.0 * sigma / n.sqrt() * 2.0,
+            },
+            expected: expected.radius_deg,
+            paper: None,
+            unit: Unit::Degrees,
+        });
+        quantities.push(Quantity {
+            name: "RMS deviation of the outline from a circle".into(),
+            measured: Reading {
+                value: measured.rms_deg,
+                tolerance: 3.0 * sigma,
+            },
+            expected: expected.rms_deg,
+            paper: None,
+            unit: Unit::Degrees,
+        });
     }
     let marks: Vec<DVec3> = expected_dirs.iter().step_by(45).copied().collect();
-    let views = vec![setup.full_view("view", &marks)?];
-    Ok(FixtureReport::new(name, &f.spec.description, views, rows))
+    Ok(Findings {
+        views: vec![setup.full_view("view", &marks)?],
+        quantities,
+    })
 }

@@ -8,13 +8,16 @@
 //! camera is at x = 0), so both edges of its top face are measured; of the
 //! bars at x = 1 and 2 only the right edges (the left side faces are in view).
 
+use super::EdgeTrace;
 use super::{
-    background, difference, is_background, trace_rows, Edge, Effort, FixtureReport, Reading, Row,
-    Setup,
+    background, difference, fixture_model, is_background, trace_rows, Edge, Effort, Findings,
+    Quantity, Reading, Setup, Unit,
 };
-use crate::fixture::{Fixture, MeshSpec, Overrides};
-use crate::measure::{edge, Plane};
+use crate::fixture::{Fixture, MeshSpec};
+use crate::measure::{edge, Plane, Scan};
 use glam::DVec3;
+use image::RgbImage;
+use renderer::Camera;
 
 const NAME: &str = "stage";
 const AXES: &str = "x and z axis bars";
@@ -46,25 +49,93 @@ fn bar_along_z(f: &Fixture, object: &str, x: f64) -> Result<(f64, f64, f64), Str
         .ok_or_else(|| format!("{NAME}: {object} has no bar along z at x = {x}"))
 }
 
-pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
-    let f = Fixture::load(NAME).map_err(|e| e.to_string())?;
-    let model = f
-        .model(&Overrides::default())
-        .map_err(|(p, m)| format!("{p}: {m}"))?;
+/// The stage's measurements: the axis bar's centre and width, the right
+/// edges of the bars x = 1 and 2 and their spacing, against the fixture's
+/// mesh (the paper: bars 1/20 wide on 1 l.unit centres).
+pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
     let setup = Setup {
-        fixture: &f,
-        model,
+        fixture: f,
+        model: fixture_model(f)?,
         camera_t: f.spec.camera.t,
     };
+    let (ax0, ax1, top) = bar_along_z(f, AXES, 0.0)?;
+    let (left, right) = axis_bar_edges(&setup, top, effort)?;
+    let [one, two] = grid_bar_right_edges(&setup, top, effort)?;
+    let (one_x, two_x) = (bar_along_z(f, GRID, 1.0)?.1, bar_along_z(f, GRID, 2.0)?.1);
+    let quantities = vec![
+        Quantity {
+            name: "z axis bar centre (x)".into(),
+            measured: Reading {
+                value: (left.value + right.value) / 2.0,
+                tolerance: left.tolerance.hypot(right.tolerance) / 2.0,
+            },
+            expected: (ax0 + ax1) / 2.0,
+            paper: Some(0.0),
+            unit: Unit::LUnits,
+        },
+        Quantity {
+            name: "z axis bar width".into(),
+            measured: difference(&right, &left),
+            expected: ax1 - ax0,
+            paper: Some(1.0 / 20.0),
+            unit: Unit::LUnits,
+        },
+        Quantity {
+            name: "bar x = 1 right edge (x)".into(),
+            measured: one,
+            expected: one_x,
+            paper: None,
+            unit: Unit::LUnits,
+        },
+        Quantity {
+            name: "bar x = 2 right edge (x)".into(),
+            measured: two,
+            expected: two_x,
+            paper: None,
+            unit: Unit::LUnits,
+        },
+        Quantity {
+            name: "grid spacing (bar 1 to bar 2)".into(),
+            measured: difference(&two, &one),
+            expected: two_x - one_x,
+            paper: Some(1.0),
+            unit: Unit::LUnits,
+        },
+    ];
     let cam = setup.camera_x();
-    let bg = background(&f);
-    let (ax0, ax1, top) = bar_along_z(&f, AXES, 0.0)?;
-    let stage = Plane::y(top);
-    let local = |p: DVec3| (p.z, p.x);
-    let depths = (Z - 0.35, Z + 0.35);
-    let fail = |what: &str, e: String| format!("{NAME}: {what}: {e}");
+    let marks: Vec<DVec3> = [-6.0, -3.0, 0.0, 3.0, 6.0]
+        .iter()
+        .flat_map(|&x| [-6.0, 0.0, 6.0].map(|z| (DVec3::new(x, top, z) - cam).normalize()))
+        .collect();
+    Ok(Findings {
+        views: vec![setup.full_view("view", &marks)?],
+        quantities,
+    })
+}
 
-    // The axis bar, alone, in a narrow probe.
+/// Edges on the stage's top plane y = `top`, as (depth, x), within 0.35
+/// of depth [`Z`].
+fn trace_on_stage(
+    img: &RgbImage,
+    camera: &Camera,
+    top: f64,
+    find: impl Fn(Scan) -> Option<f64>,
+) -> EdgeTrace {
+    trace_rows(
+        img,
+        camera,
+        Plane::y(top),
+        find,
+        |p: DVec3| (p.z, p.x),
+        (Z - 0.35, Z + 0.35),
+    )
+}
+
+/// Both edges of the top face of the z axis bar, alone in a narrow probe,
+/// at depth [`Z`].
+fn axis_bar_edges(setup: &Setup, top: f64, effort: &Effort) -> Result<(Reading, Reading), String> {
+    let bg = background(setup.fixture);
+    let fail = |what: &str, e: String| format!("{NAME}: {what}: {e}");
     let (img, camera) = setup.probe(
         &[AXES],
         DVec3::new(0.0, top, Z),
@@ -74,35 +145,26 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
         effort.spp,
     )?;
     let w = i64::from(img.width());
-    let left = trace_rows(
-        &img,
-        &camera,
-        stage,
-        |s| edge(&img, s, 0, 1, |c| is_background(c, bg)),
-        local,
-        depths,
-    );
-    let right = trace_rows(
-        &img,
-        &camera,
-        stage,
-        |s| edge(&img, s, w - 1, -1, |c| is_background(c, bg)),
-        local,
-        depths,
-    );
+    let left = trace_on_stage(&img, &camera, top, |s| {
+        edge(&img, s, 0, 1, |c| is_background(c, bg))
+    });
+    let right = trace_on_stage(&img, &camera, top, |s| {
+        edge(&img, s, w - 1, -1, |c| is_background(c, bg))
+    });
     let left = Edge::fit(&left, 1, effort)
         .map_err(|e| fail("axis bar left edge", e))?
         .at(Z);
     let right = Edge::fit(&right, 1, effort)
         .map_err(|e| fail("axis bar right edge", e))?
         .at(Z);
-    let centre = Reading {
-        value: (left.value + right.value) / 2.0,
-        tolerance: left.tolerance.hypot(right.tolerance) / 2.0,
-    };
-    let width = difference(&right, &left);
+    Ok((left, right))
+}
 
-    // Bars x = 1 and 2: their right edges, scanning left from midway to the next bar.
+/// The right edges of the grid bars x = 1 and 2 at depth [`Z`], each
+/// scanned leftwards from midway to the next bar.
+fn grid_bar_right_edges(setup: &Setup, top: f64, effort: &Effort) -> Result<[Reading; 2], String> {
+    let bg = background(setup.fixture);
+    let cam = setup.camera_x();
     let (img, camera) = setup.probe(
         &[GRID],
         DVec3::new(1.5, top, Z),
@@ -111,59 +173,19 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
         effort.probe / 2,
         effort.spp,
     )?;
-    let mut right_edges = Vec::new();
-    for k in [1.0, 2.0] {
+    let right_edge = |k: f64| -> Result<Reading, String> {
         let from = (camera
             .pixel_of(DVec3::new(k + 0.5, top, Z) - cam)
             .ok_or("bar out of view")?
             .0
             .floor() as i64)
             .clamp(0, i64::from(img.width()) - 1);
-        let trace = trace_rows(
-            &img,
-            &camera,
-            stage,
-            |s| edge(&img, s, from, -1, |c| is_background(c, bg)),
-            local,
-            depths,
-        );
-        let reading = Edge::fit(&trace, 1, effort)
-            .map_err(|e| fail(&format!("bar x = {k}"), e))?
-            .at(Z);
-        right_edges.push((k, reading, bar_along_z(&f, GRID, k)?.1));
-    }
-    let spacing = difference(&right_edges[1].1, &right_edges[0].1);
-
-    let row = |q: &str, m: &Reading, e: f64, paper: Option<f64>| {
-        Row::new(NAME, q, m.value, e, paper, m.tolerance, "l.units")
+        let trace = trace_on_stage(&img, &camera, top, |s| {
+            edge(&img, s, from, -1, |c| is_background(c, bg))
+        });
+        Ok(Edge::fit(&trace, 1, effort)
+            .map_err(|e| format!("{NAME}: bar x = {k}: {e}"))?
+            .at(Z))
     };
-    let mut rows = vec![
-        row(
-            "z axis bar centre (x)",
-            &centre,
-            (ax0 + ax1) / 2.0,
-            Some(0.0),
-        ),
-        row("z axis bar width", &width, ax1 - ax0, Some(1.0 / 20.0)),
-    ];
-    for (k, reading, expected) in &right_edges {
-        rows.push(row(
-            &format!("bar x = {k} right edge (x)"),
-            reading,
-            *expected,
-            None,
-        ));
-    }
-    rows.push(row(
-        "grid spacing (bar 1 to bar 2)",
-        &spacing,
-        right_edges[1].2 - right_edges[0].2,
-        Some(1.0),
-    ));
-    let marks: Vec<DVec3> = [-6.0, -3.0, 0.0, 3.0, 6.0]
-        .iter()
-        .flat_map(|&x| [-6.0, 0.0, 6.0].map(|z| (DVec3::new(x, top, z) - cam).normalize()))
-        .collect();
-    let views = vec![setup.full_view("view", &marks)?];
-    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
+    Ok([right_edge(1.0)?, right_edge(2.0)?])
 }

@@ -9,10 +9,10 @@
 //! the feet of those edges.
 
 use super::{
-    background, difference, is_background, motion_of, trace_rows, Edge, Effort, FixtureReport,
-    Reading, Row, Setup,
+    background, difference, fixture_model, is_background, motion_of, trace_rows, Edge, Effort,
+    Findings, Quantity, Reading, Setup, Unit,
 };
-use crate::fixture::{Fixture, Overrides};
+use crate::fixture::Fixture;
 use crate::measure::{edge, Plane};
 use crate::oracle::{body_point, instantaneous, retarded};
 use glam::DVec3;
@@ -49,13 +49,12 @@ const FLANGES: [Flange; 2] = [
     },
 ];
 
-pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
-    let f = Fixture::load(NAME).map_err(|e| e.to_string())?;
+/// The three bands of the teaser: (label, model, camera time); the finite
+/// bands' camera is advanced by the fixture's camera time.
+fn bands(f: &Fixture) -> Result<[(&'static str, Model, f64); 3], String> {
     let advanced = f.spec.camera.t;
-    let base = f
-        .model(&Overrides::default())
-        .map_err(|(p, m)| format!("{p}: {m}"))?;
-    let bands = [
+    let base = fixture_model(f)?;
+    Ok([
         ("infinite", Model::INFINITE, 0.0),
         ("classical", Model::CLASSICAL, advanced),
         (
@@ -66,95 +65,127 @@ pub fn run(effort: &Effort) -> Result<FixtureReport, String> {
             },
             advanced,
         ),
-    ];
-    let bg = background(&f);
-    let mut rows = Vec::new();
+    ])
+}
+
+/// Each flange's edges on the stage in each band, against the feet of
+/// those edges: instantaneous (infinite light speed) or retarded.
+pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+    let mut quantities = Vec::new();
     let mut views = Vec::new();
-    for (band, model, tc) in bands {
+    for (band, model, tc) in bands(f)? {
         let setup = Setup {
-            fixture: &f,
+            fixture: f,
             model,
             camera_t: tc,
         };
         let cam = setup.camera_x();
         let mut marks = Vec::new();
         for fl in &FLANGES {
-            let (start, v, lorentz) = motion_of(&f, fl.front, model)?;
-            let keep = [fl.front, fl.side];
-            let (look, vfov) = setup.aim(&keep, 0.1)?;
-            let (img, camera) =
-                setup.probe(&keep, look, vfov, effort.probe, effort.probe, effort.spp)?;
-            let plane = Plane::z(start.x.z + DEPTH);
-            let local = |p: DVec3| (p.y - start.x.y, p.x);
-            let heights = (0.05 * HEIGHT, 0.95 * HEIGHT);
-            // The leading edge faces the direction of motion: scan in from that side.
-            let (from, step) = if v.x > 0.0 {
-                (i64::from(img.width()) - 1, -1)
-            } else {
-                (0, 1)
-            };
-            let lead = trace_rows(
-                &img,
-                &camera,
-                plane,
-                |s| edge(&img, s, from, step, |c| is_background(c, bg)),
-                local,
-                heights,
-            );
-            let trail = trace_rows(
-                &img,
-                &camera,
-                plane,
-                |s| edge(&img, s, from, step, fl.is_front),
-                local,
-                heights,
-            );
-            let fail =
-                |what: &str, e: String| format!("{NAME} {band} flange {}: {what}: {e}", fl.tag);
-            let lead = Edge::fit(&lead, 3, effort)
-                .map_err(|e| fail("leading edge", e))?
-                .at(0.0);
-            let trail = Edge::fit(&trail, 3, effort)
-                .map_err(|e| fail("trailing edge", e))?
-                .at(0.0);
-            let seen = |x: f64| -> Result<DVec3, String> {
-                let p = body_point(start.t, start.x, v, DVec3::new(x, 0.0, DEPTH), lorentz);
-                match model.light_speed {
-                    LightSpeed::Infinite => Ok(instantaneous(&p, tc, cam).x),
-                    LightSpeed::Finite => retarded(&p, tc, cam)
-                        .map(|r| r.x)
-                        .ok_or_else(|| fail("oracle", "never seen".into())),
-                }
-            };
-            let (e_lead, e_trail) = (seen(fl.leading_x)?, seen(0.0)?);
-            marks.extend([e_lead, e_trail].map(|p| (p - cam).normalize()));
-            let row = |q: &str, m: &Reading, e: f64| {
-                Row::new(
-                    NAME,
-                    &format!("{band}: flange {} {q}", fl.tag),
-                    m.value,
-                    e,
-                    None,
-                    m.tolerance,
-                    "l.units",
-                )
-            };
-            rows.push(row("leading edge on the stage (x)", &lead, e_lead.x));
-            rows.push(row("trailing edge on the stage (x)", &trail, e_trail.x));
+            let feet = flange_feet(&setup, band, fl, effort)?;
+            marks.extend([feet.expected_lead, feet.expected_trail].map(|p| (p - cam).normalize()));
             // Widths along the flange's own motion, so both come out positive.
-            let along = v.x.signum();
-            let width = difference(&lead, &trail);
-            let width = Reading {
-                value: width.value * along,
-                tolerance: width.tolerance,
-            };
-            rows.push(row(
-                "apparent width on the stage",
-                &width,
-                (e_lead.x - e_trail.x) * along,
-            ));
+            let width = difference(&feet.lead, &feet.trail);
+            let table = [
+                (
+                    "leading edge on the stage (x)",
+                    feet.lead,
+                    feet.expected_lead.x,
+                ),
+                (
+                    "trailing edge on the stage (x)",
+                    feet.trail,
+                    feet.expected_trail.x,
+                ),
+                (
+                    "apparent width on the stage",
+                    Reading {
+                        value: width.value * feet.along,
+                        tolerance: width.tolerance,
+                    },
+                    (feet.expected_lead.x - feet.expected_trail.x) * feet.along,
+                ),
+            ];
+            quantities.extend(table.map(|(q, measured, expected)| Quantity {
+                name: format!("{band}: flange {} {q}", fl.tag),
+                measured,
+                expected,
+                paper: None,
+                unit: Unit::LUnits,
+            }));
         }
         views.push(setup.full_view(band, &marks)?);
     }
-    Ok(FixtureReport::new(NAME, &f.spec.description, views, rows))
+    Ok(Findings { views, quantities })
+}
+
+/// Where a flange's leading and trailing edges stand on the stage,
+/// measured and expected.
+struct Feet {
+    lead: Reading,
+    trail: Reading,
+    expected_lead: DVec3,
+    expected_trail: DVec3,
+    /// The sign of the flange's motion along x.
+    along: f64,
+}
+
+/// Measures the feet of one flange's edges on a probe aimed at it, and
+/// computes where first principles put them.
+fn flange_feet(setup: &Setup, band: &str, fl: &Flange, effort: &Effort) -> Result<Feet, String> {
+    let (model, tc, cam) = (setup.model, setup.camera_t, setup.camera_x());
+    let bg = background(setup.fixture);
+    let m = motion_of(setup.fixture, fl.front, model)?;
+    let (start, v) = (m.start, m.velocity);
+    let keep = [fl.front, fl.side];
+    let (look, vfov) = setup.aim(&keep, 0.1)?;
+    let (img, camera) = setup.probe(&keep, look, vfov, effort.probe, effort.probe, effort.spp)?;
+    let plane = Plane::z(start.x.z + DEPTH);
+    let local = |p: DVec3| (p.y - start.x.y, p.x);
+    let heights = (0.05 * HEIGHT, 0.95 * HEIGHT);
+    // The leading edge faces the direction of motion: scan in from that side.
+    let (from, step) = if v.x > 0.0 {
+        (i64::from(img.width()) - 1, -1)
+    } else {
+        (0, 1)
+    };
+    let lead = trace_rows(
+        &img,
+        &camera,
+        plane,
+        |s| edge(&img, s, from, step, |c| is_background(c, bg)),
+        local,
+        heights,
+    );
+    let trail = trace_rows(
+        &img,
+        &camera,
+        plane,
+        |s| edge(&img, s, from, step, fl.is_front),
+        local,
+        heights,
+    );
+    let fail = |what: &str, e: String| format!("{NAME} {band} flange {}: {what}: {e}", fl.tag);
+    let lead = Edge::fit(&lead, 3, effort)
+        .map_err(|e| fail("leading edge", e))?
+        .at(0.0);
+    let trail = Edge::fit(&trail, 3, effort)
+        .map_err(|e| fail("trailing edge", e))?
+        .at(0.0);
+    let seen = |x: f64| -> Result<DVec3, String> {
+        let p = body_point(start.t, start.x, v, DVec3::new(x, 0.0, DEPTH), m.contracted);
+        match model.light_speed {
+            LightSpeed::Infinite => Ok(instantaneous(&p, tc, cam).x),
+            LightSpeed::Finite => retarded(&p, tc, cam)
+                .map(|r| r.x)
+                .ok_or_else(|| fail("oracle", "never seen".into())),
+        }
+    };
+    Ok(Feet {
+        lead,
+        trail,
+        expected_lead: seen(fl.leading_x)?,
+        expected_trail: seen(0.0)?,
+        along: v.x.signum(),
+    })
 }

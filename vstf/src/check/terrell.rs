@@ -10,10 +10,10 @@
 //! removed (the contraction, which Terrell rotation masks).
 
 use super::{
-    background, difference, is_background, motion_of, trace_rows, Edge, Effort, FixtureReport,
-    Reading, Row, Setup,
+    background, difference, fixture_model, is_background, motion_of, trace_rows, Edge, Effort,
+    Findings, Quantity, Reading, Setup, UniformMotion, Unit,
 };
-use crate::fixture::{Fixture, Overrides};
+use crate::fixture::Fixture;
 use crate::measure::{edge, Plane};
 use crate::oracle::{body_point, gamma, retarded};
 use glam::DVec3;
@@ -22,38 +22,41 @@ const HEIGHT: f64 = 4.0;
 const WIDTH: f64 = 2.0;
 const DEPTH: f64 = 2.0;
 const FRONT: &str = "flange front";
+/// The flange's corners marked in the report: the front face's four and
+/// the back face's trailing two (local coordinates).
+const CORNERS: [(f64, f64, f64); 6] = [
+    (0.0, 0.0, DEPTH),
+    (0.0, HEIGHT, DEPTH),
+    (WIDTH, 0.0, DEPTH),
+    (WIDTH, HEIGHT, DEPTH),
+    (0.0, HEIGHT, 0.0),
+    (0.0, 0.0, 0.0),
+];
 const SIDE: &str = "flange side";
-
-pub fn decoupled(effort: &Effort) -> Result<FixtureReport, String> {
-    run("terrell-decoupled", effort)
-}
-
-pub fn contracted(effort: &Effort) -> Result<FixtureReport, String> {
-    run("terrell-contracted", effort)
-}
 
 /// The front face's blue, whatever its shading.
 fn is_front(c: DVec3) -> bool {
     c.z > 0.2 && c.z > c.x + 0.15
 }
 
-fn run(name: &str, effort: &Effort) -> Result<FixtureReport, String> {
-    let f = Fixture::load(name).map_err(|e| e.to_string())?;
-    let model = f
-        .model(&Overrides::default())
-        .map_err(|(p, m)| format!("{p}: {m}"))?;
-    let (start, v, lorentz) = motion_of(&f, FRONT, model)?;
-    let setup = Setup {
-        fixture: &f,
-        model,
-        camera_t: f.spec.camera.t,
-    };
-    let (tc, cam) = (setup.camera_t, setup.camera_x());
+/// The edges of the flange measured on one probe, each fitted against
+/// height: the front face's trailing and leading edges, and the far
+/// (back) face's trailing edge.
+struct Edges {
+    trailing: Edge,
+    leading: Edge,
+    far: Edge,
+}
+
+/// Traces and fits the flange's edges on a probe aimed at its front and side.
+fn measure_edges(setup: &Setup, m: &UniformMotion, effort: &Effort) -> Result<Edges, String> {
+    let name = &setup.fixture.name;
     let keep = [FRONT, SIDE];
     let (look, vfov) = setup.aim(&keep, 0.1)?;
     let (img, camera) = setup.probe(&keep, look, vfov, effort.probe, effort.probe, effort.spp)?;
-    let bg = background(&f);
+    let bg = background(setup.fixture);
     let w = i64::from(img.width());
+    let start = m.start;
     let (front_plane, far_plane) = (Plane::z(start.x.z + DEPTH), Plane::z(start.x.z));
     let heights = (0.05 * HEIGHT, 0.95 * HEIGHT);
     let local = |p: DVec3| (p.y - start.x.y, p.x);
@@ -82,117 +85,137 @@ fn run(name: &str, effort: &Effort) -> Result<FixtureReport, String> {
         local,
         heights,
     );
-    let trailing = Edge::fit(&trailing, 3, effort).map_err(|e| fail("trailing edge", e))?;
-    let leading = Edge::fit(&leading, 3, effort).map_err(|e| fail("leading edge", e))?;
-    let far = Edge::fit(&far, 3, effort).map_err(|e| fail("far edge", e))?;
+    Ok(Edges {
+        trailing: Edge::fit(&trailing, 3, effort).map_err(|e| fail("trailing edge", e))?,
+        leading: Edge::fit(&leading, 3, effort).map_err(|e| fail("leading edge", e))?,
+        far: Edge::fit(&far, 3, effort).map_err(|e| fail("far edge", e))?,
+    })
+}
 
-    // First principles: each point's straight worldline against the camera's past light cone.
-    let lab_width = if lorentz {
-        WIDTH / gamma(v.length())
-    } else {
-        WIDTH
+/// Where a point of the flange (in its local coordinates) is seen from
+/// the camera event: its straight worldline against the camera's past
+/// light cone.
+fn seen(setup: &Setup, m: &UniformMotion, x: f64, y: f64, z: f64) -> Result<DVec3, String> {
+    let p = body_point(
+        m.start.t,
+        m.start.x,
+        m.velocity,
+        DVec3::new(x, y, z),
+        m.contracted,
+    );
+    retarded(&p, setup.camera_t, setup.camera_x())
+        .map(|r| r.x)
+        .ok_or_else(|| {
+            format!(
+                "{}: point ({x}, {y}, {z}) is never seen",
+                setup.fixture.name
+            )
+        })
+}
+
+/// The Terrell-Penrose-Boas quantities of one flange fixture (H_obj or
+/// V_obj): corner positions and lags, the trailing edge's bow, the front's
+/// apparent length and its length with the light delay removed, which is
+/// the Lorentz contraction 1/gamma (the paper: 0.5 at 0.866c) for the
+/// V_obj and 1 for the H_obj.
+pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+    let model = fixture_model(f)?;
+    let m = motion_of(f, FRONT, model)?;
+    let setup = Setup {
+        fixture: f,
+        model,
+        camera_t: f.spec.camera.t,
     };
-    let seen = |x: f64, y: f64, z: f64| -> Result<DVec3, String> {
-        let p = body_point(start.t, start.x, v, DVec3::new(x, y, z), lorentz);
-        retarded(&p, tc, cam)
-            .map(|r| r.x)
-            .ok_or_else(|| format!("{name}: point ({x}, {y}, {z}) is never seen"))
-    };
+    let (tc, cam) = (setup.camera_t, setup.camera_x());
+    let Edges {
+        trailing,
+        leading,
+        far,
+    } = measure_edges(&setup, &m, effort)?;
+    let seen = |x: f64, y: f64, z: f64| seen(&setup, &m, x, y, z);
     let upper = seen(0.0, HEIGHT, DEPTH)?;
     let lower = seen(0.0, 0.0, DEPTH)?;
     let mid = seen(0.0, HEIGHT / 2.0, DEPTH)?;
     let far_top = seen(0.0, HEIGHT, 0.0)?;
     let lead_mid = seen(WIDTH, HEIGHT / 2.0, DEPTH)?;
-
-    let m_upper = trailing.at(HEIGHT);
-    let m_lower = trailing.at(0.0);
-    let m_lag = trailing.combine(&[(1.0, HEIGHT), (-1.0, 0.0)]);
-    let m_far_lag = difference(&m_upper, &far.at(HEIGHT));
-    let m_sagitta = trailing.combine(&[(1.0, HEIGHT / 2.0), (-0.5, 0.0), (-0.5, HEIGHT)]);
+    let lab_width = if m.contracted {
+        WIDTH / gamma(m.velocity.length())
+    } else {
+        WIDTH
+    };
     let (m_lead, m_trail) = (leading.at(HEIGHT / 2.0), trailing.at(HEIGHT / 2.0));
-    let m_apparent = difference(&m_lead, &m_trail);
     let m_length = delay_removed_length(
         &m_lead,
         &m_trail,
-        start.x.y + HEIGHT / 2.0,
-        front_plane.point.z,
-        v.x,
+        DVec3::new(0.0, m.start.x.y + HEIGHT / 2.0, m.start.x.z + DEPTH),
+        m.velocity.x,
         tc,
         cam,
     );
-
-    let row = |q: &str, m: &Reading, expected: f64, paper: Option<f64>, unit: &str| {
-        Row::new(name, q, m.value, expected, paper, m.tolerance, unit)
+    let length = |name: &str, measured: Reading, expected: f64, paper: Option<f64>| Quantity {
+        name: name.into(),
+        measured,
+        expected,
+        paper,
+        unit: Unit::LUnits,
     };
-    let rows = vec![
-        row(
+    let quantities = vec![
+        length(
             "trailing upper corner (x)",
-            &m_upper,
+            trailing.at(HEIGHT),
             upper.x,
             Some(0.0),
-            "l.units",
         ),
-        row(
+        length(
             "trailing lower corner (x)",
-            &m_lower,
+            trailing.at(0.0),
             lower.x,
             Some(-1.66),
-            "l.units",
         ),
-        row(
+        length(
             "lag of the trailing lower corner behind the upper",
-            &m_lag,
+            trailing.combine(&[(1.0, HEIGHT), (-1.0, 0.0)]),
             upper.x - lower.x,
             Some(1.66),
-            "l.units",
         ),
-        row(
+        length(
             "lag of the far top corner behind the near top corner",
-            &m_far_lag,
+            difference(&trailing.at(HEIGHT), &far.at(HEIGHT)),
             upper.x - far_top.x,
             Some(1.66),
-            "l.units",
         ),
-        row(
+        length(
             "bow of the trailing edge at mid-height (Boas)",
-            &m_sagitta,
+            trailing.combine(&[(1.0, HEIGHT / 2.0), (-0.5, 0.0), (-0.5, HEIGHT)]),
             mid.x - (upper.x + lower.x) / 2.0,
             None,
-            "l.units",
         ),
-        row(
+        length(
             "apparent front length at mid-height",
-            &m_apparent,
+            difference(&m_lead, &m_trail),
             lead_mid.x - mid.x,
             None,
-            "l.units",
         ),
-        row(
-            "front length with light delay removed / proper length",
-            &Reading {
+        Quantity {
+            name: "front length with light delay removed / proper length".into(),
+            measured: Reading {
                 value: m_length.value / WIDTH,
                 tolerance: m_length.tolerance / WIDTH,
             },
-            lab_width / WIDTH,
-            lorentz.then_some(0.5),
-            "ratio",
-        ),
+            expected: lab_width / WIDTH,
+            paper: m.contracted.then_some(0.5),
+            unit: Unit::Ratio,
+        },
     ];
-    let corners = [
-        (0.0, 0.0, DEPTH),
-        (0.0, HEIGHT, DEPTH),
-        (WIDTH, 0.0, DEPTH),
-        (WIDTH, HEIGHT, DEPTH),
-        (0.0, HEIGHT, 0.0),
-        (0.0, 0.0, 0.0),
-    ];
-    let marks: Vec<DVec3> = corners
+    let marks: Vec<DVec3> = CORNERS
         .iter()
         .filter_map(|&(x, y, z)| seen(x, y, z).ok())
         .map(|p| (p - cam).normalize())
         .collect();
-    let views = vec![setup.full_view("view", &marks)?];
-    Ok(FixtureReport::new(name, &f.spec.description, views, rows))
+    Ok(Findings {
+        views: vec![setup.full_view("view", &marks)?],
+        quantities,
+    })
 }
 
 /// The lab length between the leading and trailing edges at one lab time,
@@ -204,13 +227,12 @@ fn run(name: &str, effort: &Effort) -> Result<FixtureReport, String> {
 fn delay_removed_length(
     lead: &Reading,
     trail: &Reading,
-    y: f64,
-    z: f64,
+    line: DVec3,
     vx: f64,
     tc: f64,
     cam: DVec3,
 ) -> Reading {
-    let at = |x: f64| DVec3::new(x, y, z);
+    let at = |x: f64| DVec3::new(x, line.y, line.z);
     let d = |x: f64| (at(x) - cam).length();
     let (xl, xt) = (lead.value, trail.value);
     let (tl, tt) = (tc - d(xl), tc - d(xt));

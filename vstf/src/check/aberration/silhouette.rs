@@ -1,0 +1,138 @@
+//! The cube's silhouette on the horizon, measured: a coarse wide strip
+//! finds each edge, a narrow probe aimed there traces it over rows on the
+//! sphere of directions (elevation against azimuth, in the observer's own
+//! frame), and the fit is read at elevation 0.
+
+use super::{azimuth_deg, CUBE, NAME};
+use crate::check::{background, is_background, trace_rows, Edge, Effort, Reading, Setup};
+use crate::measure::{edge, Plane};
+use glam::DVec3;
+
+/// Measures the silhouette edge on the horizon near azimuth `near_deg`:
+/// a narrow probe aimed there, the edge traced over rows and fitted
+/// against elevation, read at elevation 0.
+fn measure_edge(
+    setup: &Setup,
+    near_deg: f64,
+    right: bool,
+    effort: &Effort,
+) -> Result<Reading, String> {
+    let a = near_deg.to_radians();
+    let look = DVec3::new(a.sin(), 0.0, -a.cos());
+    // A strip 3 degrees wide and 0.6 tall across the horizon, half the
+    // probe's width: the angle targets (0.05 deg) are met ~100x over.
+    let (img, camera) = setup.probe(
+        &[CUBE],
+        look,
+        3.0,
+        effort.probe / 2,
+        effort.probe / 10,
+        effort.spp,
+    )?;
+    let bg = background(setup.fixture);
+    let w = i64::from(img.width());
+    let (from, step) = if right { (w - 1, -1) } else { (0, 1) };
+    // Angles are the observer's: lines of sight in the camera's own frame
+    // (the same as the lab's when the camera is at rest).
+    let camera = still(&camera);
+    // On the unit sphere of directions: elevation (deg) against azimuth (deg).
+    let sphere = Plane::z(-1.0);
+    let trace = trace_rows(
+        &img,
+        &camera,
+        sphere,
+        |s| edge(&img, s, from, step, |c| is_background(c, bg)),
+        |p| (p.y.atan2(p.x.hypot(p.z)).to_degrees(), azimuth_deg(p)),
+        (-0.25, 0.25),
+    );
+    let trace = crate::check::EdgeTrace {
+        footprint: measure_angular(&camera),
+        ..trace
+    };
+    Ok(Edge::fit(&trace, 2, effort)
+        .map_err(|e| format!("{NAME}: edge near {near_deg:.2} deg: {e}"))?
+        .at(0.0))
+}
+
+/// The camera with its motion removed: its pixels' lines of sight are then
+/// those of the camera's own frame.
+fn still(camera: &renderer::Camera) -> renderer::Camera {
+    renderer::Camera {
+        velocity: DVec3::ZERO,
+        kinematics: renderer::Kinematics::None,
+        ..*camera
+    }
+}
+
+/// Angular size of a probe pixel at its centre, degrees.
+fn measure_angular(camera: &renderer::Camera) -> f64 {
+    let (cx, cy) = (
+        f64::from(camera.width) / 2.0,
+        f64::from(camera.height) / 2.0,
+    );
+    crate::measure::angular_footprint(camera, cx, cy, true).to_degrees()
+}
+
+/// Rough azimuths (left, right) of the silhouette on the horizon, from a
+/// wide render.
+fn coarse_edges(setup: &Setup) -> Result<(f64, f64), String> {
+    // A wide strip across the horizon first; where the cube reaches its
+    // border (beyond +-85 degrees), a second strip turned towards that side.
+    let (l, r) = coarse_strip(setup, 0.0, 170.0)?;
+    let l = if l.1 {
+        coarse_strip(setup, -60.0, 60.0)?.0 .0
+    } else {
+        l.0
+    };
+    let r = if r.1 {
+        coarse_strip(setup, 60.0, 60.0)?.1 .0
+    } else {
+        r.0
+    };
+    Ok((l, r))
+}
+
+/// A rough edge azimuth (degrees), and whether it lies on the probe's border.
+type CoarseEdge = (f64, bool);
+
+/// The azimuths of the leftmost and rightmost cube pixels on the horizon of
+/// a strip centred on azimuth `centre_deg`, each with whether it lies on the
+/// strip's border.
+fn coarse_strip(
+    setup: &Setup,
+    centre_deg: f64,
+    hfov_deg: f64,
+) -> Result<(CoarseEdge, CoarseEdge), String> {
+    let a = centre_deg.to_radians();
+    let (img, camera) = setup.probe(
+        &[CUBE],
+        DVec3::new(a.sin(), 0.0, -a.cos()),
+        hfov_deg,
+        1441,
+        3,
+        1,
+    )?;
+    let bg = background(setup.fixture);
+    let row = img.height() / 2;
+    let xs: Vec<u32> = (0..img.width())
+        .filter(|x| !is_background(crate::measure::color(&img, *x, row), bg))
+        .collect();
+    let (Some(&l), Some(&r)) = (xs.first(), xs.last()) else {
+        return Err(format!("{NAME}: the cube is not on the horizon"));
+    };
+    let camera = still(&camera);
+    let az = |x: f64| azimuth_deg(camera.direction(x, f64::from(row) + 0.5));
+    Ok((
+        (az(f64::from(l)), l == 0),
+        (az(f64::from(r) + 1.0), r + 1 == img.width()),
+    ))
+}
+
+/// Measures both silhouette edges of a setup on the horizon.
+pub(super) fn measure_edges(setup: &Setup, effort: &Effort) -> Result<(Reading, Reading), String> {
+    let (coarse_l, coarse_r) = coarse_edges(setup)?;
+    Ok((
+        measure_edge(setup, coarse_l, false, effort)?,
+        measure_edge(setup, coarse_r, true, effort)?,
+    ))
+}

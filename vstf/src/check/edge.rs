@@ -1,0 +1,94 @@
+//! Edges measured to sub-pixel precision: an edge is located in every image
+//! row by the area method ([`crate::measure::edge`]), mapped through the
+//! camera onto a known plane, and fitted by a polynomial; values read off
+//! the fit carry the fit's prediction error.
+
+use super::row::Reading;
+use super::setup::Effort;
+use crate::measure::{self, PolyFit, Scan};
+use glam::DVec3;
+use image::RgbImage;
+use renderer::Camera;
+
+/// An edge traced down the image: for every row, the sub-pixel boundary
+/// found by `find`, mapped onto `plane`, as (height coordinate, position
+/// coordinate) pairs selected by `coords`, kept where the height lies in `range`.
+pub struct EdgeTrace {
+    /// The (height, position) points of the edge on the plane.
+    pub points: Vec<(f64, f64)>,
+    /// Mean footprint of a pixel across the edge on the plane, l.units.
+    pub footprint: f64,
+}
+
+/// Traces an edge down the image rows onto a plane (see [`EdgeTrace`]).
+pub fn trace_rows(
+    img: &RgbImage,
+    camera: &Camera,
+    plane: measure::Plane,
+    find: impl Fn(Scan) -> Option<f64>,
+    coords: impl Fn(DVec3) -> (f64, f64),
+    range: (f64, f64),
+) -> EdgeTrace {
+    let mut points = Vec::new();
+    let mut fp = Vec::new();
+    for y in 0..img.height() {
+        let scan = Scan {
+            horizontal: true,
+            at: y,
+        };
+        let Some(u) = find(scan) else { continue };
+        let (px, py) = scan.point(u);
+        let Some(p) = measure::on_plane(camera, px, py, plane) else {
+            continue;
+        };
+        let (h, x) = coords(p);
+        if h >= range.0 && h <= range.1 {
+            points.push((h, x));
+            if let Some(f) = measure::footprint(camera, px, py, true, plane) {
+                fp.push(f);
+            }
+        }
+    }
+    let footprint = if fp.is_empty() {
+        f64::NAN
+    } else {
+        fp.iter().sum::<f64>() / fp.len() as f64
+    };
+    EdgeTrace { points, footprint }
+}
+
+/// A fitted edge, able to read values and combinations of values off it
+/// with their uncertainty: the fit's prediction error (3 sigma), with the
+/// residual scatter floored at the area method's resolution (1/n pixel for
+/// n x n strata, taken as a uniform error: /sqrt(12)), so that a perfectly
+/// clean fit never claims more than the sampling can give.
+pub struct Edge {
+    /// The robust polynomial fit of position against height.
+    pub fit: PolyFit,
+    floor_scale: f64,
+}
+
+impl Edge {
+    /// Fits a polynomial of `degree` to the traced edge.
+    pub fn fit(trace: &EdgeTrace, degree: usize, effort: &Effort) -> Result<Edge, String> {
+        let fit = PolyFit::fit_robust(&trace.points, degree)
+            .ok_or_else(|| format!("too few edge points ({})", trace.points.len()))?;
+        let floor = trace.footprint / effort.strata() / 12f64.sqrt();
+        let floor_scale = fit.sigma.max(floor) / fit.sigma.max(1e-300);
+        Ok(Edge { fit, floor_scale })
+    }
+
+    /// The value sum w_i f(x_i) of weighted readings.
+    pub fn combine(&self, terms: &[(f64, f64)]) -> Reading {
+        let value = terms.iter().map(|&(w, x)| w * self.fit.eval(x)).sum();
+        Reading {
+            value,
+            tolerance: 3.0 * self.fit.stderr_of(terms) * self.floor_scale,
+        }
+    }
+
+    /// The edge's position at height `x`.
+    pub fn at(&self, x: f64) -> Reading {
+        self.combine(&[(1.0, x)])
+    }
+}

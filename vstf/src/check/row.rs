@@ -1,0 +1,133 @@
+//! What a check reports: a measured quantity with its uncertainty, the
+//! first-principles value it is held against and the paper's printed
+//! figure, judged into a row of the check table.
+
+use serde::Serialize;
+
+/// A value read off the images, with its 3-sigma uncertainty.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reading {
+    /// The measured value.
+    pub value: f64,
+    /// Half-width of the band the true value lies in (3 sigma).
+    pub tolerance: f64,
+}
+
+/// Two independent readings combined as a - b (uncertainties in quadrature).
+pub fn difference(a: &Reading, b: &Reading) -> Reading {
+    Reading {
+        value: a.value - b.value,
+        tolerance: a.tolerance.hypot(b.tolerance),
+    }
+}
+
+/// The unit of a checked quantity, serialised as the check table prints it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Unit {
+    /// Lengths in the scene: light-units (the distance light goes in a t.unit).
+    #[serde(rename = "l.units")]
+    LUnits,
+    /// Times in the lab frame, t.units.
+    #[serde(rename = "t.units")]
+    TUnits,
+    /// Velocities as a fraction of light speed, l.units per t.unit.
+    #[serde(rename = "l.units/t.unit")]
+    LUnitsPerTUnit,
+    /// Angles on the observer's sky, degrees.
+    #[serde(rename = "deg")]
+    Degrees,
+    /// Positions on the paper's grid 10 l.units ahead, in grid marks.
+    #[serde(rename = "grid marks")]
+    GridMarks,
+    /// A dimensionless ratio of two lengths.
+    #[serde(rename = "ratio")]
+    Ratio,
+    /// A dimensionless factor (the Doppler factor D).
+    #[serde(rename = "factor")]
+    Factor,
+}
+
+impl Unit {
+    /// The unit as printed in the table and the JSON rows.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Unit::LUnits => "l.units",
+            Unit::TUnits => "t.units",
+            Unit::LUnitsPerTUnit => "l.units/t.unit",
+            Unit::Degrees => "deg",
+            Unit::GridMarks => "grid marks",
+            Unit::Ratio => "ratio",
+            Unit::Factor => "factor",
+        }
+    }
+}
+
+impl std::fmt::Display for Unit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// One quantity of a check's table: what was measured, what first
+/// principles expect, and the figure the paper prints, if any.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Quantity {
+    /// What is measured, as the table names it.
+    pub name: String,
+    /// The value read off the images and its uncertainty.
+    pub measured: Reading,
+    /// The first-principles value ([`crate::oracle`]).
+    pub expected: f64,
+    /// The paper's printed figure, where it gives one.
+    pub paper: Option<f64>,
+    /// The unit of all three.
+    pub unit: Unit,
+}
+
+impl Quantity {
+    /// The quantity judged for `fixture`: it passes when the measurement is
+    /// finite and within its tolerance of the expectation.
+    pub fn judge(self, fixture: &str) -> Row {
+        let Reading { value, tolerance } = self.measured;
+        Row {
+            fixture: fixture.into(),
+            quantity: self.name,
+            measured: value,
+            expected: self.expected,
+            paper: self.paper,
+            tolerance,
+            unit: self.unit,
+            pass: value.is_finite() && (value - self.expected).abs() <= tolerance,
+        }
+    }
+}
+
+/// One checked quantity, as the table and the JSON rows show it.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Row {
+    /// The fixture checked.
+    pub fixture: String,
+    /// What was measured.
+    pub quantity: String,
+    /// The value read off the images.
+    pub measured: f64,
+    /// The first-principles value.
+    pub expected: f64,
+    /// The paper's printed figure, where it gives one.
+    pub paper: Option<f64>,
+    /// How far the measurement may lie from the expectation (3 sigma).
+    pub tolerance: f64,
+    /// The unit of the values.
+    pub unit: Unit,
+    /// Whether the measurement lies within the tolerance.
+    pub pass: bool,
+}
+
+impl Row {
+    /// Whether the paper's figure lies outside the tolerance around the
+    /// first-principles value (explained in docs/physics.md).
+    pub fn paper_disagrees(&self) -> bool {
+        self.paper
+            .is_some_and(|p| (p - self.expected).abs() > self.tolerance)
+    }
+}

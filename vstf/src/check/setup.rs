@@ -1,0 +1,245 @@
+//! How a check looks at its fixture: probe renders of the measured objects
+//! and full views for the report.
+//!
+//! Measurements are made on *probe* renders: the fixture's scene from the
+//! fixture's camera event, with only the measured objects kept (so that edges
+//! stand against the flat background) and the view turned and narrowed onto
+//! the measured feature (so that a pixel is small). A probe changes neither
+//! the camera event nor any worldline, so it sees exactly the events the full
+//! view sees; the full view is rendered for the report.
+
+use super::runner::ViewReport;
+use crate::fixture::{Fixture, Overrides, View};
+use crate::measure;
+use glam::DVec3;
+use image::RgbImage;
+use renderer::{Attitude, Camera, Database, Event, Model, Traversal};
+
+/// Width of the full views: the report's images and the golden images,
+/// the same at every effort so that `cargo test` and `vstf check` compare
+/// the same pictures.
+pub const VIEW_WIDTH: u32 = 240;
+
+/// How hard to look: probe size and samples per pixel. The default is the
+/// main job's; tests use a smaller one.
+#[derive(Clone, Copy, Debug)]
+pub struct Effort {
+    /// Probe image side, pixels.
+    pub probe: u32,
+    /// Samples per probe pixel (a square number: n x n strata).
+    pub spp: u32,
+}
+
+impl Effort {
+    /// The effort of `vstf check`: 400-pixel probes, 3 x 3 strata.
+    pub const FULL: Effort = Effort { probe: 400, spp: 9 };
+    /// The effort of the tests: 200-pixel probes, 3 x 3 strata.
+    pub const QUICK: Effort = Effort { probe: 200, spp: 9 };
+
+    /// Strata per side.
+    pub fn strata(&self) -> f64 {
+        f64::from(self.spp).sqrt().floor()
+    }
+}
+
+/// The model the fixture names (no overrides).
+pub fn fixture_model(fixture: &Fixture) -> Result<Model, String> {
+    fixture
+        .model(&Overrides::default())
+        .map_err(|(p, m)| format!("{p}: {m}"))
+}
+
+/// A fixture with a model and camera time chosen.
+pub struct Setup<'a> {
+    /// The fixture looked at (possibly a modified copy of the loaded one).
+    pub fixture: &'a Fixture,
+    /// The physics the renders use.
+    pub model: Model,
+    /// The camera's lab time, t.units.
+    pub camera_t: f64,
+}
+
+impl Setup<'_> {
+    /// The camera position.
+    pub fn camera_x(&self) -> DVec3 {
+        self.fixture.spec.camera.position
+    }
+
+    fn view(&self, width: u32) -> Result<View, String> {
+        let im = &self.fixture.spec.image;
+        let height =
+            ((f64::from(width) * f64::from(im.height) / f64::from(im.width)).round() as u32).max(1);
+        let o = Overrides {
+            model: Some(self.model),
+            camera_t: Some(self.camera_t),
+            width: Some(width),
+            height: Some(height),
+            spp: None,
+            doppler: false,
+            searchlight: false,
+        };
+        crate::run::view(self.fixture, &o)
+    }
+
+    /// The full view at [`VIEW_WIDTH`], with `markers` at the pixels of
+    /// the given lab directions.
+    pub fn full_view(&self, name: &str, directions: &[DVec3]) -> Result<ViewReport, String> {
+        let view = self.view(VIEW_WIDTH)?;
+        let image = crate::run::render(self.fixture, &view, Traversal::Bvh)?.to_rgb8();
+        let markers = directions
+            .iter()
+            .filter_map(|d| view.camera.pixel_of(*d))
+            .collect();
+        Ok(ViewReport {
+            name: name.into(),
+            image,
+            markers,
+        })
+    }
+
+    /// Renders only the objects named in `keep`, looking towards
+    /// `look_at` (a direction in the camera's frame, from its position) with
+    /// horizontal field of view `hfov_deg`, at `width` x `height`. The probe
+    /// camera moves as the fixture's does.
+    pub fn probe(
+        &self,
+        keep: &[&str],
+        look_at: DVec3,
+        hfov_deg: f64,
+        width: u32,
+        height: u32,
+        spp: u32,
+    ) -> Result<(RgbImage, Camera), String> {
+        let mut scene = self.fixture.scene.clone();
+        scene.objects.retain(|o| keep.contains(&o.name.as_str()));
+        if scene.objects.len() != keep.len() {
+            return Err(format!(
+                "{}: probe needs objects {keep:?}",
+                self.fixture.file.display()
+            ));
+        }
+        let db = Database::build(&scene, self.model.lorentz)
+            .map_err(|e| format!("{}: {e}", self.fixture.file.display()))?;
+        let aspect = f64::from(width) / f64::from(height);
+        let vfov_deg = 2.0
+            * ((hfov_deg.to_radians() / 2.0).tan() / aspect)
+                .atan()
+                .to_degrees();
+        let camera = Camera::new(
+            Event::new(self.camera_t, self.camera_x()),
+            Attitude::LookAt {
+                look_at,
+                up: DVec3::Y,
+            },
+            vfov_deg,
+            width,
+            height,
+        )
+        .ok_or("degenerate probe camera")?
+        .moving(
+            self.fixture.spec.camera.velocity.unwrap_or(DVec3::ZERO),
+            self.model,
+        )
+        .ok_or("the camera moves at or above light speed")?;
+        let settings = renderer::RenderSettings {
+            spp,
+            shutter: 0.0,
+            seed: 1,
+            max_depth: 0,
+            shadows: false,
+            effects: renderer::Effects {
+                doppler: self.fixture.spec.image.doppler,
+                searchlight: self.fixture.spec.image.searchlight,
+            },
+        };
+        let img = renderer::render(&db, &scene, &camera, self.camera_t, self.model, &settings);
+        Ok((img.to_rgb8(), camera))
+    }
+
+    /// Aims a probe at the kept objects: a coarse wide render finds their
+    /// bounding box in the image; returns the look-at point (one l.unit
+    /// along the central line of sight) and a field of view covering the box
+    /// with `margin` (fraction) to spare.
+    pub fn aim(&self, keep: &[&str], margin: f64) -> Result<(DVec3, f64), String> {
+        let wide = self.fixture.spec.camera.vfov_deg.max(30.0);
+        let look = self
+            .fixture
+            .spec
+            .camera
+            .look_at
+            .unwrap_or(self.camera_x() + DVec3::NEG_Z);
+        let (img, cam) = self.probe(keep, look, wide, 240, 240, 1)?;
+        let bg = measure::color(&img, 0, 0);
+        let (mut x0, mut y0, mut x1, mut y1) = (u32::MAX, u32::MAX, 0, 0);
+        for (x, y, _) in img.enumerate_pixels() {
+            if !is_background(measure::color(&img, x, y), bg) {
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            }
+        }
+        if x0 > x1 {
+            return Err(format!("{}: {keep:?} not in view", self.fixture.name));
+        }
+        let (cx, cy) = (
+            (f64::from(x0) + f64::from(x1) + 1.0) / 2.0,
+            (f64::from(y0) + f64::from(y1) + 1.0) / 2.0,
+        );
+        let centre = cam.direction(cx, cy);
+        let corners = [(x0, y0), (x1 + 1, y0), (x0, y1 + 1), (x1 + 1, y1 + 1)];
+        let half = corners
+            .iter()
+            .map(|&(x, y)| {
+                cam.direction(f64::from(x), f64::from(y))
+                    .angle_between(centre)
+            })
+            .fold(0.0, f64::max);
+        Ok((
+            self.camera_x() + centre,
+            (2.0 * half.to_degrees() * (1.0 + margin)).min(170.0),
+        ))
+    }
+}
+
+/// Whether a colour is the (flat) background of a probe.
+pub fn is_background(c: DVec3, bg: DVec3) -> bool {
+    (c - bg).abs().max_element() < 12.0 / 255.0
+}
+
+/// An object's straight worldline as the fixture gives it.
+#[derive(Clone, Copy, Debug)]
+pub struct UniformMotion {
+    /// The event where its reference point starts.
+    pub start: Event,
+    /// Its lab velocity, as a fraction of light speed.
+    pub velocity: DVec3,
+    /// Whether it is Lorentz-contracted under the model (a V_obj under the
+    /// Lorentz transform).
+    pub contracted: bool,
+}
+
+/// The uniform motion under `model` of the object named `name`, read from
+/// the fixture.
+pub fn motion_of(fixture: &Fixture, name: &str, model: Model) -> Result<UniformMotion, String> {
+    let obj = fixture
+        .scene
+        .objects
+        .iter()
+        .find(|o| o.name == name)
+        .ok_or_else(|| format!("{}: no object {name:?}", fixture.file.display()))?;
+    let contracted = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
+    let (start, velocity) = obj.motion.uniform().ok_or_else(|| {
+        format!(
+            "{}: object {name:?} does not move uniformly",
+            fixture.file.display()
+        )
+    })?;
+    Ok(UniformMotion {
+        start,
+        velocity,
+        contracted,
+    })
+}
+
+/// The background colour of probes, as stored in 8 bits.
+pub fn background(fixture: &Fixture) -> DVec3 {
+    (fixture.scene.background.clamp(DVec3::ZERO, DVec3::ONE) * 255.0).round() / 255.0
+}
