@@ -11,12 +11,16 @@ use glam::DVec3;
 /// A point's straight worldline: at lab time `t0` it is at `x0`, moving with `v`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointWorldline {
+    /// Lab time at which the point is at `x0`.
     pub t0: f64,
+    /// Lab position at `t0`.
     pub x0: DVec3,
+    /// Lab velocity (fraction of c).
     pub v: DVec3,
 }
 
 impl PointWorldline {
+    /// Lab position at lab time `t`.
     pub fn at(&self, t: f64) -> DVec3 {
         self.x0 + self.v * (t - self.t0)
     }
@@ -41,26 +45,7 @@ pub fn retarded(p: &PointWorldline, tc: f64, camera: DVec3) -> Option<Retarded> 
     let qa = p.v.length_squared() - 1.0;
     let qb = 2.0 * (a.dot(p.v) + tc);
     let qc = a.length_squared() - tc * tc;
-    let roots: Vec<f64> = if qa.abs() < 1e-15 {
-        if qb == 0.0 {
-            vec![]
-        } else {
-            vec![-qc / qb]
-        }
-    } else {
-        let disc = qb * qb - 4.0 * qa * qc;
-        if disc < 0.0 {
-            return None;
-        }
-        // Numerically stable pair of roots.
-        let q = -0.5 * (qb + qb.signum() * disc.sqrt());
-        let mut r = vec![q / qa];
-        if q != 0.0 {
-            r.push(qc / q);
-        }
-        r
-    };
-    let t = roots
+    let t = quadratic_roots(qa, qb, qc, 1e-15)
         .into_iter()
         .filter(|t| *t <= tc + 1e-12 * tc.abs().max(1.0))
         .fold(f64::NEG_INFINITY, f64::max);
@@ -75,9 +60,53 @@ pub fn retarded(p: &PointWorldline, tc: f64, camera: DVec3) -> Option<Retarded> 
     })
 }
 
-/// Lorentz factor, paper eq. (2).
+/// The real roots of a x^2 + b x + c = 0, computed stably: with
+/// q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2 the roots are q / a and c / q, so
+/// neither subtracts nearly equal numbers. Where |a| < `linear_below` the
+/// equation is taken as linear, b x + c = 0. No roots when the discriminant
+/// is negative or the equation degenerates to c = 0.
+pub fn quadratic_roots(a: f64, b: f64, c: f64, linear_below: f64) -> Vec<f64> {
+    if a.abs() < linear_below {
+        return if b == 0.0 { vec![] } else { vec![-c / b] };
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return vec![];
+    }
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    let mut roots = vec![q / a];
+    if q != 0.0 {
+        roots.push(c / q);
+    }
+    roots
+}
+
+/// Lorentz factor, paper eq. (2), of the speed `beta`.
 pub fn gamma(beta: f64) -> f64 {
-    1.0 / (1.0 - beta * beta).sqrt()
+    gamma_of_squared(beta * beta)
+}
+
+/// Lorentz factor, paper eq. (2), of the squared speed beta^2 = v.v
+/// (for a velocity vector, without the square root of a square).
+pub fn gamma_of_squared(beta_squared: f64) -> f64 {
+    1.0 / (1.0 - beta_squared).sqrt()
+}
+
+/// A lab-frame displacement (`dt`, `dx`) between two events, in the frame
+/// moving with lab velocity `u` (|u| < 1): the pure Lorentz boost
+/// t' = gamma (t - u.x), x' = x + ((gamma - 1) (u.x) / u^2 - gamma t) u
+/// (paper 3, item 2c, in vector form). `None` at or above light speed.
+pub fn to_frame_of(dt: f64, dx: DVec3, u: DVec3) -> Option<(f64, DVec3)> {
+    let u2 = u.length_squared();
+    if !u.is_finite() || u2 >= 1.0 {
+        return None;
+    }
+    if u2 == 0.0 {
+        return Some((dt, dx));
+    }
+    let g = gamma_of_squared(u2);
+    let ux = u.dot(dx);
+    Some((g * (dt - ux), dx + u * ((g - 1.0) * ux / u2 - g * dt)))
 }
 
 /// Length contraction of a rest-frame offset `r` of a body moving with
@@ -179,9 +208,13 @@ pub fn extremes_on_polygon(corners: &[DVec3], f: impl Fn(DVec3) -> f64) -> (f64,
 /// T = t - centre_t. A = 1/a is its own proper acceleration's inverse.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointHyperbola {
+    /// Lab time of the hyperbola's centre event (the turning point's time).
     pub centre_t: f64,
+    /// Lab position of the centre event.
     pub centre: DVec3,
+    /// Unit direction of the acceleration.
     pub n: DVec3,
+    /// A = 1 / a, the distance from the centre at the turning point.
     pub big_a: f64,
 }
 
@@ -189,7 +222,7 @@ impl PointHyperbola {
     /// A point that starts at `x0` at lab time `t0` with velocity
     /// `v0` along `n` (|v0| < 1) and keeps the proper acceleration `a`.
     pub fn starting(t0: f64, x0: DVec3, n: DVec3, a: f64, v0: f64) -> PointHyperbola {
-        let g0 = 1.0 / (1.0 - v0 * v0).sqrt();
+        let g0 = gamma(v0);
         // S = cosh(phi0)/a = gamma0/a and T = sinh(phi0)/a = gamma0 v0/a at the start.
         PointHyperbola {
             centre_t: t0 - g0 * v0 / a,
@@ -199,6 +232,7 @@ impl PointHyperbola {
         }
     }
 
+    /// Lab position at lab time `t`: S = sqrt(A^2 + T^2) along `n`.
     pub fn at(&self, t: f64) -> DVec3 {
         self.centre + self.n * self.big_a.hypot(t - self.centre_t)
     }
@@ -223,21 +257,7 @@ pub fn retarded_hyperbolic(p: &PointHyperbola, tc: f64, camera: DVec3) -> Option
     let (dn, big_tc, a) = (d.dot(p.n), tc - p.centre_t, p.big_a);
     let k = d.length_squared() + a * a - big_tc * big_tc;
     let (qa, qb, qc) = (a * (dn - big_tc), -k, a * (dn + big_tc));
-    let roots: Vec<f64> = if qa.abs() < 1e-15 * (qb.abs() + qc.abs()) {
-        vec![-qc / qb]
-    } else {
-        let disc = qb * qb - 4.0 * qa * qc;
-        if disc < 0.0 {
-            return None;
-        }
-        let q = -0.5 * (qb + qb.signum() * disc.sqrt());
-        let mut r = vec![q / qa];
-        if q != 0.0 {
-            r.push(qc / q);
-        }
-        r
-    };
-    let t = roots
+    let t = quadratic_roots(qa, qb, qc, 1e-15 * (qb.abs() + qc.abs()))
         .into_iter()
         .filter(|u| *u > 0.0)
         .map(|u| p.centre_t + a * (u - 1.0 / u) / 2.0)

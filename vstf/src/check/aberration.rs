@@ -14,7 +14,7 @@ use super::{
     background, is_background, trace_rows, Edge, Effort, FixtureReport, Reading, Row, Setup,
 };
 use crate::fixture::{Fixture, Overrides};
-use crate::measure::{edge, Plane};
+use crate::measure::{edge, Pinhole, Plane};
 use crate::oracle::{
     aberrate_galilean, aberrate_lorentz, body_point, contract, extremes_on_polygon, retarded,
 };
@@ -159,12 +159,8 @@ fn measure_edge(
 
 /// The camera with its motion removed: its pixels' lines of sight are then
 /// those of the camera's own frame.
-fn still(camera: &renderer::Camera) -> renderer::Camera {
-    renderer::Camera {
-        velocity: DVec3::ZERO,
-        kinematics: renderer::Kinematics::None,
-        ..*camera
-    }
+fn still(camera: &Pinhole) -> Pinhole {
+    camera.still()
 }
 
 /// Where the control fixture puts the cube's centre (at rest).
@@ -210,12 +206,12 @@ fn expected_edges_earth_moving(centre: DVec3, w: DVec3, lorentz: bool) -> (f64, 
 }
 
 /// Angular size of a probe pixel at its centre, degrees.
-fn measure_angular(camera: &renderer::Camera) -> f64 {
+fn measure_angular(camera: &Pinhole) -> f64 {
     let (cx, cy) = (
         f64::from(camera.width) / 2.0,
         f64::from(camera.height) / 2.0,
     );
-    crate::measure::angular_footprint(camera, cx, cy, true).to_degrees()
+    camera.angular_footprint(cx, cy, true).to_degrees()
 }
 
 /// Rough azimuths (left, right) of the silhouette on the horizon, from a

@@ -92,12 +92,7 @@ fn measure(setup: &Setup, effort: &Effort) -> Result<(Reading, Reading), String>
     let w = i64::from(img.width());
     // Rows as (row offset from the horizon, pixels; azimuth of the edge).
     let centre = f64::from(img.height()) / 2.0;
-    let still = renderer::Camera {
-        velocity: DVec3::ZERO,
-        kinematics: renderer::Kinematics::None,
-        ..camera
-    };
-    let to_az = |px: f64| azimuth(setup, still.camera_direction(px, centre));
+    let to_az = |px: f64| azimuth(setup, camera.rest_direction(px, centre));
     let mut traces = Vec::new();
     for (from, step) in [(0, 1), (w - 1, -1)] {
         let mut points = Vec::new();
@@ -134,23 +129,13 @@ fn horizon_marks(setup: &Setup, azimuths: &[f64]) -> Vec<DVec3> {
     let c = &setup.fixture.spec.camera;
     let forward = (c.look_at.unwrap_or(c.position + DVec3::NEG_Z) - c.position).normalize();
     let right = forward.cross(c.up).normalize();
-    let camera = renderer::Camera::new(
-        Event::new(c.t, c.position),
-        renderer::Attitude::LookAt {
-            look_at: c.position + forward,
-            up: c.up,
-        },
-        c.vfov_deg,
-        8,
-        8,
-    )
-    .and_then(|cam| cam.moving(c.velocity.unwrap_or(DVec3::ZERO), setup.model));
+    let camera = setup.pinhole((8, 8)).ok();
     azimuths
         .iter()
         .filter_map(|a| {
             let n = forward * a.to_radians().cos() + right * a.to_radians().sin();
             // The camera-frame direction, carried into the lab as the camera carries its rays.
-            camera.map(|cam| cam.direction(cam.pixel_of_camera(n).0, cam.pixel_of_camera(n).1))
+            camera.map(|cam| cam.to_lab(n))
         })
         .collect()
 }
