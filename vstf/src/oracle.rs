@@ -111,7 +111,7 @@ pub fn to_frame_of(dt: f64, dx: DVec3, u: DVec3) -> Option<(f64, DVec3)> {
 
 /// Length contraction of a rest-frame offset `r` of a body moving with
 /// lab velocity `v`: its lab-simultaneous offset, the component along `v`
-/// divided by gamma (written out here, independently of the renderer's Boost).
+/// divided by gamma (written out here, independently of the ray tracer's boost).
 pub fn contract(r: DVec3, v: DVec3) -> DVec3 {
     let speed = v.length();
     if speed == 0.0 {

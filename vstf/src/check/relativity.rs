@@ -15,10 +15,10 @@ use super::{
 use crate::fixture::Fixture;
 use crate::measure::edge;
 use crate::oracle::{
-    aberrate_galilean, aberrate_lorentz, body_point, extremes_on_polygon, retarded,
+    aberrate_galilean, aberrate_lorentz, body_point, extremes_on_polygon, retarded, to_frame_of,
 };
 use glam::DVec3;
-use renderer::{Boost, Event, FourVector, Model, Motion, ObjectKind};
+use renderer::{Event, FourVector, Model, Motion, ObjectKind};
 
 const NAME: &str = "relativity";
 const CUBE: &str = "cube";
@@ -55,10 +55,9 @@ fn object_moving(f: &Fixture, model: Model) -> Result<Fixture, String> {
         .x;
     // The cube's centre at the camera's time, in the camera's rest frame.
     let at = if model.lorentz {
-        let rel = Boost::new(v)
-            .ok_or("relativity: camera at light speed")?
-            .to_rest(Event::new(cam.t, centre) - cam);
-        cam + rel
+        let (t, x) = to_frame_of(cam.t - cam.t, centre - cam.x, v)
+            .ok_or("relativity: camera at light speed")?;
+        cam + FourVector::new(t, x)
     } else {
         Event::new(cam.t, centre)
     };

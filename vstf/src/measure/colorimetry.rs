@@ -1,13 +1,13 @@
 //! Colours back to physics: the colorimetry that turns a measured pixel into
 //! a chromaticity, and a blackbody into the chromaticity it should show,
-//! written from the standards rather than borrowed from the renderer.
+//! written from the standards rather than borrowed from the ray tracer.
 //!
 //! - The observer: the CIE 1931 2-degree colour matching functions, by the
 //!   multi-lobe piecewise-Gaussian fit of Wyman, Sloan and Shirley, "Simple
 //!   Analytic Approximations to the CIE XYZ Color Matching Functions",
 //!   JCGT 2(2), 2013, sampled at 380..=780 nm every 5 nm.
 //! - The display: linear sRGB by the IEC 61966-2-1 matrix, white-balanced
-//!   per channel (von Kries) so that the renderer's white, a flat spectrum
+//!   per channel (von Kries) so that the ray tracer's white, a flat spectrum
 //!   under a window rising as a C1 smoothstep over 380..405 nm and falling
 //!   over 690..730 nm, shows as (1, 1, 1). That window is the display's
 //!   definition of white (the fixture format's `rgb` white), not a
@@ -17,7 +17,7 @@
 //!
 //! Chromaticity does not depend on brightness, so the inversion of a pixel
 //! needs only the matrices; the normalisations are kept so that the numbers
-//! are the renderer's to the last bit when both are right.
+//! are the ray tracer's to the last bit when both are right.
 
 use glam::{DMat3, DVec3};
 use std::sync::OnceLock;
@@ -131,7 +131,7 @@ pub fn xyz_of_rgb(rgb: DVec3) -> DVec3 {
 pub struct Blackbody {
     /// Temperature, K.
     pub kelvin: f64,
-    /// Spectral radiance at the peak, the renderer's units.
+    /// Spectral radiance at the peak, in the units of the images.
     pub scale: f64,
 }
 

@@ -3,7 +3,7 @@
 //! positions on known planes or to directions, fitted along the edge
 //! ([`fit`]); and colours turned back into chromaticities ([`colorimetry`]).
 //!
-//! Nothing here calls the renderer: a measurement that shared the renderer's
+//! Nothing here calls the ray tracer: a measurement that shared its
 //! camera or colour code would cancel that code's errors instead of
 //! revealing them. The camera model and the colorimetry are written from the
 //! formulas and standards they implement.

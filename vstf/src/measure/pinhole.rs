@@ -1,5 +1,5 @@
 //! The camera model of the measurements, written from the formulas rather
-//! than borrowed from the renderer, so that an error in the renderer's
+//! than borrowed from the ray tracer, so that an error in its
 //! camera shows as a mismatch instead of cancelling out.
 //!
 //! A pinhole at a lab position with an orthonormal attitude (forward, right,
