@@ -151,23 +151,31 @@ fn renderer_blackbody_xyz(kelvin: f64, scale: f64, d: f64) -> DVec3 {
     spectrum::xyz(&Spectrum::Blackbody { kelvin, scale }.sample_scaled(d))
 }
 
+/// Relative agreement of two vectors.
+fn close(a: DVec3, b: DVec3) -> bool {
+    (a - b).abs().max_element() <= 1e-12 * b.abs().max_element().max(1e-300)
+}
+
+/// (Today they agree to the last bit, which keeps the doppler rows of the
+/// check table unchanged; the test asks for the physics, 1e-12.)
 #[test]
-fn the_colorimetry_is_the_renderers_to_the_last_bit() {
+fn the_colorimetry_is_the_renderers() {
     let mut rng = Random(7);
     for _ in 0..200 {
         let nm = rng.next(300.0, 900.0);
-        assert_eq!(observer(nm), spectrum::cmf(nm), "{nm} nm");
+        assert!(close(observer(nm), spectrum::cmf(nm)), "{nm} nm");
         let rgb = DVec3::new(rng.next(0.0, 1.0), rng.next(0.0, 1.0), rng.next(0.0, 1.0));
-        assert_eq!(xyz_of_rgb(rgb), renderer_xyz_of_rgb(rgb));
+        assert!(close(xyz_of_rgb(rgb), renderer_xyz_of_rgb(rgb)), "{rgb}");
         let (kelvin, scale, d) = (
             rng.next(1000.0, 20000.0),
             rng.next(0.1, 3.0),
             rng.next(0.3, 3.0),
         );
         let ours = Blackbody { kelvin, scale }.xyz_shifted(d);
-        assert_eq!(ours, renderer_blackbody_xyz(kelvin, scale, d));
+        assert!(close(ours, renderer_blackbody_xyz(kelvin, scale, d)));
         let c = Chromaticity::of(ours).unwrap();
-        assert_eq!(Some((c.x, c.y)), spectrum::chromaticity(ours));
+        let (x, y) = spectrum::chromaticity(ours).unwrap();
+        assert!((c.x - x).abs() < 1e-15 && (c.y - y).abs() < 1e-15);
     }
 }
 
@@ -194,7 +202,7 @@ fn the_oracles_boost_is_the_renderers() {
         let (dt, dx) = (rng.next(-10.0, 10.0), rng.vec(10.0));
         let (t, x) = to_frame_of(dt, dx, u).unwrap();
         let theirs = Boost::new(u).unwrap().to_rest(FourVector::new(dt, dx));
-        assert_eq!((t, x), (theirs.t, theirs.x));
+        assert!((t - theirs.t).abs() < 1e-12 && (x - theirs.x).length() < 1e-12);
         // Negative control: the boost by +u is another frame.
         let wrong = Boost::new(u).unwrap().to_lab(FourVector::new(dt, dx));
         assert!((wrong.x - x).length() > 1e-9 || u.dot(dx).abs() + dt.abs() < 1e-6);
