@@ -9,7 +9,7 @@ use renderer::spectrum::{self, Spectrum};
 use renderer::{Attitude, Boost, Camera, Event, FourVector, Model};
 use vstf::measure::colorimetry::{observer, xyz_of_rgb, Blackbody, Chromaticity};
 use vstf::measure::{Kinematics, Pinhole};
-use vstf::oracle::{quadratic_roots, to_frame_of};
+use vstf::oracle::to_frame_of;
 
 /// A small deterministic generator (xorshift64*), uniform in [lo, hi).
 struct Random(u64);
@@ -208,14 +208,4 @@ fn the_oracles_boost_is_the_renderers() {
         assert!((wrong.x - x).length() > 1e-9 || u.dot(dx).abs() + dt.abs() < 1e-6);
     }
     assert!(to_frame_of(0.0, DVec3::X, DVec3::new(0.8, 0.6, 0.0)).is_none());
-}
-
-#[test]
-fn the_quadratic_solver_is_stable() {
-    // x^2 - 1e8 x + 1 = 0: roots 1e8 and 1e-8, the small one lost by the textbook formula.
-    let mut r = quadratic_roots(1.0, -1e8, 1.0, 1e-15);
-    r.sort_by(f64::total_cmp);
-    assert!((r[0] - 1e-8).abs() < 1e-20 && (r[1] - 1e8).abs() < 1e-6);
-    assert_eq!(quadratic_roots(0.0, 2.0, -4.0, 1e-15), vec![2.0]);
-    assert!(quadratic_roots(1.0, 0.0, 1.0, 1e-15).is_empty());
 }

@@ -1,11 +1,16 @@
-//! First-principles expectations, computed without the ray tracer.
+//! Where a point is seen: the emission event on the camera's past light cone.
 //!
 //! The central closed form: a point moving on the straight worldline
 //! x(t) = x0 + v (t - t0) is seen by a camera at event (tc, c) where that
 //! worldline meets the camera's past light cone, |x(t) - c| = tc - t, t <= tc.
 //! With a = x0 - v t0 - c this is the quadratic
-//! (v.v - 1) t^2 + 2 (a.v + tc) t + (a.a - tc^2) = 0.
+//! (v.v - 1) t^2 + 2 (a.v + tc) t + (a.a - tc^2) = 0. A point under
+//! constant proper acceleration (a hyperbola) meets the cone where another
+//! quadratic says ([`retarded_hyperbolic`]); one with infinitely fast light
+//! is seen where it is at the camera's time ([`instantaneous`]).
 
+use super::kinematics::{contract, gamma};
+use super::quadratic::quadratic_roots;
 use glam::DVec3;
 
 /// A point's straight worldline: at lab time `t0` it is at `x0`, moving with `v`.
@@ -60,68 +65,6 @@ pub fn retarded(p: &PointWorldline, tc: f64, camera: DVec3) -> Option<Retarded> 
     })
 }
 
-/// The real roots of a x^2 + b x + c = 0, computed stably: with
-/// q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2 the roots are q / a and c / q, so
-/// neither subtracts nearly equal numbers. Where |a| < `linear_below` the
-/// equation is taken as linear, b x + c = 0. No roots when the discriminant
-/// is negative or the equation degenerates to c = 0.
-pub fn quadratic_roots(a: f64, b: f64, c: f64, linear_below: f64) -> Vec<f64> {
-    if a.abs() < linear_below {
-        return if b == 0.0 { vec![] } else { vec![-c / b] };
-    }
-    let disc = b * b - 4.0 * a * c;
-    if disc < 0.0 {
-        return vec![];
-    }
-    let q = -0.5 * (b + b.signum() * disc.sqrt());
-    let mut roots = vec![q / a];
-    if q != 0.0 {
-        roots.push(c / q);
-    }
-    roots
-}
-
-/// Lorentz factor, paper eq. (2), of the speed `beta`.
-pub fn gamma(beta: f64) -> f64 {
-    gamma_of_squared(beta * beta)
-}
-
-/// Lorentz factor, paper eq. (2), of the squared speed beta^2 = v.v
-/// (for a velocity vector, without the square root of a square).
-pub fn gamma_of_squared(beta_squared: f64) -> f64 {
-    1.0 / (1.0 - beta_squared).sqrt()
-}
-
-/// A lab-frame displacement (`dt`, `dx`) between two events, in the frame
-/// moving with lab velocity `u` (|u| < 1): the pure Lorentz boost
-/// t' = gamma (t - u.x), x' = x + ((gamma - 1) (u.x) / u^2 - gamma t) u
-/// (paper 3, item 2c, in vector form). `None` at or above light speed.
-pub fn to_frame_of(dt: f64, dx: DVec3, u: DVec3) -> Option<(f64, DVec3)> {
-    let u2 = u.length_squared();
-    if !u.is_finite() || u2 >= 1.0 {
-        return None;
-    }
-    if u2 == 0.0 {
-        return Some((dt, dx));
-    }
-    let g = gamma_of_squared(u2);
-    let ux = u.dot(dx);
-    Some((g * (dt - ux), dx + u * ((g - 1.0) * ux / u2 - g * dt)))
-}
-
-/// Length contraction of a rest-frame offset `r` of a body moving with
-/// lab velocity `v`: its lab-simultaneous offset, the component along `v`
-/// divided by gamma (written out here, independently of the ray tracer's boost).
-pub fn contract(r: DVec3, v: DVec3) -> DVec3 {
-    let speed = v.length();
-    if speed == 0.0 {
-        return r;
-    }
-    let n = v / speed;
-    let along = r.dot(n);
-    r + n * (along / gamma(speed) - along)
-}
-
 /// The worldline of a body point with rest-frame offset `r` from a reference
 /// point that is at `x0` at lab time `t0` and moves with `v`; contracted
 /// when `lorentz` (a V_obj with the Lorentz transform on).
@@ -143,63 +86,6 @@ pub fn instantaneous(p: &PointWorldline, tc: f64, camera: DVec3) -> Retarded {
         x,
         direction: (x - camera).normalize(),
     }
-}
-
-/// The direction, in the frame of an observer moving with lab velocity `v`,
-/// of light that reaches it from lab direction `n` (unit, from the observer
-/// towards the source). Relativistic aberration: the photon's 4-momentum
-/// (1, -n) is boosted, k'^0 = gamma (1 + v.n), k' = -n + (gamma - 1)(-n.v^)v^
-/// - gamma v, and n' = -k' / k'^0 (paper eq. 3-5 in vector form).
-pub fn aberrate_lorentz(n: DVec3, v: DVec3) -> DVec3 {
-    let b = v.length();
-    if b == 0.0 {
-        return n;
-    }
-    let vh = v / b;
-    let g = gamma(b);
-    let k = -n;
-    let k0 = g * (1.0 - v.dot(k));
-    let kv = k + vh * ((g - 1.0) * k.dot(vh)) - v * g;
-    (-kv / k0).normalize()
-}
-
-/// The same for Galilean kinematics: light moving at c in the lab has
-/// velocity -n - v relative to the observer, who sees it coming from n + v.
-pub fn aberrate_galilean(n: DVec3, v: DVec3) -> DVec3 {
-    (n + v).normalize()
-}
-
-/// The least and greatest values of `f` over the boundary of the square
-/// with corners `corners` (in order), by a dense scan of each side refined by
-/// golden-section search.
-pub fn extremes_on_polygon(corners: &[DVec3], f: impl Fn(DVec3) -> f64) -> (f64, f64) {
-    let extreme = |sign: f64| {
-        let mut best = f64::NEG_INFINITY;
-        for k in 0..corners.len() {
-            let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
-            let g = |s: f64| sign * f(a + (b - a) * s);
-            let n = 400;
-            let i = (0..=n)
-                .max_by(|i, j| g(*i as f64 / n as f64).total_cmp(&g(*j as f64 / n as f64)))
-                .unwrap_or(0);
-            let (mut lo, mut hi) = (
-                ((i as f64) - 1.0).max(0.0) / n as f64,
-                ((i as f64) + 1.0).min(n as f64) / n as f64,
-            );
-            let phi = (5f64.sqrt() - 1.0) / 2.0;
-            for _ in 0..100 {
-                let (m1, m2) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
-                if g(m1) < g(m2) {
-                    lo = m1
-                } else {
-                    hi = m2
-                }
-            }
-            best = best.max(g((lo + hi) / 2.0)).max(g(0.0)).max(g(1.0));
-        }
-        sign * best
-    };
-    (extreme(-1.0), extreme(1.0))
 }
 
 /// A point under constant proper acceleration along the unit vector `n`:
@@ -301,19 +187,6 @@ mod tests {
         let r = retarded(&p, 40.0, c).unwrap();
         assert_relative_eq!((r.x - c).length(), 40.0 - r.t, max_relative = 1e-12);
         assert!(r.t < 40.0);
-    }
-
-    #[test]
-    fn aberration_matches_the_paper_half_angle_formula() {
-        // Eq. (9): tan(a'/2) = sqrt((1 - b)/(1 + b)) tan(a/2), angles from the observer's velocity.
-        let b = 0.6;
-        for a_deg in [10.0f64, 60.0, 116.565, 170.0] {
-            let a = a_deg.to_radians();
-            let n = DVec3::new(a.cos(), a.sin(), 0.0);
-            let got = aberrate_lorentz(n, DVec3::new(b, 0.0, 0.0));
-            let want = 2.0 * (((1.0 - b) / (1.0 + b)).sqrt() * (a / 2.0).tan()).atan();
-            assert_relative_eq!(got.y.atan2(got.x), want, max_relative = 1e-12);
-        }
     }
     /// The hyperbolic closed form against bisection on the light-cone
     /// condition, and the emission event lies on both the cone and the
