@@ -137,7 +137,7 @@ fn measure_edge(
     let (from, step) = if right { (w - 1, -1) } else { (0, 1) };
     // Angles are the observer's: lines of sight in the camera's own frame
     // (the same as the lab's when the camera is at rest).
-    let camera = still(&camera);
+    let camera = camera.still();
     // On the unit sphere of directions: elevation (deg) against azimuth (deg).
     let sphere = Plane::z(-1.0);
     let trace = trace_rows(
@@ -155,12 +155,6 @@ fn measure_edge(
     Ok(Edge::fit(&trace, 2, effort)
         .map_err(|e| format!("{NAME}: edge near {near_deg:.2} deg: {e}"))?
         .at(0.0))
-}
-
-/// The camera with its motion removed: its pixels' lines of sight are then
-/// those of the camera's own frame.
-fn still(camera: &Pinhole) -> Pinhole {
-    camera.still()
 }
 
 /// Where the control fixture puts the cube's centre (at rest).
@@ -261,7 +255,7 @@ fn coarse_strip(
     let (Some(&l), Some(&r)) = (xs.first(), xs.last()) else {
         return Err(format!("{NAME}: the cube is not on the horizon"));
     };
-    let camera = still(&camera);
+    let camera = camera.still();
     let az = |x: f64| azimuth_deg(camera.direction(x, f64::from(row) + 0.5));
     Ok((
         (az(f64::from(l)), l == 0),

@@ -55,8 +55,8 @@ fn object_moving(f: &Fixture, model: Model) -> Result<Fixture, String> {
         .x;
     // The cube's centre at the camera's time, in the camera's rest frame.
     let at = if model.lorentz {
-        let (t, x) = to_frame_of(cam.t - cam.t, centre - cam.x, v)
-            .ok_or("relativity: camera at light speed")?;
+        let (t, x) =
+            to_frame_of(0.0, centre - cam.x, v).ok_or("relativity: camera at light speed")?;
         cam + FourVector::new(t, x)
     } else {
         Event::new(cam.t, centre)
