@@ -23,10 +23,12 @@ mod rendering {
     mod shading;
 }
 
-/// The VSTF itself: fixture errors, the per-pixel debug log, and the checks
-/// with their snapshotted table and golden images.
+/// The VSTF itself: fixture errors, the per-pixel debug log, the checks
+/// with their snapshotted table and golden images, and the measurements'
+/// and oracle's own models against the renderer's.
 mod harness {
     mod debug;
     mod fixture_errors;
+    mod independent_models;
     mod vstf_check;
 }

@@ -16,12 +16,12 @@
 
 use super::{fixture_model, Effort, Findings, Quantity, Reading, Setup, Unit};
 use crate::fixture::Fixture;
-use crate::measure;
-use crate::oracle::{body_point, retarded};
-use glam::{DMat3, DVec3};
+use crate::measure::colorimetry::{xyz_of_rgb, Blackbody, Chromaticity};
+use crate::measure::{self, Pinhole};
+use crate::oracle::{body_point, gamma_of_squared, retarded};
+use glam::DVec3;
 use image::RgbImage;
-use renderer::spectrum::{self, Spectrum};
-use renderer::Camera;
+use renderer::spectrum::Spectrum;
 
 const NAME: &str = "doppler";
 const PANELS: [&str; 3] = ["head-on", "receding", "transverse"];
@@ -35,7 +35,7 @@ fn with_effects(f: &Fixture, doppler: bool, searchlight: bool) -> Fixture {
 }
 
 /// Linear RGB of the centre pixel of a probe, and the lab direction it looks along.
-fn centre(img: &RgbImage, camera: &Camera) -> (DVec3, DVec3) {
+fn centre(img: &RgbImage, camera: &Pinhole) -> (DVec3, DVec3) {
     let (x, y) = (img.width() / 2, img.height() / 2);
     (
         measure::color(img, x, y),
@@ -43,24 +43,13 @@ fn centre(img: &RgbImage, camera: &Camera) -> (DVec3, DVec3) {
     )
 }
 
-/// Linear sRGB (as rendered) back to CIE XYZ.
-fn rgb_to_xyz(rgb: DVec3) -> DVec3 {
-    let m = DMat3::from_cols(
-        spectrum::xyz_to_rgb(DVec3::X),
-        spectrum::xyz_to_rgb(DVec3::Y),
-        spectrum::xyz_to_rgb(DVec3::Z),
-    );
-    m.inverse() * rgb
-}
-
 /// The factor D by which the blackbody `source` must be shifted (sampled
 /// at D lambda) to have the chromaticity of `rgb`: a scan, then golden-section refinement.
-fn factor_from_colour(source: &Spectrum, rgb: DVec3) -> Option<f64> {
-    let target = spectrum::chromaticity(rgb_to_xyz(rgb))?;
+fn factor_from_colour(source: &Blackbody, rgb: DVec3) -> Option<f64> {
+    let target = Chromaticity::of(xyz_of_rgb(rgb))?;
     let miss = |d: f64| {
-        spectrum::chromaticity(spectrum::xyz(&source.sample_scaled(d))).map_or(f64::INFINITY, |c| {
-            (c.0 - target.0).powi(2) + (c.1 - target.1).powi(2)
-        })
+        Chromaticity::of(source.xyz_shifted(d))
+            .map_or(f64::INFINITY, |c| c.distance_squared(target))
     };
     let (lo, hi, steps) = (0.3f64, 3.0f64, 2700);
     let grid = |i: usize| lo * (hi / lo).powf(i as f64 / steps as f64);
@@ -158,11 +147,10 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
             .iter()
             .find(|o| o.name == name)
             .ok_or_else(|| format!("{NAME}: no panel {name:?}"))?;
-        let source = obj
-            .material
-            .emission
-            .clone()
-            .ok_or_else(|| format!("{NAME}: {name} must glow"))?;
+        let source = match obj.material.emission {
+            Some(Spectrum::Blackbody { kelvin, scale }) => Blackbody { kelvin, scale },
+            _ => return Err(format!("{NAME}: {name} must glow as a blackbody")),
+        };
         let (start, u) = obj
             .motion
             .uniform()
@@ -173,7 +161,7 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
         }
         let (pixels, dir) = panel_pixels(f, &variants, name, effort)?;
         let [plain, rgb_lit, shifted, shifted_lit] = [pixels[0], pixels[1], pixels[2], pixels[3]];
-        let gamma = 1.0 / (1.0 - u.length_squared()).sqrt();
+        let gamma = gamma_of_squared(u.length_squared());
         let expected = 1.0 / (gamma * (1.0 - u.dot(-dir)));
         let from_colour = |rgb: DVec3| factor_from_colour(&source, rgb);
         let factor = |what: &str, measured: Reading| Quantity {

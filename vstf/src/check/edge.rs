@@ -5,10 +5,9 @@
 
 use super::row::Reading;
 use super::setup::Effort;
-use crate::measure::{self, PolyFit, Scan};
+use crate::measure::{self, Pinhole, PolyFit, Scan};
 use glam::DVec3;
 use image::RgbImage;
-use renderer::Camera;
 
 /// An edge traced down the image: for every row, the sub-pixel boundary
 /// found by `find`, mapped onto `plane`, as (height coordinate, position
@@ -23,7 +22,7 @@ pub struct EdgeTrace {
 /// Traces an edge down the image rows onto a plane (see [`EdgeTrace`]).
 pub fn trace_rows(
     img: &RgbImage,
-    camera: &Camera,
+    camera: &Pinhole,
     plane: measure::Plane,
     find: impl Fn(Scan) -> Option<f64>,
     coords: impl Fn(DVec3) -> (f64, f64),
@@ -38,13 +37,13 @@ pub fn trace_rows(
         };
         let Some(u) = find(scan) else { continue };
         let (px, py) = scan.point(u);
-        let Some(p) = measure::on_plane(camera, px, py, plane) else {
+        let Some(p) = camera.on_plane(px, py, plane) else {
             continue;
         };
         let (h, x) = coords(p);
         if h >= range.0 && h <= range.1 {
             points.push((h, x));
-            if let Some(f) = measure::footprint(camera, px, py, true, plane) {
+            if let Some(f) = camera.footprint(px, py, true, plane) {
                 fp.push(f);
             }
         }

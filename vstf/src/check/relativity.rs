@@ -15,10 +15,10 @@ use super::{
 use crate::fixture::Fixture;
 use crate::measure::edge;
 use crate::oracle::{
-    aberrate_galilean, aberrate_lorentz, body_point, extremes_on_polygon, retarded,
+    aberrate_galilean, aberrate_lorentz, body_point, extremes_on_polygon, retarded, to_frame_of,
 };
 use glam::DVec3;
-use renderer::{Boost, Event, FourVector, Model, Motion, ObjectKind};
+use renderer::{Event, FourVector, Model, Motion, ObjectKind};
 
 const NAME: &str = "relativity";
 const CUBE: &str = "cube";
@@ -55,10 +55,9 @@ fn object_moving(f: &Fixture, model: Model) -> Result<Fixture, String> {
         .x;
     // The cube's centre at the camera's time, in the camera's rest frame.
     let at = if model.lorentz {
-        let rel = Boost::new(v)
-            .ok_or("relativity: camera at light speed")?
-            .to_rest(Event::new(cam.t, centre) - cam);
-        cam + rel
+        let (t, x) =
+            to_frame_of(0.0, centre - cam.x, v).ok_or("relativity: camera at light speed")?;
+        cam + FourVector::new(t, x)
     } else {
         Event::new(cam.t, centre)
     };
@@ -92,12 +91,7 @@ fn measure(setup: &Setup, effort: &Effort) -> Result<(Reading, Reading), String>
     let w = i64::from(img.width());
     // Rows as (row offset from the horizon, pixels; azimuth of the edge).
     let centre = f64::from(img.height()) / 2.0;
-    let still = renderer::Camera {
-        velocity: DVec3::ZERO,
-        kinematics: renderer::Kinematics::None,
-        ..camera
-    };
-    let to_az = |px: f64| azimuth(setup, still.camera_direction(px, centre));
+    let to_az = |px: f64| azimuth(setup, camera.rest_direction(px, centre));
     let mut traces = Vec::new();
     for (from, step) in [(0, 1), (w - 1, -1)] {
         let mut points = Vec::new();
@@ -134,23 +128,13 @@ fn horizon_marks(setup: &Setup, azimuths: &[f64]) -> Vec<DVec3> {
     let c = &setup.fixture.spec.camera;
     let forward = (c.look_at.unwrap_or(c.position + DVec3::NEG_Z) - c.position).normalize();
     let right = forward.cross(c.up).normalize();
-    let camera = renderer::Camera::new(
-        Event::new(c.t, c.position),
-        renderer::Attitude::LookAt {
-            look_at: c.position + forward,
-            up: c.up,
-        },
-        c.vfov_deg,
-        8,
-        8,
-    )
-    .and_then(|cam| cam.moving(c.velocity.unwrap_or(DVec3::ZERO), setup.model));
+    let camera = setup.pinhole((8, 8)).ok();
     azimuths
         .iter()
         .filter_map(|a| {
             let n = forward * a.to_radians().cos() + right * a.to_radians().sin();
             // The camera-frame direction, carried into the lab as the camera carries its rays.
-            camera.map(|cam| cam.direction(cam.pixel_of_camera(n).0, cam.pixel_of_camera(n).1))
+            camera.map(|cam| cam.to_lab(n))
         })
         .collect()
 }

@@ -10,10 +10,10 @@
 
 use super::runner::ViewReport;
 use crate::fixture::{Fixture, Overrides, View};
-use crate::measure;
+use crate::measure::{self, Kinematics, Pinhole};
 use glam::DVec3;
 use image::RgbImage;
-use renderer::{Attitude, Camera, Database, Event, Model, Traversal};
+use renderer::{Attitude, Camera, Database, Event, LightSpeed, Model, Traversal};
 
 /// Width of the full views: the report's images and the golden images,
 /// the same at every effort so that `cargo test` and `vstf check` compare
@@ -65,10 +65,44 @@ impl Setup<'_> {
         self.fixture.spec.camera.position
     }
 
-    fn view(&self, width: u32) -> Result<View, String> {
+    /// The image size at `width` with the fixture's aspect ratio.
+    fn size(&self, width: u32) -> (u32, u32) {
         let im = &self.fixture.spec.image;
         let height =
             ((f64::from(width) * f64::from(im.height) / f64::from(im.width)).round() as u32).max(1);
+        (width, height)
+    }
+
+    /// How this setup's model turns a moving camera's lines of sight.
+    fn kinematics(&self) -> Kinematics {
+        Kinematics::of(
+            self.model.light_speed == LightSpeed::Finite,
+            self.model.lorentz,
+        )
+    }
+
+    /// The measurements' model of the fixture's camera at `width` x
+    /// `height`, built from the camera description as the fixture's view is.
+    pub fn pinhole(&self, (width, height): (u32, u32)) -> Result<Pinhole, String> {
+        let c = &self.fixture.spec.camera;
+        let still = match (c.look_at, c.yaw_deg, c.pitch_deg) {
+            (Some(look_at), _, _) => {
+                Pinhole::looking_at(c.position, look_at, c.up, c.vfov_deg, (width, height))
+            }
+            (None, yaw, pitch) => Pinhole::yaw_pitch(
+                c.position,
+                (yaw.unwrap_or(0.0), pitch.unwrap_or(0.0)),
+                c.vfov_deg,
+                (width, height),
+            ),
+        };
+        still
+            .and_then(|p| p.moving(c.velocity.unwrap_or(DVec3::ZERO), self.kinematics()))
+            .ok_or_else(|| format!("{}: degenerate camera", self.fixture.name))
+    }
+
+    fn view(&self, width: u32) -> Result<View, String> {
+        let (width, height) = self.size(width);
         let o = Overrides {
             model: Some(self.model),
             camera_t: Some(self.camera_t),
@@ -86,9 +120,10 @@ impl Setup<'_> {
     pub fn full_view(&self, name: &str, directions: &[DVec3]) -> Result<ViewReport, String> {
         let view = self.view(VIEW_WIDTH)?;
         let image = crate::run::render(self.fixture, &view, Traversal::Bvh)?.to_rgb8();
+        let pinhole = self.pinhole(self.size(VIEW_WIDTH))?;
         let markers = directions
             .iter()
-            .filter_map(|d| view.camera.pixel_of(*d))
+            .filter_map(|d| pinhole.pixel_of(*d))
             .collect();
         Ok(ViewReport {
             name: name.into(),
@@ -100,7 +135,9 @@ impl Setup<'_> {
     /// Renders only the objects named in `keep`, looking towards
     /// `look_at` (a direction in the camera's frame, from its position) with
     /// horizontal field of view `hfov_deg`, at `width` x `height`. The probe
-    /// camera moves as the fixture's does.
+    /// camera moves as the fixture's does. Returns the image and the
+    /// measurements' own model of the probe camera, built from the same
+    /// parameters.
     pub fn probe(
         &self,
         keep: &[&str],
@@ -109,7 +146,7 @@ impl Setup<'_> {
         width: u32,
         height: u32,
         spp: u32,
-    ) -> Result<(RgbImage, Camera), String> {
+    ) -> Result<(RgbImage, Pinhole), String> {
         let mut scene = self.fixture.scene.clone();
         scene.objects.retain(|o| keep.contains(&o.name.as_str()));
         if scene.objects.len() != keep.len() {
@@ -125,6 +162,7 @@ impl Setup<'_> {
             * ((hfov_deg.to_radians() / 2.0).tan() / aspect)
                 .atan()
                 .to_degrees();
+        let velocity = self.fixture.spec.camera.velocity.unwrap_or(DVec3::ZERO);
         let camera = Camera::new(
             Event::new(self.camera_t, self.camera_x()),
             Attitude::LookAt {
@@ -136,11 +174,17 @@ impl Setup<'_> {
             height,
         )
         .ok_or("degenerate probe camera")?
-        .moving(
-            self.fixture.spec.camera.velocity.unwrap_or(DVec3::ZERO),
-            self.model,
-        )
+        .moving(velocity, self.model)
         .ok_or("the camera moves at or above light speed")?;
+        let pinhole = Pinhole::looking_at(
+            self.camera_x(),
+            look_at,
+            DVec3::Y,
+            vfov_deg,
+            (width, height),
+        )
+        .and_then(|p| p.moving(velocity, self.kinematics()))
+        .ok_or("degenerate probe camera")?;
         let settings = renderer::RenderSettings {
             spp,
             shutter: 0.0,
@@ -153,7 +197,7 @@ impl Setup<'_> {
             },
         };
         let img = renderer::render(&db, &scene, &camera, self.camera_t, self.model, &settings);
-        Ok((img.to_rgb8(), camera))
+        Ok((img.to_rgb8(), pinhole))
     }
 
     /// Aims a probe at the kept objects: a coarse wide render finds their

@@ -20,9 +20,9 @@ use super::{
 };
 use crate::fixture::Fixture;
 use crate::measure::{edge, Scan};
-use crate::oracle::aberrate_lorentz;
+use crate::oracle::{aberrate_lorentz, to_frame_of};
 use glam::{DVec2, DVec3};
-use renderer::{Boost, Event};
+use renderer::Event;
 
 const SPHERE: &str = "sphere";
 
@@ -123,13 +123,13 @@ fn measured_outline(
             }
         }
     }
-    let px = crate::measure::angular_footprint(
-        &camera,
-        f64::from(img.width()) / 2.0,
-        f64::from(img.height()) / 2.0,
-        true,
-    )
-    .to_degrees();
+    let px = camera
+        .angular_footprint(
+            f64::from(img.width()) / 2.0,
+            f64::from(img.height()) / 2.0,
+            true,
+        )
+        .to_degrees();
     Ok((rows, cols, px))
 }
 
@@ -141,10 +141,9 @@ fn expected_relativistic(
     radius: f64,
     cam: Event,
 ) -> Result<Vec<DVec3>, String> {
-    let rest = Boost::new(u)
+    let rest = to_frame_of(centre.t - cam.t, centre.x - cam.x, u)
         .ok_or("sphere at light speed")?
-        .to_rest(centre - cam)
-        .x;
+        .1;
     let (dist, c) = (rest.length(), rest.normalize());
     let half = (radius / dist).asin();
     let (e1, e2) = (

@@ -14,10 +14,9 @@ use super::{
     Quantity, Reading, Setup, Unit,
 };
 use crate::fixture::{Fixture, MeshSpec};
-use crate::measure::{edge, Plane, Scan};
+use crate::measure::{edge, Pinhole, Plane, Scan};
 use glam::DVec3;
 use image::RgbImage;
-use renderer::Camera;
 
 const NAME: &str = "stage";
 const AXES: &str = "x and z axis bars";
@@ -117,7 +116,7 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
 /// of depth [`Z`].
 fn trace_on_stage(
     img: &RgbImage,
-    camera: &Camera,
+    camera: &Pinhole,
     top: f64,
     find: impl Fn(Scan) -> Option<f64>,
 ) -> EdgeTrace {

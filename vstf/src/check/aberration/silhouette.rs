@@ -5,7 +5,7 @@
 
 use super::{azimuth_deg, CUBE, NAME};
 use crate::check::{background, is_background, trace_rows, Edge, Effort, Reading, Setup};
-use crate::measure::{edge, Plane};
+use crate::measure::{edge, Pinhole, Plane};
 use glam::DVec3;
 
 /// Measures the silhouette edge on the horizon near azimuth `near_deg`:
@@ -34,7 +34,7 @@ fn measure_edge(
     let (from, step) = if right { (w - 1, -1) } else { (0, 1) };
     // Angles are the observer's: lines of sight in the camera's own frame
     // (the same as the lab's when the camera is at rest).
-    let camera = still(&camera);
+    let camera = camera.still();
     // On the unit sphere of directions: elevation (deg) against azimuth (deg).
     let sphere = Plane::z(-1.0);
     let trace = trace_rows(
@@ -54,23 +54,13 @@ fn measure_edge(
         .at(0.0))
 }
 
-/// The camera with its motion removed: its pixels' lines of sight are then
-/// those of the camera's own frame.
-fn still(camera: &renderer::Camera) -> renderer::Camera {
-    renderer::Camera {
-        velocity: DVec3::ZERO,
-        kinematics: renderer::Kinematics::None,
-        ..*camera
-    }
-}
-
 /// Angular size of a probe pixel at its centre, degrees.
-fn measure_angular(camera: &renderer::Camera) -> f64 {
+fn measure_angular(camera: &Pinhole) -> f64 {
     let (cx, cy) = (
         f64::from(camera.width) / 2.0,
         f64::from(camera.height) / 2.0,
     );
-    crate::measure::angular_footprint(camera, cx, cy, true).to_degrees()
+    camera.angular_footprint(cx, cy, true).to_degrees()
 }
 
 /// Rough azimuths (left, right) of the silhouette on the horizon, from a
@@ -120,7 +110,7 @@ fn coarse_strip(
     let (Some(&l), Some(&r)) = (xs.first(), xs.last()) else {
         return Err(format!("{NAME}: the cube is not on the horizon"));
     };
-    let camera = still(&camera);
+    let camera = camera.still();
     let az = |x: f64| azimuth_deg(camera.direction(x, f64::from(row) + 0.5));
     Ok((
         (az(f64::from(l)), l == 0),

@@ -1,22 +1,31 @@
-//! First-principles expectations, computed without the ray tracer.
+//! Where a point is seen: the emission event on the camera's past light cone.
 //!
 //! The central closed form: a point moving on the straight worldline
 //! x(t) = x0 + v (t - t0) is seen by a camera at event (tc, c) where that
 //! worldline meets the camera's past light cone, |x(t) - c| = tc - t, t <= tc.
 //! With a = x0 - v t0 - c this is the quadratic
-//! (v.v - 1) t^2 + 2 (a.v + tc) t + (a.a - tc^2) = 0.
+//! (v.v - 1) t^2 + 2 (a.v + tc) t + (a.a - tc^2) = 0. A point under
+//! constant proper acceleration (a hyperbola) meets the cone where another
+//! quadratic says ([`retarded_hyperbolic`]); one with infinitely fast light
+//! is seen where it is at the camera's time ([`instantaneous`]).
 
+use super::kinematics::{contract, gamma};
+use super::quadratic::quadratic_roots;
 use glam::DVec3;
 
 /// A point's straight worldline: at lab time `t0` it is at `x0`, moving with `v`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointWorldline {
+    /// Lab time at which the point is at `x0`.
     pub t0: f64,
+    /// Lab position at `t0`.
     pub x0: DVec3,
+    /// Lab velocity (fraction of c).
     pub v: DVec3,
 }
 
 impl PointWorldline {
+    /// Lab position at lab time `t`.
     pub fn at(&self, t: f64) -> DVec3 {
         self.x0 + self.v * (t - self.t0)
     }
@@ -41,26 +50,7 @@ pub fn retarded(p: &PointWorldline, tc: f64, camera: DVec3) -> Option<Retarded> 
     let qa = p.v.length_squared() - 1.0;
     let qb = 2.0 * (a.dot(p.v) + tc);
     let qc = a.length_squared() - tc * tc;
-    let roots: Vec<f64> = if qa.abs() < 1e-15 {
-        if qb == 0.0 {
-            vec![]
-        } else {
-            vec![-qc / qb]
-        }
-    } else {
-        let disc = qb * qb - 4.0 * qa * qc;
-        if disc < 0.0 {
-            return None;
-        }
-        // Numerically stable pair of roots.
-        let q = -0.5 * (qb + qb.signum() * disc.sqrt());
-        let mut r = vec![q / qa];
-        if q != 0.0 {
-            r.push(qc / q);
-        }
-        r
-    };
-    let t = roots
+    let t = quadratic_roots(qa, qb, qc, 1e-15)
         .into_iter()
         .filter(|t| *t <= tc + 1e-12 * tc.abs().max(1.0))
         .fold(f64::NEG_INFINITY, f64::max);
@@ -73,24 +63,6 @@ pub fn retarded(p: &PointWorldline, tc: f64, camera: DVec3) -> Option<Retarded> 
         x,
         direction: (x - camera).normalize(),
     })
-}
-
-/// Lorentz factor, paper eq. (2).
-pub fn gamma(beta: f64) -> f64 {
-    1.0 / (1.0 - beta * beta).sqrt()
-}
-
-/// Length contraction of a rest-frame offset `r` of a body moving with
-/// lab velocity `v`: its lab-simultaneous offset, the component along `v`
-/// divided by gamma (written out here, independently of the renderer's Boost).
-pub fn contract(r: DVec3, v: DVec3) -> DVec3 {
-    let speed = v.length();
-    if speed == 0.0 {
-        return r;
-    }
-    let n = v / speed;
-    let along = r.dot(n);
-    r + n * (along / gamma(speed) - along)
 }
 
 /// The worldline of a body point with rest-frame offset `r` from a reference
@@ -116,72 +88,19 @@ pub fn instantaneous(p: &PointWorldline, tc: f64, camera: DVec3) -> Retarded {
     }
 }
 
-/// The direction, in the frame of an observer moving with lab velocity `v`,
-/// of light that reaches it from lab direction `n` (unit, from the observer
-/// towards the source). Relativistic aberration: the photon's 4-momentum
-/// (1, -n) is boosted, k'^0 = gamma (1 + v.n), k' = -n + (gamma - 1)(-n.v^)v^
-/// - gamma v, and n' = -k' / k'^0 (paper eq. 3-5 in vector form).
-pub fn aberrate_lorentz(n: DVec3, v: DVec3) -> DVec3 {
-    let b = v.length();
-    if b == 0.0 {
-        return n;
-    }
-    let vh = v / b;
-    let g = gamma(b);
-    let k = -n;
-    let k0 = g * (1.0 - v.dot(k));
-    let kv = k + vh * ((g - 1.0) * k.dot(vh)) - v * g;
-    (-kv / k0).normalize()
-}
-
-/// The same for Galilean kinematics: light moving at c in the lab has
-/// velocity -n - v relative to the observer, who sees it coming from n + v.
-pub fn aberrate_galilean(n: DVec3, v: DVec3) -> DVec3 {
-    (n + v).normalize()
-}
-
-/// The least and greatest values of `f` over the boundary of the square
-/// with corners `corners` (in order), by a dense scan of each side refined by
-/// golden-section search.
-pub fn extremes_on_polygon(corners: &[DVec3], f: impl Fn(DVec3) -> f64) -> (f64, f64) {
-    let extreme = |sign: f64| {
-        let mut best = f64::NEG_INFINITY;
-        for k in 0..corners.len() {
-            let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
-            let g = |s: f64| sign * f(a + (b - a) * s);
-            let n = 400;
-            let i = (0..=n)
-                .max_by(|i, j| g(*i as f64 / n as f64).total_cmp(&g(*j as f64 / n as f64)))
-                .unwrap_or(0);
-            let (mut lo, mut hi) = (
-                ((i as f64) - 1.0).max(0.0) / n as f64,
-                ((i as f64) + 1.0).min(n as f64) / n as f64,
-            );
-            let phi = (5f64.sqrt() - 1.0) / 2.0;
-            for _ in 0..100 {
-                let (m1, m2) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
-                if g(m1) < g(m2) {
-                    lo = m1
-                } else {
-                    hi = m2
-                }
-            }
-            best = best.max(g((lo + hi) / 2.0)).max(g(0.0)).max(g(1.0));
-        }
-        sign * best
-    };
-    (extreme(-1.0), extreme(1.0))
-}
-
 /// A point under constant proper acceleration along the unit vector `n`:
 /// the hyperbola S^2 - T^2 = A^2 about the centre event (`centre_t`,
 /// `centre`), where S is the distance from `centre` along `n` and
 /// T = t - centre_t. A = 1/a is its own proper acceleration's inverse.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointHyperbola {
+    /// Lab time of the hyperbola's centre event (the turning point's time).
     pub centre_t: f64,
+    /// Lab position of the centre event.
     pub centre: DVec3,
+    /// Unit direction of the acceleration.
     pub n: DVec3,
+    /// A = 1 / a, the distance from the centre at the turning point.
     pub big_a: f64,
 }
 
@@ -189,7 +108,7 @@ impl PointHyperbola {
     /// A point that starts at `x0` at lab time `t0` with velocity
     /// `v0` along `n` (|v0| < 1) and keeps the proper acceleration `a`.
     pub fn starting(t0: f64, x0: DVec3, n: DVec3, a: f64, v0: f64) -> PointHyperbola {
-        let g0 = 1.0 / (1.0 - v0 * v0).sqrt();
+        let g0 = gamma(v0);
         // S = cosh(phi0)/a = gamma0/a and T = sinh(phi0)/a = gamma0 v0/a at the start.
         PointHyperbola {
             centre_t: t0 - g0 * v0 / a,
@@ -199,6 +118,7 @@ impl PointHyperbola {
         }
     }
 
+    /// Lab position at lab time `t`: S = sqrt(A^2 + T^2) along `n`.
     pub fn at(&self, t: f64) -> DVec3 {
         self.centre + self.n * self.big_a.hypot(t - self.centre_t)
     }
@@ -223,21 +143,7 @@ pub fn retarded_hyperbolic(p: &PointHyperbola, tc: f64, camera: DVec3) -> Option
     let (dn, big_tc, a) = (d.dot(p.n), tc - p.centre_t, p.big_a);
     let k = d.length_squared() + a * a - big_tc * big_tc;
     let (qa, qb, qc) = (a * (dn - big_tc), -k, a * (dn + big_tc));
-    let roots: Vec<f64> = if qa.abs() < 1e-15 * (qb.abs() + qc.abs()) {
-        vec![-qc / qb]
-    } else {
-        let disc = qb * qb - 4.0 * qa * qc;
-        if disc < 0.0 {
-            return None;
-        }
-        let q = -0.5 * (qb + qb.signum() * disc.sqrt());
-        let mut r = vec![q / qa];
-        if q != 0.0 {
-            r.push(qc / q);
-        }
-        r
-    };
-    let t = roots
+    let t = quadratic_roots(qa, qb, qc, 1e-15 * (qb.abs() + qc.abs()))
         .into_iter()
         .filter(|u| *u > 0.0)
         .map(|u| p.centre_t + a * (u - 1.0 / u) / 2.0)
@@ -281,19 +187,6 @@ mod tests {
         let r = retarded(&p, 40.0, c).unwrap();
         assert_relative_eq!((r.x - c).length(), 40.0 - r.t, max_relative = 1e-12);
         assert!(r.t < 40.0);
-    }
-
-    #[test]
-    fn aberration_matches_the_paper_half_angle_formula() {
-        // Eq. (9): tan(a'/2) = sqrt((1 - b)/(1 + b)) tan(a/2), angles from the observer's velocity.
-        let b = 0.6;
-        for a_deg in [10.0f64, 60.0, 116.565, 170.0] {
-            let a = a_deg.to_radians();
-            let n = DVec3::new(a.cos(), a.sin(), 0.0);
-            let got = aberrate_lorentz(n, DVec3::new(b, 0.0, 0.0));
-            let want = 2.0 * (((1.0 - b) / (1.0 + b)).sqrt() * (a / 2.0).tan()).atan();
-            assert_relative_eq!(got.y.atan2(got.x), want, max_relative = 1e-12);
-        }
     }
     /// The hyperbolic closed form against bisection on the light-cone
     /// condition, and the emission event lies on both the cone and the

@@ -1,0 +1,18 @@
+//! Measuring an image: sub-pixel edges along scanlines ([`scan`]), mapped
+//! back through an independent model of the camera ([`pinhole`]) to
+//! positions on known planes or to directions, fitted along the edge
+//! ([`fit`]); and colours turned back into chromaticities ([`colorimetry`]).
+//!
+//! Nothing here calls the ray tracer: a measurement that shared its
+//! camera or colour code would cancel that code's errors instead of
+//! revealing them. The camera model and the colorimetry are written from the
+//! formulas and standards they implement.
+
+pub mod colorimetry;
+pub mod fit;
+pub mod pinhole;
+pub mod scan;
+
+pub use fit::PolyFit;
+pub use pinhole::{Kinematics, Pinhole, Plane};
+pub use scan::{color, edge, Scan};

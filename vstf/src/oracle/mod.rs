@@ -1,0 +1,23 @@
+//! First-principles expectations, computed without the ray tracer: where
+//! points are seen on the camera's past light cone ([`seen`]), the
+//! kinematics of special relativity and of Galilean addition
+//! ([`kinematics`]), the quadratic solver both rest on ([`quadratic`]), and
+//! extremes over a body's outline ([`extremes`]).
+//!
+//! Nothing here calls the ray tracer: each formula is written out so that
+//! an error in the tracer's own cannot cancel.
+
+pub mod extremes;
+pub mod kinematics;
+pub mod quadratic;
+pub mod seen;
+
+pub use extremes::extremes_on_polygon;
+pub use kinematics::{
+    aberrate_galilean, aberrate_lorentz, contract, gamma, gamma_of_squared, to_frame_of,
+};
+pub use quadratic::quadratic_roots;
+pub use seen::{
+    body_point, instantaneous, retarded, retarded_hyperbolic, PointHyperbola, PointWorldline,
+    Retarded,
+};
