@@ -6,7 +6,7 @@
 //! [`NoTrace`], whose recording compiles away, and the debug command passes a
 //! [`Recorder`]. There is no second implementation of the physics to drift.
 
-use crate::intersect::{Hit, Miss};
+use crate::geometry::{Hit, Miss};
 use crate::spacetime::{Event, FourVector};
 use glam::DVec3;
 use serde::Serialize;
@@ -15,8 +15,11 @@ use serde::Serialize;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RayKind {
+    /// From the camera.
     Primary,
+    /// From a hit towards the light.
     Shadow,
+    /// From a mirror hit along the reflected direction.
     Reflection,
 }
 
@@ -24,9 +27,13 @@ pub enum RayKind {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "result", rename_all = "snake_case")]
 pub enum Outcome {
+    /// The ray meets the tetrahedron.
     Accepted {
+        /// Ray parameter.
         s: f64,
+        /// The event met.
         event: Event,
+        /// Its barycentric coordinates, clamped to [0, 1].
         bary: [f64; 4],
     },
     /// The ray is parallel to the tetrahedron's hyperplane.
@@ -158,6 +165,7 @@ pub enum Step {
 pub trait Trace {
     /// Whether anything is recorded: when false, callers skip building steps.
     const ENABLED: bool;
+    /// Keeps one step.
     fn record(&mut self, step: Step);
 }
 
@@ -173,6 +181,7 @@ impl Trace for NoTrace {
 /// Records every step, in order (debugging).
 #[derive(Default, Debug)]
 pub struct Recorder {
+    /// The steps recorded, in order.
     pub steps: Vec<Step>,
 }
 

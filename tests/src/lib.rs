@@ -1,7 +1,7 @@
 //! Helpers shared by the workspace-level integration tests in `tests/tests/`.
 
 use glam::DVec3;
-use renderer::rng::SplitMix64;
+use renderer::SplitMix64;
 use renderer::{Event, FourVector, Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject};
 
 /// A random point in the cube [-r, r]^3.

@@ -4,7 +4,7 @@
 //! brute force finds.
 
 use glam::{DQuat, DVec3};
-use renderer::rng::SplitMix64;
+use renderer::SplitMix64;
 use renderer::{Database, Event, Keyframe, LightSpeed, Mesh, Motion, ObjectKind, Ray, Traversal};
 use workspace_tests::{object, scene, unit};
 

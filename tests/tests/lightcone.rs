@@ -3,9 +3,9 @@
 //! comoving coordinates on 100,000 random rays.
 
 use glam::DVec3;
-use renderer::lightcone::{LightSpeed, Ray};
-use renderer::rng::SplitMix64;
+use renderer::SplitMix64;
 use renderer::{Database, Event, Motion, ObjectKind, Traversal};
+use renderer::{LightSpeed, Ray};
 use workspace_tests::{object, point, random_mesh, random_motion, scene, unit};
 
 /// Closed-form hit of `ray` with a triangle (corners relative to the

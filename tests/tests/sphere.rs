@@ -3,9 +3,9 @@
 //! path finds the same hits as brute force.
 
 use glam::DVec3;
-use renderer::lightcone::{LightSpeed, Ray};
-use renderer::rng::SplitMix64;
+use renderer::SplitMix64;
 use renderer::{Database, Event, Mesh, Motion, ObjectKind, SceneObject, Traversal};
+use renderer::{LightSpeed, Ray};
 use workspace_tests::{object, scene, unit};
 
 fn sphere_object(kind: ObjectKind, v: DVec3, analytic: bool) -> SceneObject {

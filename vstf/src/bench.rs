@@ -4,7 +4,7 @@
 
 use crate::fixture::{Fixture, Overrides, View};
 use glam::DVec3;
-use renderer::rng::SplitMix64;
+use renderer::SplitMix64;
 use renderer::{
     Attitude, Camera, Database, Event, FourVector, Light, Material, Mesh, Model, Motion,
     ObjectKind, RenderSettings, Scene, SceneObject, Traversal,

@@ -630,10 +630,7 @@ fn event(a: [f64; 4]) -> Event {
 }
 
 /// A spectrum's own check, its message naming the field under `path`.
-fn spectrum_ok(
-    path: &str,
-    s: Option<&renderer::spectrum::Spectrum>,
-) -> Result<(), (String, String)> {
+fn spectrum_ok(path: &str, s: Option<&renderer::Spectrum>) -> Result<(), (String, String)> {
     match s.map(|s| s.validate()) {
         Some(Err(m)) => Err((path.to_string(), m)),
         _ => Ok(()),

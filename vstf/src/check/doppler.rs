@@ -20,8 +20,8 @@ use crate::measure;
 use crate::oracle::{body_point, retarded};
 use glam::{DMat3, DVec3};
 use image::RgbImage;
-use renderer::spectrum::{self, Spectrum};
 use renderer::Camera;
+use renderer::{self as spectrum, Spectrum};
 
 const NAME: &str = "doppler";
 const PANELS: [&str; 3] = ["head-on", "receding", "transverse"];

@@ -18,51 +18,18 @@
 //!   Rindler congruence), so distances in the instantaneous rest frame never
 //!   change. The object must lie in front of the horizon, 1 + a xi > 0.
 
-use crate::boost::Boost;
-use crate::mesh::Mesh;
-use crate::spacetime::Event;
+use crate::scene::{Hyperbolic, Keyframe, Mesh, MAX_KEYFRAMES};
+use crate::spacetime::Boost;
 use glam::DVec3;
 
-/// The object at one lab time.
+/// The object at one lab time, resolved from a keyframe (or generated):
+/// lab positions of every vertex (after any contraction), and the reference
+/// point's state. Consecutive poses bound one stretch of the path.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Keyframe {
+pub struct Pose {
     /// Lab time, t.units.
     pub t: f64,
     /// Lab position of the reference point, l.units.
-    pub position: DVec3,
-    /// Vertex positions relative to the reference point, rest-frame
-    /// dimensions for a V_obj (turned or deformed mesh); `None` keeps the
-    /// mesh's own vertices.
-    pub offsets: Option<Vec<DVec3>>,
-}
-
-/// Constant proper acceleration along a straight line (hyperbolic motion).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hyperbolic {
-    /// Where and when the reference point starts.
-    pub start: Event,
-    /// Unit direction of the acceleration.
-    pub direction: DVec3,
-    /// Proper acceleration of the reference point, 1/l.units (c = 1).
-    pub acceleration: f64,
-    /// Lab velocity of the reference point at the start, along `direction`
-    /// (negative: first moving against the acceleration).
-    pub initial_velocity: f64,
-    /// Lab time the motion lasts, t.units.
-    pub duration: f64,
-    /// Largest allowed lab distance, l.units, between a vertex's generated
-    /// polyline and its exact hyperbola.
-    pub tolerance: f64,
-}
-
-/// Most keyframes a hyperbolic motion may be cut into.
-pub const MAX_KEYFRAMES: usize = 100_000;
-
-/// One resolved keyframe: lab positions of every vertex (after any
-/// contraction), and the reference point's state.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Frame {
-    pub t: f64,
     pub reference: DVec3,
     /// Lab positions of the mesh's vertices, l.units.
     pub vertices: Vec<DVec3>,
@@ -72,62 +39,7 @@ pub struct Frame {
 }
 
 impl Hyperbolic {
-    /// Rapidity at the start, phi0 = atanh(initial_velocity).
-    pub fn initial_rapidity(&self) -> f64 {
-        self.initial_velocity.atanh()
-    }
-
-    /// The reference point's position along `direction` at lab time `t`,
-    /// relative to the start, for a point whose rest-frame offset along the
-    /// direction is `xi` (Born-rigid) or whose lab offset is fixed (`xi` = 0):
-    /// on the hyperbola S^2 - T^2 = A^2 about the common centre, with
-    /// A = 1/a + xi, S = s + cosh(phi0)/a and T = t - t0 + sinh(phi0)/a.
-    pub fn along(&self, xi: f64, t: f64) -> f64 {
-        let a = self.acceleration;
-        let phi0 = self.initial_rapidity();
-        let big_t = t - self.start.t + phi0.sinh() / a;
-        (1.0 / a + xi).hypot(big_t) - phi0.cosh() / a
-    }
-
-    /// The reference point's proper time at lab time `t`:
-    /// tau = (asinh(a T) - phi0) / a.
-    pub fn proper_time(&self, t: f64) -> f64 {
-        let a = self.acceleration;
-        let phi0 = self.initial_rapidity();
-        ((a * (t - self.start.t) + phi0.sinh()).asinh() - phi0) / a
-    }
-
-    /// Rejects a motion that cannot be generated; the error names the field.
-    fn validate(&self) -> Result<(), (String, String)> {
-        let bad = |f: &str, m: &str| Err((f.to_string(), m.to_string()));
-        if !self.start.is_finite() {
-            return bad("start", "must be finite numbers");
-        }
-        if !(self.direction.is_finite() && (self.direction.length() - 1.0).abs() < 1e-9) {
-            return bad(
-                "direction",
-                "must be a unit vector (the acceleration's direction)",
-            );
-        }
-        if !(self.acceleration > 0.0 && self.acceleration.is_finite()) {
-            return bad(
-                "acceleration",
-                "must be a positive proper acceleration (1/l.units); for uniform motion use a velocity worldline",
-            );
-        }
-        if self.initial_velocity.is_nan() || self.initial_velocity.abs() >= 1.0 {
-            return bad("initial_velocity", "must be slower than light (|v| < 1)");
-        }
-        if !(self.duration > 0.0 && self.duration.is_finite()) {
-            return bad("duration", "must be a positive finite lab time");
-        }
-        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
-            return bad("tolerance", "must be a positive finite length");
-        }
-        Ok(())
-    }
-
-    /// The keyframes of this motion for `mesh`, Born-rigid when
+    /// The poses of this motion for `mesh`, Born-rigid when
     /// `born_rigid` (a V_obj with the Lorentz transform on), else every
     /// vertex translated with the reference point.
     ///
@@ -136,7 +48,11 @@ impl Hyperbolic {
     /// <= 1/A. Linear interpolation over a lab interval h is off by at most
     /// h^2 max|s''| / 8 <= h^2 / (8 A_min), so intervals of
     /// h = sqrt(8 tolerance A_min) keep every vertex within `tolerance`.
-    pub fn keyframes(&self, mesh: &Mesh, born_rigid: bool) -> Result<Vec<Frame>, (String, String)> {
+    pub(crate) fn poses(
+        &self,
+        mesh: &Mesh,
+        born_rigid: bool,
+    ) -> Result<Vec<Pose>, (String, String)> {
         self.validate()?;
         let n = self.direction;
         let a = self.acceleration;
@@ -187,7 +103,7 @@ impl Hyperbolic {
                         x0 + across + n * self.along(xi, t)
                     })
                     .collect();
-                Frame {
+                Pose {
                     t,
                     reference,
                     vertices,
@@ -208,11 +124,11 @@ impl Hyperbolic {
 /// difference of the neighbouring keyframes; one-sided at the ends), and
 /// the proper time accumulates dt / gamma over each interval. Errors name
 /// the field relative to the keyframe list.
-pub fn resolve(
+pub(crate) fn resolve(
     keyframes: &[Keyframe],
     mesh: &Mesh,
     contract: bool,
-) -> Result<Vec<Frame>, (String, String)> {
+) -> Result<Vec<Pose>, (String, String)> {
     if keyframes.len() < 2 {
         return Err((
             String::new(),
@@ -260,7 +176,7 @@ pub fn resolve(
         let (i, j) = (k.saturating_sub(1), (k + 1).min(last));
         (keyframes[j].position - keyframes[i].position) / (keyframes[j].t - keyframes[i].t)
     };
-    let mut frames: Vec<Frame> = Vec::with_capacity(keyframes.len());
+    let mut frames: Vec<Pose> = Vec::with_capacity(keyframes.len());
     for (k, f) in keyframes.iter().enumerate() {
         let offsets = f.offsets.as_deref().unwrap_or(&mesh.vertices);
         let boost = if contract {
@@ -289,7 +205,7 @@ pub fn resolve(
                 prev.proper_time + dtau
             }
         };
-        frames.push(Frame {
+        frames.push(Pose {
             t: f.t,
             reference: f.position,
             vertices: offsets
@@ -328,6 +244,7 @@ pub fn resolve(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spacetime::Event;
 
     fn bar() -> Mesh {
         Mesh::cuboid(DVec3::new(-0.5, -1.0, -0.1), DVec3::new(0.5, 1.0, 0.1))
@@ -350,7 +267,7 @@ mod tests {
     fn polyline_error_is_within_the_stated_bound() {
         for born in [false, true] {
             let m = motion(1e-3);
-            let frames = m.keyframes(&bar(), born).unwrap();
+            let frames = m.poses(&bar(), born).unwrap();
             let mut worst: f64 = 0.0;
             for w in frames.windows(2) {
                 for i in 0..10 {
@@ -456,7 +373,7 @@ mod tests {
             offsets: None,
         });
         let r = resolve(&frames, &bar(), true).unwrap();
-        let width = |f: &Frame| {
+        let width = |f: &Pose| {
             let xs = f.vertices.iter().map(|p| p.x);
             xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
         };
@@ -470,8 +387,8 @@ mod tests {
     fn an_object_behind_the_horizon_is_an_error() {
         let mut m = motion(1e-3);
         m.acceleration = 3.0; // 1/a = 0.33 < the bar's half width 0.5
-        let e = m.keyframes(&bar(), true).unwrap_err();
+        let e = m.poses(&bar(), true).unwrap_err();
         assert_eq!(e.0, "acceleration");
-        assert!(m.keyframes(&bar(), false).is_ok());
+        assert!(m.poses(&bar(), false).is_ok());
     }
 }

@@ -27,6 +27,7 @@ pub struct FourVector {
 }
 
 impl Event {
+    /// The event at lab time `t` and lab position `x`.
     pub const fn new(t: f64, x: DVec3) -> Self {
         Self { t, x }
     }
@@ -36,6 +37,7 @@ impl Event {
         self.x.extend(self.t)
     }
 
+    /// Unpacks `(x, y, z, t)` as packed by `to_xyzt`.
     pub fn from_xyzt(v: DVec4) -> Self {
         Self {
             t: v.w,
@@ -43,12 +45,14 @@ impl Event {
         }
     }
 
+    /// Whether every component is finite.
     pub fn is_finite(self) -> bool {
         self.t.is_finite() && self.x.is_finite()
     }
 }
 
 impl FourVector {
+    /// The 4-vector with time part `t` and spatial part `x`.
     pub const fn new(t: f64, x: DVec3) -> Self {
         Self { t, x }
     }
@@ -58,6 +62,7 @@ impl FourVector {
         self.x.extend(self.t)
     }
 
+    /// Unpacks `(x, y, z, t)` as packed by `to_xyzt`.
     pub fn from_xyzt(v: DVec4) -> Self {
         Self {
             t: v.w,
@@ -75,6 +80,7 @@ impl FourVector {
         self.x / self.t
     }
 
+    /// Whether every component is finite.
     pub fn is_finite(self) -> bool {
         self.t.is_finite() && self.x.is_finite()
     }
@@ -128,7 +134,9 @@ impl Neg for FourVector {
 /// relative to the reference point.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Worldline {
+    /// Where and when the reference point starts.
     pub start: Event,
+    /// The lab 4-vector from the start to the end of the worldline.
     pub extrusion: FourVector,
 }
 
@@ -138,6 +146,7 @@ impl Worldline {
         self.extrusion.velocity()
     }
 
+    /// Where and when the reference point ends.
     pub fn end(&self) -> Event {
         self.start + self.extrusion
     }

@@ -1,0 +1,294 @@
+//! Insertion: every object of the scene temporally extruded once into
+//! prisms (paper 3, items 1-2), its path cut into straight stretches.
+
+use super::error::err;
+use super::{Database, ObjectRecord, SceneError, Stretch, Traversal};
+use crate::accel::{StretchPrisms, TwoLevel};
+use crate::geometry::{
+    self, extrude, extrude_between, Pose, PreparedTet, Prism, Sphere, Tetrahedron,
+};
+use crate::scene::{Mesh, Motion, ObjectKind, Scene, SceneObject};
+use crate::spacetime::{Boost, Event, FourVector, Worldline};
+
+/// The database under construction.
+#[derive(Default)]
+struct Builder {
+    prisms: Vec<Prism>,
+    tets: Vec<Tetrahedron>,
+    spheres: Vec<Sphere>,
+    stretch_prisms: Vec<StretchPrisms>,
+}
+
+/// The straight worldline of a uniformly moving object and the boost of
+/// its rest frame (identity unless a V_obj under the Lorentz transform);
+/// errors name the field relative to the object.
+pub(super) fn straight(
+    obj: &SceneObject,
+    lorentz: bool,
+) -> Result<(Worldline, Boost), (String, String)> {
+    let v = match obj.motion {
+        Motion::Extrusion { extrusion, .. } => extrusion.velocity(),
+        Motion::Velocity { velocity, .. } => velocity,
+        Motion::Keyframes(_) | Motion::Hyperbolic(_) => unreachable!("resolved into keyframes"),
+    };
+    let bad = |f: &str, m: &str| Err((f.to_string(), m.to_string()));
+    if !v.is_finite() {
+        return bad(
+            "worldline",
+            "the velocity is not finite (zero-duration extrusion?)",
+        );
+    }
+    if obj.kind == ObjectKind::VObj && v.length() >= 1.0 {
+        return Err((
+            "worldline".into(),
+            format!(
+                "a V_obj moves at {:.6}c; it must be slower than light (use an H_obj for a Lorentz-decoupled, superluminal object)",
+                v.length()
+            ),
+        ));
+    }
+    let boost = match (obj.kind, lorentz) {
+        (ObjectKind::VObj, true) => Boost::new(v).expect("checked above"),
+        _ => Boost::identity(),
+    };
+    let worldline = match obj.motion {
+        Motion::Extrusion { start, extrusion } => {
+            if !start.is_finite() {
+                return bad("worldline.start", "must be finite numbers");
+            }
+            if !extrusion.is_finite() {
+                return bad("worldline.extrusion", "must be finite numbers");
+            }
+            if extrusion.t == 0.0 {
+                return bad(
+                    "worldline.extrusion",
+                    "zero-duration extrusion (dt = 0): the object would exist for no time",
+                );
+            }
+            if extrusion.t < 0.0 {
+                Worldline {
+                    start: start + extrusion,
+                    extrusion: -extrusion,
+                }
+            } else {
+                Worldline { start, extrusion }
+            }
+        }
+        Motion::Velocity {
+            start,
+            velocity,
+            proper_lifetime,
+        } => {
+            if !start.is_finite() {
+                return bad("worldline.start", "must be finite numbers");
+            }
+            if !(proper_lifetime > 0.0 && proper_lifetime.is_finite()) {
+                return bad(
+                    "worldline.proper_lifetime",
+                    "must be a positive finite time",
+                );
+            }
+            let dt = boost.gamma() * proper_lifetime;
+            Worldline {
+                start,
+                extrusion: FourVector::new(dt, velocity * dt),
+            }
+        }
+        Motion::Keyframes(_) | Motion::Hyperbolic(_) => unreachable!("resolved into keyframes"),
+    };
+    Ok((worldline, boost))
+}
+
+impl Builder {
+    /// Extrudes a keyframed object pose to pose, each interval one stretch
+    /// of its path. Errors name the keyframe, relative to the keyframe list.
+    fn keyframed(
+        &mut self,
+        object: u32,
+        mesh: &Mesh,
+        poses: &[Pose],
+        contracted: bool,
+    ) -> Result<Vec<Stretch>, (String, String)> {
+        for (k, f) in poses.iter().enumerate() {
+            let shape = Mesh {
+                vertices: f.vertices.clone(),
+                triangles: mesh.triangles.clone(),
+            };
+            shape
+                .validate()
+                .map_err(|e| (format!("[{k}]"), format!("at t = {}: {e}", f.t)))?;
+        }
+        let mut stretches = Vec::with_capacity(poses.len() - 1);
+        for (k, w) in poses.windows(2).enumerate() {
+            let worldline = Worldline {
+                start: Event::new(w[0].t, w[0].reference),
+                extrusion: FourVector::new(w[1].t - w[0].t, w[1].reference - w[0].reference),
+            };
+            let v = worldline.velocity();
+            let clock = if contracted {
+                Boost::new(v).ok_or_else(|| {
+                    (
+                        format!("[{}]", k + 1),
+                        format!(
+                            "the reference point moves at {:.6}c; a V_obj must be slower than light",
+                            v.length()
+                        ),
+                    )
+                })?
+            } else {
+                Boost::identity()
+            };
+            let first = self.prisms.len();
+            extrude_between(mesh, &w[0], &w[1], object, &mut self.prisms, &mut self.tets);
+            self.stretch_prisms.push(StretchPrisms {
+                origin: worldline.start,
+                velocity: v,
+                span: (w[0].t, w[1].t),
+                prisms: first..self.prisms.len(),
+                translation: false,
+            });
+            stretches.push(Stretch {
+                worldline,
+                clock,
+                proper_start: w[0].proper_time,
+            });
+        }
+        Ok(stretches)
+    }
+
+    /// Inserts a uniformly moving object: one stretch, an analytic sphere
+    /// or the mesh (Lorentz-contracted for a V_obj) extruded along it.
+    fn uniform(
+        &mut self,
+        i: usize,
+        obj: &SceneObject,
+        lorentz: bool,
+    ) -> Result<Stretch, SceneError> {
+        let at = |field: &str| format!("objects[{i}].{field}");
+        let named = |m: String| format!("object {:?}: {m}", obj.name);
+        let (worldline, boost) = straight(obj, lorentz).map_err(|(f, m)| err(at(&f), named(m)))?;
+        if let Some(radius) = obj.sphere {
+            self.spheres.push(Sphere {
+                object: i as u32,
+                radius,
+                origin: worldline.start,
+                velocity: worldline.velocity(),
+                gamma: boost.gamma(),
+                end: worldline.end().t,
+            });
+        } else {
+            let mesh = obj.mesh.map_vertices(|p| boost.contract(p));
+            mesh.validate()
+                .map_err(|e| err(at("mesh"), named(format!("after Lorentz contraction: {e}"))))?;
+            let first = self.prisms.len();
+            extrude(
+                &mesh,
+                &worldline,
+                i as u32,
+                &mut self.prisms,
+                &mut self.tets,
+            );
+            self.stretch_prisms.push(StretchPrisms {
+                origin: worldline.start,
+                velocity: worldline.velocity(),
+                span: (worldline.start.t, worldline.end().t),
+                prisms: first..self.prisms.len(),
+                translation: true,
+            });
+        }
+        Ok(Stretch {
+            worldline,
+            clock: boost,
+            proper_start: 0.0,
+        })
+    }
+
+    /// Inserts object `i`, returning its path as stretches.
+    fn insert(
+        &mut self,
+        i: usize,
+        obj: &SceneObject,
+        lorentz: bool,
+    ) -> Result<Vec<Stretch>, SceneError> {
+        let at = |field: &str| format!("objects[{i}].{field}");
+        let named = |m: String| format!("object {:?}: {m}", obj.name);
+        match obj.sphere {
+            Some(r) if !(r > 0.0 && r.is_finite()) => {
+                return Err(err(
+                    at("mesh"),
+                    named(format!("sphere radius {r}: expected a positive length")),
+                ));
+            }
+            Some(_) => {}
+            None => obj
+                .mesh
+                .validate()
+                .map_err(|e| err(at("mesh"), named(e.to_string())))?,
+        }
+        let contracted = lorentz && obj.kind == ObjectKind::VObj;
+        let poses = match &obj.motion {
+            Motion::Keyframes(k) => Some(
+                geometry::resolve(k, &obj.mesh, contracted)
+                    .map_err(|(f, m)| err(at(&format!("worldline.keyframes{f}")), named(m)))?,
+            ),
+            Motion::Hyperbolic(h) => Some(
+                h.poses(&obj.mesh, contracted)
+                    .map_err(|(f, m)| err(at(&format!("worldline.hyperbolic.{f}")), named(m)))?,
+            ),
+            _ => None,
+        };
+        match poses {
+            Some(_) if obj.sphere.is_some() => Err(err(
+                at("worldline"),
+                named("an analytic sphere moves uniformly (extrusion or velocity); give a tessellated sphere keyframes or hyperbolic motion".into()),
+            )),
+            Some(poses) => self
+                .keyframed(i as u32, &obj.mesh, &poses, contracted)
+                .map_err(|(f, m)| err(at(&format!("worldline.keyframes{f}")), named(m))),
+            None => Ok(vec![self.uniform(i, obj, lorentz)?]),
+        }
+    }
+}
+
+impl Database {
+    /// Temporally extrudes every object of `scene`. With `lorentz` on, V_obj
+    /// objects are contracted along their velocity and their lifetimes and
+    /// clocks dilated; with it off every object is inserted as an H_obj.
+    pub fn build(scene: &Scene, lorentz: bool) -> Result<Database, SceneError> {
+        let mut b = Builder::default();
+        let mut objects = Vec::new();
+        for (i, obj) in scene.objects.iter().enumerate() {
+            let stretches = b.insert(i, obj, lorentz)?;
+            objects.push(ObjectRecord {
+                name: obj.name.clone(),
+                kind: obj.kind,
+                material: obj.material.clone(),
+                stretches,
+            });
+        }
+        let mut prepared = Vec::with_capacity(b.tets.len());
+        for t in &b.tets {
+            let p = PreparedTet::new(t).ok_or_else(|| {
+                let prism = b.prisms[t.prism as usize];
+                err(
+                    format!("objects[{}].mesh", prism.object),
+                    format!(
+                        "triangle {} extrudes to a tetrahedron with no 3-volume",
+                        prism.triangle
+                    ),
+                )
+            })?;
+            prepared.push(p);
+        }
+        let accel = TwoLevel::build(&b.stretch_prisms, &b.tets);
+        Ok(Database {
+            objects,
+            prisms: b.prisms,
+            tets: b.tets,
+            prepared,
+            accel,
+            spheres: b.spheres,
+            traversal: Traversal::Bvh,
+        })
+    }
+}
