@@ -42,13 +42,13 @@ pub use color::{band_nm, chromaticity, cmf, to_rgb, xyz, xyz_to_rgb, Spectrum, B
 pub use database::{Database, ObjectRecord, SceneError, Stretch, Surface, Traversal};
 pub use geometry::{
     corner_order, extrude, extrude_between, split_between, split_prism, tetrahedron_volume, Hit,
-    Miss, Pose, Prism, Tetrahedron, BARY_EPS,
+    Miss, Pose, PrimitiveId, Prism, Tetrahedron, BARY_EPS,
 };
 pub use render::{pixel, pixel_traced, render, shader, Image, RenderSettings};
 pub use rng::SplitMix64;
 pub use scene::{
     Blink, Hyperbolic, Keyframe, Light, Material, Mesh, MeshError, Motion, ObjectKind, Scene,
-    SceneObject,
+    SceneObject, Shape,
 };
 pub use shading::{self_hit_margin, to_frame, Band, Effects, Leg, Shader};
 pub use spacetime::{gamma, Boost, Event, FourVector, Worldline};

@@ -2,7 +2,9 @@
 
 use glam::DVec3;
 use renderer::SplitMix64;
-use renderer::{Event, FourVector, Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject};
+use renderer::{
+    Event, FourVector, Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject, Shape,
+};
 
 /// A random point in the cube [-r, r]^3.
 pub fn point(rng: &mut SplitMix64, r: f64) -> DVec3 {
@@ -65,10 +67,9 @@ pub fn scene(objects: Vec<SceneObject>) -> Scene {
 
 pub fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> SceneObject {
     SceneObject {
-        sphere: None,
         name: name.into(),
         kind,
-        mesh,
+        shape: Shape::Mesh(mesh),
         motion,
         material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
     }

@@ -5,7 +5,7 @@
 use glam::DVec3;
 use renderer::{
     Attitude, Camera, Event, FourVector, Hyperbolic, Keyframe, Light, Material, Mesh, Model,
-    Motion, ObjectKind, RenderSettings, Scene, SceneObject,
+    Motion, ObjectKind, RenderSettings, Scene, SceneObject, Shape,
 };
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -132,7 +132,7 @@ pub enum MeshSpec {
     Cuboid { min: DVec3, max: DVec3 },
     /// The paper's right-angle flange (two two-sided planes).
     Flange { height: f64, width: f64, depth: f64 },
-    /// Bars of square section on the plane y (see `Mesh::bar_grid`).
+    /// Bars of square section on the plane y (see [`bar_grid`]).
     BarGrid {
         count: u32,
         spacing: f64,
@@ -566,7 +566,7 @@ fn build_mesh(spec: &MeshSpec, path: &str, file: &Path) -> Result<Mesh, (String,
             positive("flange.height", *height)?;
             positive("flange.width", *width)?;
             positive("flange.depth", *depth)?;
-            Mesh::flange(*height, *width, *depth)
+            flange(*height, *width, *depth)
         }
         MeshSpec::BarGrid {
             count,
@@ -580,7 +580,7 @@ fn build_mesh(spec: &MeshSpec, path: &str, file: &Path) -> Result<Mesh, (String,
             if *count == 0 {
                 return bad("bar_grid.count must be at least 1".into());
             }
-            Mesh::bar_grid(*count, *spacing, *first, *thickness, *y)
+            bar_grid(*count, *spacing, *first, *thickness, *y)
         }
         MeshSpec::Obj { path: p } => {
             let full = file.parent().unwrap_or(Path::new(".")).join(p);
@@ -745,15 +745,14 @@ fn build_scene(spec: &FixtureSpec, file: &Path) -> Result<Scene, (String, String
             }
             (Some(w), None) => motion(w, &mesh, &at("worldline"))?,
         };
-        let sphere = match o.mesh {
-            MeshSpec::AnalyticSphere { radius } => Some(radius),
-            _ => None,
+        let shape = match o.mesh {
+            MeshSpec::AnalyticSphere { radius } => Shape::Sphere { radius },
+            _ => Shape::Mesh(mesh),
         };
         objects.push(SceneObject {
             name: o.name.clone(),
             kind: o.kind,
-            mesh,
-            sphere,
+            shape,
             motion,
             material: o.material.clone(),
         });
@@ -763,4 +762,55 @@ fn build_scene(spec: &FixtureSpec, file: &Path) -> Result<Scene, (String, String
         light: spec.light.clone(),
         background: spec.background,
     })
+}
+
+/// The paper's right-angle flange (4.1.1): two two-sided planes meeting
+/// at a right angle along the trailing vertical edge x = 0.
+/// The front plane z = `depth` spans x in [0, width]; the side plane
+/// x = 0 spans z in [0, depth]; both span y in [0, height].
+/// The reference point (origin) is the trailing lower far corner.
+pub fn flange(height: f64, width: f64, depth: f64) -> Mesh {
+    let mut m = Mesh::quad(
+        DVec3::new(0.0, 0.0, depth),
+        DVec3::new(width, 0.0, 0.0),
+        DVec3::new(0.0, height, 0.0),
+    );
+    m.append(
+        &Mesh::quad(
+            DVec3::ZERO,
+            DVec3::new(0.0, 0.0, depth),
+            DVec3::new(0.0, height, 0.0),
+        ),
+        DVec3::ZERO,
+    );
+    m
+}
+
+/// Bars of square cross-section `thickness` lying on the plane y = `y`
+/// (tops at y, bottoms at y - thickness): `count` bars parallel to z at
+/// x = first, first + spacing, ... and `count` parallel to x likewise,
+/// each spanning [first - thickness/2, last + thickness/2].
+pub fn bar_grid(count: u32, spacing: f64, first: f64, thickness: f64, y: f64) -> Mesh {
+    let half = thickness / 2.0;
+    let last = first + spacing * f64::from(count.saturating_sub(1));
+    let (lo, hi) = (first - half, last + half);
+    let mut m = Mesh::default();
+    for i in 0..count {
+        let c = first + spacing * f64::from(i);
+        m.append(
+            &Mesh::cuboid(
+                DVec3::new(c - half, y - thickness, lo),
+                DVec3::new(c + half, y, hi),
+            ),
+            DVec3::ZERO,
+        );
+        m.append(
+            &Mesh::cuboid(
+                DVec3::new(lo, y - thickness, c - half),
+                DVec3::new(hi, y, c + half),
+            ),
+            DVec3::ZERO,
+        );
+    }
+    m
 }

@@ -72,8 +72,11 @@ pub enum Spectrum {
     /// `scale * exp(-(nm - peak_nm)^2 / (2 width_nm^2))`: a line or band of
     /// light with standard deviation `width_nm`.
     Gaussian {
+        /// Wavelength of the peak, nm.
         peak_nm: f64,
+        /// Standard deviation, nm.
         width_nm: f64,
+        /// Peak value (default 1).
         #[serde(default = "unit_scale")]
         scale: f64,
     },
@@ -87,13 +90,20 @@ pub enum Spectrum {
     /// blackbody seen with its wavelengths rescaled by s (see
     /// [`Spectrum::sample_scaled`]) is the blackbody at s T with the same peak.
     Blackbody {
+        /// Temperature, K.
         kelvin: f64,
+        /// Peak value (default 1).
         #[serde(default = "unit_scale")]
         scale: f64,
     },
     /// Piecewise linear through (`nm[i]`, `values[i]`), zero outside
     /// `nm[0]..=nm[last]`.
-    Samples { nm: Vec<f64>, values: Vec<f64> },
+    Samples {
+        /// Sample wavelengths, nm, strictly increasing.
+        nm: Vec<f64>,
+        /// Values at those wavelengths.
+        values: Vec<f64>,
+    },
 }
 
 fn unit_scale() -> f64 {

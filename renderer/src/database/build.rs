@@ -7,8 +7,16 @@ use crate::accel::{StretchPrisms, TwoLevel};
 use crate::geometry::{
     self, extrude, extrude_between, Pose, PreparedTet, Prism, Sphere, Tetrahedron,
 };
-use crate::scene::{Mesh, Motion, ObjectKind, Scene, SceneObject};
+use crate::scene::{Mesh, Motion, ObjectKind, Scene, SceneObject, Shape, NO_MESH};
 use crate::spacetime::{Boost, Event, FourVector, Worldline};
+
+/// An object's mesh; none for an analytic sphere.
+fn mesh_of(obj: &SceneObject) -> &Mesh {
+    match &obj.shape {
+        Shape::Mesh(mesh) => mesh,
+        Shape::Sphere { .. } => &NO_MESH,
+    }
+}
 
 /// The database under construction.
 #[derive(Default)]
@@ -167,7 +175,7 @@ impl Builder {
         let at = |field: &str| format!("objects[{i}].{field}");
         let named = |m: String| format!("object {:?}: {m}", obj.name);
         let (worldline, boost) = straight(obj, lorentz).map_err(|(f, m)| err(at(&f), named(m)))?;
-        if let Some(radius) = obj.sphere {
+        if let Shape::Sphere { radius } = obj.shape {
             self.spheres.push(Sphere {
                 object: i as u32,
                 radius,
@@ -177,7 +185,7 @@ impl Builder {
                 end: worldline.end().t,
             });
         } else {
-            let mesh = obj.mesh.map_vertices(|p| boost.contract(p));
+            let mesh = mesh_of(obj).map_vertices(|p| boost.contract(p));
             mesh.validate()
                 .map_err(|e| err(at("mesh"), named(format!("after Lorentz contraction: {e}"))))?;
             let first = self.prisms.len();
@@ -212,38 +220,38 @@ impl Builder {
     ) -> Result<Vec<Stretch>, SceneError> {
         let at = |field: &str| format!("objects[{i}].{field}");
         let named = |m: String| format!("object {:?}: {m}", obj.name);
-        match obj.sphere {
-            Some(r) if !(r > 0.0 && r.is_finite()) => {
+        match &obj.shape {
+            Shape::Sphere { radius: r } if !(*r > 0.0 && r.is_finite()) => {
                 return Err(err(
                     at("mesh"),
                     named(format!("sphere radius {r}: expected a positive length")),
                 ));
             }
-            Some(_) => {}
-            None => obj
-                .mesh
+            Shape::Sphere { .. } => {}
+            Shape::Mesh(mesh) => mesh
                 .validate()
                 .map_err(|e| err(at("mesh"), named(e.to_string())))?,
         }
+        let mesh = mesh_of(obj);
         let contracted = lorentz && obj.kind == ObjectKind::VObj;
         let poses = match &obj.motion {
             Motion::Keyframes(k) => Some(
-                geometry::resolve(k, &obj.mesh, contracted)
+                geometry::resolve(k, mesh, contracted)
                     .map_err(|(f, m)| err(at(&format!("worldline.keyframes{f}")), named(m)))?,
             ),
             Motion::Hyperbolic(h) => Some(
-                h.poses(&obj.mesh, contracted)
+                h.poses(mesh, contracted)
                     .map_err(|(f, m)| err(at(&format!("worldline.hyperbolic.{f}")), named(m)))?,
             ),
             _ => None,
         };
         match poses {
-            Some(_) if obj.sphere.is_some() => Err(err(
+            Some(_) if matches!(obj.shape, Shape::Sphere { .. }) => Err(err(
                 at("worldline"),
                 named("an analytic sphere moves uniformly (extrusion or velocity); give a tessellated sphere keyframes or hyperbolic motion".into()),
             )),
             Some(poses) => self
-                .keyframed(i as u32, &obj.mesh, &poses, contracted)
+                .keyframed(i as u32, mesh, &poses, contracted)
                 .map_err(|(f, m)| err(at(&format!("worldline.keyframes{f}")), named(m))),
             None => Ok(vec![self.uniform(i, obj, lorentz)?]),
         }

@@ -10,7 +10,7 @@ pub use object::{ObjectRecord, Stretch};
 
 use crate::accel::TwoLevel;
 use crate::camera::Ray;
-use crate::geometry::{nearer, Hit, Miss, PreparedTet, Prism, Sphere, Tetrahedron};
+use crate::geometry::{nearer, Hit, Miss, PreparedTet, PrimitiveId, Prism, Sphere, Tetrahedron};
 use crate::trace::{NoTrace, Outcome, Step, Trace};
 use glam::DVec3;
 
@@ -76,21 +76,32 @@ impl Database {
 
     /// The surface a hit lies on: a triangle's prism, or an analytic sphere.
     pub fn surface(&self, hit: &Hit) -> Surface {
-        let n = self.tets.len() as u32;
-        if hit.tet < n {
-            let p = self.prism_of(hit.tet);
-            Surface {
-                object: p.object,
-                normal: p.normal_at(hit.event.t),
-                triangle: p.triangle,
+        match hit.primitive {
+            PrimitiveId::Tetrahedron(tet) => {
+                let p = self.prism_of(tet);
+                Surface {
+                    object: p.object,
+                    normal: p.normal_at(hit.event.t),
+                    triangle: p.triangle,
+                }
             }
-        } else {
-            let sp = &self.spheres[(hit.tet - n) as usize];
-            Surface {
-                object: sp.object,
-                normal: sp.normal(hit.event),
-                triangle: 0,
+            PrimitiveId::Sphere(k) => {
+                let sp = &self.spheres[k as usize];
+                Surface {
+                    object: sp.object,
+                    normal: sp.normal(hit.event),
+                    triangle: 0,
+                }
             }
+        }
+    }
+
+    /// The number the debug log gives a primitive: tetrahedra by index,
+    /// then the analytic spheres numbered after them.
+    pub fn primitive_number(&self, primitive: PrimitiveId) -> u32 {
+        match primitive {
+            PrimitiveId::Tetrahedron(i) => i,
+            PrimitiveId::Sphere(k) => self.tets.len() as u32 + k,
         }
     }
 
@@ -143,10 +154,9 @@ impl Database {
     ) -> Option<Hit> {
         let mut best = self.closest_tet(ray, range, trace);
         // Analytic spheres (few): the same for every traversal.
-        let first = self.tets.len() as u32;
         for (k, sphere) in self.spheres.iter().enumerate() {
             let hi = best.map_or(range.1, |b| b.s);
-            if let Some(h) = sphere.intersect(ray, first + k as u32, (range.0, hi)) {
+            if let Some(h) = sphere.intersect(ray, k as u32, (range.0, hi)) {
                 best = Some(nearer(best, h));
             }
         }

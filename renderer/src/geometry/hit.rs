@@ -2,15 +2,35 @@
 
 use crate::spacetime::Event;
 
-/// A ray meeting a tetrahedron.
+/// Which primitive of the database a hit is on. Tetrahedra order before
+/// spheres, so that ties between hits go the same way in every traversal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum PrimitiveId {
+    /// A tetrahedron, by index in [`crate::Database::tetrahedra`].
+    Tetrahedron(u32),
+    /// An analytic sphere, by index among the database's spheres.
+    Sphere(u32),
+}
+
+impl PrimitiveId {
+    /// The tetrahedron's index, if it is one.
+    pub fn tetrahedron(self) -> Option<u32> {
+        match self {
+            PrimitiveId::Tetrahedron(i) => Some(i),
+            PrimitiveId::Sphere(_) => None,
+        }
+    }
+}
+
+/// A ray meeting a primitive of the database.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     /// Ray parameter: spatial distance from the ray's origin.
     pub s: f64,
     /// Where the ray meets the tetrahedron.
     pub event: Event,
-    /// Index of the tetrahedron in the database.
-    pub tet: u32,
+    /// The primitive met.
+    pub primitive: PrimitiveId,
     /// Barycentric coordinates of `event` in the tetrahedron, each in [0, 1], summing to 1.
     pub bary: [f64; 4],
 }
@@ -21,17 +41,25 @@ pub enum Miss {
     /// The ray is parallel to the tetrahedron's hyperplane.
     Parallel,
     /// The hyperplane is met outside the searched stretch of the ray.
-    OutOfRange { s: f64 },
+    OutOfRange {
+        /// Ray parameter where the hyperplane is met.
+        s: f64,
+    },
     /// The hyperplane is met outside the tetrahedron.
-    Outside { s: f64, bary: [f64; 4] },
+    Outside {
+        /// Ray parameter where the hyperplane is met.
+        s: f64,
+        /// Barycentric coordinates there, one of them negative.
+        bary: [f64; 4],
+    },
 }
 
 /// The better of two hits: the smaller ray parameter, that is the most
 /// recent event on a light-cone ray (paper 3, item 4); ties go to the lower
-/// tetrahedron index so that every traversal order picks the same hit.
+/// primitive so that every traversal order picks the same hit.
 pub fn nearer(a: Option<Hit>, b: Hit) -> Hit {
     match a {
-        Some(a) if (a.s, a.tet) <= (b.s, b.tet) => a,
+        Some(a) if (a.s, a.primitive) <= (b.s, b.primitive) => a,
         _ => b,
     }
 }

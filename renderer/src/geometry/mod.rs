@@ -13,7 +13,7 @@ pub use extrude::{
     corner_order, extrude, extrude_between, split_between, split_prism, tetrahedron_volume, Prism,
     Tetrahedron,
 };
-pub use hit::{nearer, Hit, Miss};
+pub use hit::{nearer, Hit, Miss, PrimitiveId};
 pub(crate) use poses::resolve;
 pub use poses::Pose;
 pub(crate) use sphere::Sphere;

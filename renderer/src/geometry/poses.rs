@@ -118,17 +118,9 @@ impl Hyperbolic {
     }
 }
 
-/// Resolves keyframes into lab vertex positions. With `contract` (a V_obj
-/// with the Lorentz transform on) each keyframe's rest-frame shape is
-/// contracted along the reference point's velocity there (central
-/// difference of the neighbouring keyframes; one-sided at the ends), and
-/// the proper time accumulates dt / gamma over each interval. Errors name
-/// the field relative to the keyframe list.
-pub(crate) fn resolve(
-    keyframes: &[Keyframe],
-    mesh: &Mesh,
-    contract: bool,
-) -> Result<Vec<Pose>, (String, String)> {
+/// Rejects fewer than two keyframes, non-finite ones, ones out of time
+/// order and vertex lists that do not match the mesh.
+fn check_keyframes(keyframes: &[Keyframe], mesh: &Mesh) -> Result<(), (String, String)> {
     if keyframes.len() < 2 {
         return Err((
             String::new(),
@@ -171,6 +163,21 @@ pub(crate) fn resolve(
             }
         }
     }
+    Ok(())
+}
+
+/// Resolves keyframes into lab vertex positions. With `contract` (a V_obj
+/// with the Lorentz transform on) each keyframe's rest-frame shape is
+/// contracted along the reference point's velocity there (central
+/// difference of the neighbouring keyframes; one-sided at the ends), and
+/// the proper time accumulates dt / gamma over each interval. Errors name
+/// the field relative to the keyframe list.
+pub(crate) fn resolve(
+    keyframes: &[Keyframe],
+    mesh: &Mesh,
+    contract: bool,
+) -> Result<Vec<Pose>, (String, String)> {
+    check_keyframes(keyframes, mesh)?;
     let last = keyframes.len() - 1;
     let velocity = |k: usize| {
         let (i, j) = (k.saturating_sub(1), (k + 1).min(last));

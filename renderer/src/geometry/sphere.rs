@@ -1,7 +1,7 @@
 //! The analytic sphere: a worldtube met by solving a quadratic, exact where
 //! a tessellated sphere is faceted.
 
-use super::Hit;
+use super::{Hit, PrimitiveId};
 use crate::camera::Ray;
 use crate::spacetime::Event;
 use glam::DVec3;
@@ -59,7 +59,7 @@ impl Sphere {
         Some(Hit {
             s,
             event: ray.at(s),
-            tet: id,
+            primitive: PrimitiveId::Sphere(id),
             bary: [0.0; 4],
         })
     }

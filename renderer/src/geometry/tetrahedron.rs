@@ -8,7 +8,7 @@
 //! triangle onto its dominant plane), which keeps the solve well conditioned
 //! even for tetrahedra thousands of t.units long and 1/20 l.unit wide.
 
-use super::{Hit, Miss, Tetrahedron};
+use super::{Hit, Miss, PrimitiveId, Tetrahedron};
 use crate::camera::Ray;
 use crate::spacetime::Event;
 use glam::{DMat3, DVec3, DVec4};
@@ -129,7 +129,7 @@ impl PreparedTet {
         Ok(Hit {
             s,
             event: Event::from_xyzt(p),
-            tet,
+            primitive: PrimitiveId::Tetrahedron(tet),
             bary: clamped,
         })
     }

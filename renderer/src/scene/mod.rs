@@ -11,6 +11,12 @@ pub use mesh::{Mesh, MeshError};
 pub(crate) use motion::MAX_KEYFRAMES;
 pub use motion::{Hyperbolic, Keyframe, Motion};
 
+/// The mesh of an object without one (an analytic sphere).
+pub(crate) static NO_MESH: Mesh = Mesh {
+    vertices: Vec::new(),
+    triangles: Vec::new(),
+};
+
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -28,17 +34,41 @@ pub enum ObjectKind {
     VObj,
 }
 
+/// What an object is made of, relative to its reference point; rest-frame
+/// dimensions for a V_obj.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// Triangles.
+    Mesh(Mesh),
+    /// An analytic sphere centred on the reference point.
+    Sphere {
+        /// Rest-frame radius, l.units.
+        radius: f64,
+    },
+}
+
+impl Shape {
+    /// The radius of an analytic sphere.
+    pub fn sphere_radius(&self) -> Option<f64> {
+        match self {
+            Shape::Sphere { radius } => Some(*radius),
+            Shape::Mesh(_) => None,
+        }
+    }
+}
+
 /// One 3D object of the scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneObject {
+    /// Name, unique in the scene.
     pub name: String,
+    /// H_obj or V_obj.
     pub kind: ObjectKind,
-    /// Triangles relative to the reference point; rest-frame dimensions for a V_obj.
-    pub mesh: Mesh,
-    /// When set, the object is instead an analytic sphere of this (rest-frame)
-    /// radius centred on the reference point, and `mesh` is ignored.
-    pub sphere: Option<f64>,
+    /// Its mesh or analytic sphere.
+    pub shape: Shape,
+    /// How its reference point moves.
     pub motion: Motion,
+    /// Surface appearance.
     pub material: Material,
 }
 
@@ -46,7 +76,10 @@ pub struct SceneObject {
 /// colour seen where a ray meets nothing.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
+    /// The objects.
     pub objects: Vec<SceneObject>,
+    /// The one point light, at rest in the lab.
     pub light: Light,
+    /// Colour where a ray meets nothing.
     pub background: DVec3,
 }

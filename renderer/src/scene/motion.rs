@@ -10,13 +10,21 @@ use glam::DVec3;
 pub enum Motion {
     /// From event `start` along the lab-frame 4-vector `extrusion`
     /// (paper 3.1: dt is the lab lifetime, dx the distance travelled in it).
-    Extrusion { start: Event, extrusion: FourVector },
+    Extrusion {
+        /// Where and when the reference point starts.
+        start: Event,
+        /// Lab 4-vector from the start to the end.
+        extrusion: FourVector,
+    },
     /// From event `start` with lab velocity `velocity`, for `proper_lifetime`
     /// of the object's own time. With the Lorentz transform on, a V_obj
     /// lives gamma * proper_lifetime in the lab; otherwise proper_lifetime.
     Velocity {
+        /// Where and when the reference point starts.
         start: Event,
+        /// Lab velocity (fraction of c).
         velocity: DVec3,
+        /// Lifetime in the object's own time.
         proper_lifetime: f64,
     },
     /// Through keyframes at increasing lab times, straight between

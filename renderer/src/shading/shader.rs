@@ -120,7 +120,7 @@ impl Shader<'_> {
         let object = &self.db.objects()[surface.object as usize];
         Step::Hit {
             kind,
-            tet: hit.tet,
+            tet: self.db.primitive_number(hit.primitive),
             object: object.name.clone(),
             triangle: surface.triangle,
             event: hit.event,

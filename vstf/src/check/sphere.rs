@@ -218,7 +218,10 @@ fn run(name: &str, effort: &Effort) -> Result<FixtureReport, String> {
         .iter()
         .find(|o| o.name == SPHERE)
         .ok_or("no sphere")?;
-    let radius = obj.sphere.ok_or("the sphere must be analytic")?;
+    let radius = obj
+        .shape
+        .sphere_radius()
+        .ok_or("the sphere must be analytic")?;
     let (start, u) = obj
         .motion
         .uniform()
