@@ -38,8 +38,11 @@ mod spacetime;
 mod trace;
 
 pub use camera::{Attitude, Camera, Kinematics, LightSpeed, Model, Ray};
-pub use color::{band_nm, chromaticity, cmf, to_rgb, xyz, xyz_to_rgb, Spectrum, BAND_LEN};
-pub use database::{Database, ObjectRecord, SceneError, Stretch, Surface, Traversal};
+pub use color::{
+    band_nm, chromaticity, cmf, to_rgb, xyz, xyz_to_rgb, Spectrum, SpectrumError,
+    SpectrumErrorKind, SpectrumField, BAND_LEN,
+};
+pub use database::{Database, ObjectRecord, Stretch, Surface, Traversal};
 pub use geometry::{
     corner_order, extrude, extrude_between, split_between, split_prism, tetrahedron_volume, Hit,
     Miss, Pose, PrimitiveId, Prism, Tetrahedron, BARY_EPS,
@@ -47,8 +50,8 @@ pub use geometry::{
 pub use render::{pixel, pixel_traced, render, shader, Image, RenderSettings};
 pub use rng::SplitMix64;
 pub use scene::{
-    Blink, Hyperbolic, Keyframe, Light, Material, Mesh, MeshError, Motion, ObjectKind, Scene,
-    SceneObject, Shape,
+    Blink, Hyperbolic, HyperbolicField, Keyframe, Light, Material, Mesh, MeshError, Motion,
+    ObjectKind, Scene, SceneError, SceneErrorKind, SceneField, SceneObject, Shape,
 };
 pub use shading::{self_hit_margin, to_frame, Band, Effects, Leg, Shader};
 pub use spacetime::{gamma, Boost, Event, FourVector, Worldline};

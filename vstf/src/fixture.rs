@@ -5,7 +5,7 @@
 use glam::DVec3;
 use renderer::{
     Attitude, Camera, Event, FourVector, Hyperbolic, Keyframe, Light, Material, Mesh, Model,
-    Motion, ObjectKind, RenderSettings, Scene, SceneObject, Shape,
+    Motion, ObjectKind, RenderSettings, Scene, SceneError, SceneObject, Shape, SpectrumField,
 };
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -385,7 +385,10 @@ impl Fixture {
         let scene = build_scene(&spec, file).map_err(|(p, m)| fail(p, m))?;
         // Insert once with each Lorentz setting, so that errors surface on load.
         for lorentz in [false, true] {
-            renderer::Database::build(&scene, lorentz).map_err(|e| fail(e.path, e.message))?;
+            renderer::Database::build(&scene, lorentz).map_err(|e| {
+                let (path, message) = scene_error(&e);
+                fail(path, message)
+            })?;
         }
         let name = file
             .file_stem()
@@ -625,16 +628,62 @@ fn build_mesh(spec: &MeshSpec, path: &str, file: &Path) -> Result<Mesh, (String,
     })
 }
 
+/// A scene error as the JSON path of the object's field and the message.
+fn scene_error(e: &SceneError) -> (String, String) {
+    use renderer::{HyperbolicField as H, SceneField as F};
+    let keyframe = |k: usize| format!("worldline.keyframes[{k}]");
+    let field = match e.field {
+        F::Shape => "mesh".to_string(),
+        F::Motion => "worldline".to_string(),
+        F::Start => "worldline.start".to_string(),
+        F::Extrusion => "worldline.extrusion".to_string(),
+        F::ProperLifetime => "worldline.proper_lifetime".to_string(),
+        F::Keyframes => "worldline.keyframes".to_string(),
+        F::Keyframe(k) => keyframe(k),
+        F::KeyframeTime(k) => format!("{}.t", keyframe(k)),
+        F::KeyframePosition(k) => format!("{}.position", keyframe(k)),
+        F::KeyframeVertices(k) => format!("{}.vertices", keyframe(k)),
+        F::KeyframeVertex {
+            keyframe: k,
+            vertex,
+        } => format!("{}.vertices[{vertex}]", keyframe(k)),
+        F::Hyperbolic(h) => format!(
+            "worldline.hyperbolic.{}",
+            match h {
+                H::Start => "start",
+                H::Direction => "direction",
+                H::Acceleration => "acceleration",
+                H::InitialVelocity => "initial_velocity",
+                H::Duration => "duration",
+                H::Tolerance => "tolerance",
+            }
+        ),
+    };
+    (format!("objects[{}].{field}", e.object), e.to_string())
+}
+
 fn event(a: [f64; 4]) -> Event {
     Event::new(a[0], DVec3::new(a[1], a[2], a[3]))
 }
 
 /// A spectrum's own check, its message naming the field under `path`.
 fn spectrum_ok(path: &str, s: Option<&renderer::Spectrum>) -> Result<(), (String, String)> {
-    match s.map(|s| s.validate()) {
-        Some(Err(m)) => Err((path.to_string(), m)),
-        _ => Ok(()),
-    }
+    let Some(Err(e)) = s.map(|s| s.validate()) else {
+        return Ok(());
+    };
+    let field = match e.field {
+        SpectrumField::Rgb(i) => format!("rgb[{i}]"),
+        SpectrumField::GaussianPeak => "gaussian.peak_nm".into(),
+        SpectrumField::GaussianWidth => "gaussian.width_nm".into(),
+        SpectrumField::GaussianScale => "gaussian.scale".into(),
+        SpectrumField::BlackbodyKelvin => "blackbody.kelvin".into(),
+        SpectrumField::BlackbodyScale => "blackbody.scale".into(),
+        SpectrumField::SampleWavelengths => "samples.nm".into(),
+        SpectrumField::SampleValues => "samples.values".into(),
+        SpectrumField::SampleWavelength(i) => format!("samples.nm[{i}]"),
+        SpectrumField::SampleValue(i) => format!("samples.values[{i}]"),
+    };
+    Err((path.to_string(), format!("{field}: {}", e.kind)))
 }
 
 /// The motion a worldline spec gives; errors name the field under `at`.

@@ -7,3 +7,4 @@ mod validate;
 
 pub use cie::{band_nm, chromaticity, cmf, to_rgb, xyz, xyz_to_rgb, BAND_LEN};
 pub use spectrum::Spectrum;
+pub use validate::{SpectrumError, SpectrumErrorKind, SpectrumField};

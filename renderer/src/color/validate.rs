@@ -4,17 +4,125 @@
 use super::Spectrum;
 use std::fmt;
 
+/// A spectrum that is not physical: the parameter at fault and what is wrong.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpectrumError {
+    /// The parameter at fault.
+    pub field: SpectrumField,
+    /// What is wrong with it.
+    pub kind: SpectrumErrorKind,
+}
+
+/// A parameter of a [`Spectrum`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpectrumField {
+    /// One component (0 red, 1 green, 2 blue) of an RGB colour.
+    Rgb(usize),
+    /// The peak wavelength of a Gaussian.
+    GaussianPeak,
+    /// The width of a Gaussian.
+    GaussianWidth,
+    /// The scale of a Gaussian.
+    GaussianScale,
+    /// The temperature of a blackbody.
+    BlackbodyKelvin,
+    /// The scale of a blackbody.
+    BlackbodyScale,
+    /// The wavelength list of sampled values.
+    SampleWavelengths,
+    /// The value list of sampled values.
+    SampleValues,
+    /// One sample wavelength.
+    SampleWavelength(usize),
+    /// One sample value.
+    SampleValue(usize),
+}
+
+/// What is wrong with a spectrum's parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SpectrumErrorKind {
+    /// Must be finite and positive.
+    NotPositive(f64),
+    /// Must be finite and non-negative.
+    Negative(f64),
+    /// Fewer than two sample wavelengths.
+    TooFewSamples(usize),
+    /// As many values as wavelengths are needed.
+    LengthMismatch {
+        /// Values given.
+        values: usize,
+        /// Wavelengths given.
+        wavelengths: usize,
+    },
+    /// Sample wavelengths must increase strictly.
+    NotIncreasing {
+        /// The wavelength, nm.
+        nm: f64,
+        /// The wavelength before it, nm.
+        previous: f64,
+    },
+}
+
+impl fmt::Display for SpectrumField {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SpectrumField::Rgb(i) => write!(f, "RGB component {i}"),
+            SpectrumField::GaussianPeak => write!(f, "Gaussian peak wavelength"),
+            SpectrumField::GaussianWidth => write!(f, "Gaussian width"),
+            SpectrumField::GaussianScale => write!(f, "Gaussian scale"),
+            SpectrumField::BlackbodyKelvin => write!(f, "blackbody temperature"),
+            SpectrumField::BlackbodyScale => write!(f, "blackbody scale"),
+            SpectrumField::SampleWavelengths => write!(f, "sample wavelengths"),
+            SpectrumField::SampleValues => write!(f, "sample values"),
+            SpectrumField::SampleWavelength(i) => write!(f, "sample wavelength {i}"),
+            SpectrumField::SampleValue(i) => write!(f, "sample value {i}"),
+        }
+    }
+}
+
+impl fmt::Display for SpectrumErrorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SpectrumErrorKind::NotPositive(v) => {
+                write!(f, "must be a finite positive number, got {v}")
+            }
+            SpectrumErrorKind::Negative(v) => {
+                write!(f, "must be a finite non-negative number, got {v}")
+            }
+            SpectrumErrorKind::TooFewSamples(n) => {
+                write!(f, "needs at least 2 wavelengths, got {n}")
+            }
+            SpectrumErrorKind::LengthMismatch {
+                values,
+                wavelengths,
+            } => write!(f, "{values} values for {wavelengths} wavelengths"),
+            SpectrumErrorKind::NotIncreasing { nm, previous } => write!(
+                f,
+                "{nm} nm does not exceed the wavelength before it, {previous} nm; \
+                 wavelengths must be strictly increasing"
+            ),
+        }
+    }
+}
+
+impl fmt::Display for SpectrumError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.field, self.kind)
+    }
+}
+
+impl std::error::Error for SpectrumError {}
+
 impl Spectrum {
     /// Rejects non-finite or negative values, a non-positive peak wavelength,
     /// width or temperature, sample wavelengths that are not positive, not
-    /// strictly increasing or fewer than 2, and mismatched lengths. The error
-    /// names the offending field relative to the spectrum, e.g.
-    /// `"samples.nm[3]: ..."`.
-    pub fn validate(&self) -> Result<(), String> {
+    /// strictly increasing or fewer than 2, and mismatched lengths.
+    pub fn validate(&self) -> Result<(), SpectrumError> {
+        use SpectrumField as F;
         match self {
             Spectrum::Rgb(rgb) => {
                 for (i, v) in rgb.to_array().into_iter().enumerate() {
-                    non_negative(format_args!("rgb[{i}]"), v)?;
+                    non_negative(F::Rgb(i), v)?;
                 }
                 Ok(())
             }
@@ -23,65 +131,72 @@ impl Spectrum {
                 width_nm,
                 scale,
             } => {
-                positive(format_args!("gaussian.peak_nm"), *peak_nm)?;
-                positive(format_args!("gaussian.width_nm"), *width_nm)?;
-                non_negative(format_args!("gaussian.scale"), *scale)
+                positive(F::GaussianPeak, *peak_nm)?;
+                positive(F::GaussianWidth, *width_nm)?;
+                non_negative(F::GaussianScale, *scale)
             }
             Spectrum::Blackbody { kelvin, scale } => {
-                positive(format_args!("blackbody.kelvin"), *kelvin)?;
-                non_negative(format_args!("blackbody.scale"), *scale)
+                positive(F::BlackbodyKelvin, *kelvin)?;
+                non_negative(F::BlackbodyScale, *scale)
             }
-            Spectrum::Samples { nm, values } => {
-                if nm.len() < 2 {
-                    return Err(format!(
-                        "samples.nm: needs at least 2 wavelengths, got {}",
-                        nm.len()
-                    ));
-                }
-                if values.len() != nm.len() {
-                    return Err(format!(
-                        "samples.values: {} values for {} wavelengths in samples.nm",
-                        values.len(),
-                        nm.len()
-                    ));
-                }
-                for (i, &x) in nm.iter().enumerate() {
-                    positive(format_args!("samples.nm[{i}]"), x)?;
-                    if i > 0 && x <= nm[i - 1] {
-                        return Err(format!(
-                            "samples.nm[{i}]: {x} nm does not exceed samples.nm[{}] = {} nm; \
-                             wavelengths must be strictly increasing",
-                            i - 1,
-                            nm[i - 1]
-                        ));
-                    }
-                }
-                for (i, &v) in values.iter().enumerate() {
-                    non_negative(format_args!("samples.values[{i}]"), v)?;
-                }
-                Ok(())
-            }
+            Spectrum::Samples { nm, values } => validate_samples(nm, values),
         }
     }
 }
 
-fn positive(field: fmt::Arguments, v: f64) -> Result<(), String> {
+fn validate_samples(nm: &[f64], values: &[f64]) -> Result<(), SpectrumError> {
+    use SpectrumErrorKind as K;
+    use SpectrumField as F;
+    let bad = |field, kind| Err(SpectrumError { field, kind });
+    if nm.len() < 2 {
+        return bad(F::SampleWavelengths, K::TooFewSamples(nm.len()));
+    }
+    if values.len() != nm.len() {
+        return bad(
+            F::SampleValues,
+            K::LengthMismatch {
+                values: values.len(),
+                wavelengths: nm.len(),
+            },
+        );
+    }
+    for (i, &x) in nm.iter().enumerate() {
+        positive(F::SampleWavelength(i), x)?;
+        if i > 0 && x <= nm[i - 1] {
+            return bad(
+                F::SampleWavelength(i),
+                K::NotIncreasing {
+                    nm: x,
+                    previous: nm[i - 1],
+                },
+            );
+        }
+    }
+    for (i, &v) in values.iter().enumerate() {
+        non_negative(F::SampleValue(i), v)?;
+    }
+    Ok(())
+}
+
+fn positive(field: SpectrumField, v: f64) -> Result<(), SpectrumError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(format!(
-            "{field}: must be a finite positive number, got {v}"
-        ))
+        Err(SpectrumError {
+            field,
+            kind: SpectrumErrorKind::NotPositive(v),
+        })
     }
 }
 
-fn non_negative(field: fmt::Arguments, v: f64) -> Result<(), String> {
+fn non_negative(field: SpectrumField, v: f64) -> Result<(), SpectrumError> {
     if v.is_finite() && v >= 0.0 {
         Ok(())
     } else {
-        Err(format!(
-            "{field}: must be a finite non-negative number, got {v}"
-        ))
+        Err(SpectrumError {
+            field,
+            kind: SpectrumErrorKind::Negative(v),
+        })
     }
 }
 
@@ -92,49 +207,88 @@ mod tests {
 
     #[test]
     fn validate_names_the_field() {
-        let err = |s: Spectrum| s.validate().unwrap_err();
+        use SpectrumField as F;
+        let field = |s: Spectrum| s.validate().unwrap_err().field;
         let samples = |nm: Vec<f64>, values: Vec<f64>| Spectrum::Samples { nm, values };
-        assert!(
-            err(samples(vec![400.0, 500.0, 450.0], vec![1.0; 3])).starts_with("samples.nm[2]: ")
+        let e = samples(vec![400.0, 500.0, 450.0], vec![1.0; 3])
+            .validate()
+            .unwrap_err();
+        assert_eq!(e.field, F::SampleWavelength(2));
+        assert_eq!(
+            e.kind,
+            SpectrumErrorKind::NotIncreasing {
+                nm: 450.0,
+                previous: 500.0
+            }
         );
-        assert!(err(samples(vec![400.0, 400.0], vec![1.0; 2])).starts_with("samples.nm[1]: "));
-        assert!(err(samples(vec![400.0, 500.0], vec![1.0; 3])).starts_with("samples.values: "));
-        assert!(err(samples(vec![400.0], vec![1.0])).starts_with("samples.nm: "));
         assert!(
-            err(samples(vec![400.0, 500.0], vec![1.0, -0.5])).starts_with("samples.values[1]: ")
+            e.to_string().starts_with("sample wavelength 2: 450 nm"),
+            "{e}"
         );
-        assert!(err(samples(vec![-1.0, 500.0], vec![1.0; 2])).starts_with("samples.nm[0]: "));
-        assert!(err(samples(vec![400.0, f64::NAN], vec![1.0; 2])).starts_with("samples.nm[1]: "));
-        assert!(err(Spectrum::Rgb(DVec3::new(0.5, f64::NAN, 0.0))).starts_with("rgb[1]: "));
-        assert!(err(Spectrum::Rgb(DVec3::new(0.5, 0.5, -0.1))).starts_with("rgb[2]: "));
-        assert!(err(Spectrum::Gaussian {
-            peak_nm: 500.0,
-            width_nm: f64::NAN,
-            scale: 1.0
-        })
-        .starts_with("gaussian.width_nm: "));
-        assert!(err(Spectrum::Gaussian {
-            peak_nm: 500.0,
-            width_nm: 0.0,
-            scale: 1.0
-        })
-        .starts_with("gaussian.width_nm: "));
-        assert!(err(Spectrum::Gaussian {
-            peak_nm: 500.0,
-            width_nm: 10.0,
-            scale: f64::INFINITY
-        })
-        .starts_with("gaussian.scale: "));
-        assert!(err(Spectrum::Blackbody {
-            kelvin: 0.0,
-            scale: 1.0
-        })
-        .starts_with("blackbody.kelvin: "));
-        assert!(err(Spectrum::Blackbody {
-            kelvin: 3000.0,
-            scale: -1.0
-        })
-        .starts_with("blackbody.scale: "));
+        assert_eq!(
+            field(samples(vec![400.0, 400.0], vec![1.0; 2])),
+            F::SampleWavelength(1)
+        );
+        assert_eq!(
+            field(samples(vec![400.0, 500.0], vec![1.0; 3])),
+            F::SampleValues
+        );
+        assert_eq!(field(samples(vec![400.0], vec![1.0])), F::SampleWavelengths);
+        assert_eq!(
+            field(samples(vec![400.0, 500.0], vec![1.0, -0.5])),
+            F::SampleValue(1)
+        );
+        assert_eq!(
+            field(samples(vec![-1.0, 500.0], vec![1.0; 2])),
+            F::SampleWavelength(0)
+        );
+        assert_eq!(
+            field(samples(vec![400.0, f64::NAN], vec![1.0; 2])),
+            F::SampleWavelength(1)
+        );
+        assert_eq!(
+            field(Spectrum::Rgb(DVec3::new(0.5, f64::NAN, 0.0))),
+            F::Rgb(1)
+        );
+        assert_eq!(field(Spectrum::Rgb(DVec3::new(0.5, 0.5, -0.1))), F::Rgb(2));
+        assert_eq!(
+            field(Spectrum::Gaussian {
+                peak_nm: 500.0,
+                width_nm: f64::NAN,
+                scale: 1.0
+            }),
+            F::GaussianWidth
+        );
+        assert_eq!(
+            field(Spectrum::Gaussian {
+                peak_nm: 500.0,
+                width_nm: 0.0,
+                scale: 1.0
+            }),
+            F::GaussianWidth
+        );
+        assert_eq!(
+            field(Spectrum::Gaussian {
+                peak_nm: 500.0,
+                width_nm: 10.0,
+                scale: f64::INFINITY
+            }),
+            F::GaussianScale
+        );
+        assert_eq!(
+            field(Spectrum::Blackbody {
+                kelvin: 0.0,
+                scale: 1.0
+            }),
+            F::BlackbodyKelvin
+        );
+        assert_eq!(
+            field(Spectrum::Blackbody {
+                kelvin: 3000.0,
+                scale: -1.0
+            }),
+            F::BlackbodyScale
+        );
         for ok in [
             Spectrum::Rgb(DVec3::new(0.0, 0.5, 2.0)),
             Spectrum::Gaussian {

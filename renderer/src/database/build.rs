@@ -1,13 +1,15 @@
 //! Insertion: every object of the scene temporally extruded once into
 //! prisms (paper 3, items 1-2), its path cut into straight stretches.
 
-use super::error::err;
-use super::{Database, ObjectRecord, SceneError, Stretch, Traversal};
+use super::{Database, ObjectRecord, Stretch, Traversal};
 use crate::accel::{StretchPrisms, TwoLevel};
 use crate::geometry::{
     self, extrude, extrude_between, Pose, PreparedTet, Prism, Sphere, Tetrahedron,
 };
-use crate::scene::{Mesh, Motion, ObjectKind, Scene, SceneObject, Shape, NO_MESH};
+use crate::scene::{
+    Fault, Mesh, Motion, ObjectKind, Scene, SceneError, SceneErrorKind as K, SceneField as F,
+    SceneObject, Shape, NO_MESH,
+};
 use crate::spacetime::{Boost, Event, FourVector, Worldline};
 
 /// An object's mesh; none for an analytic sphere.
@@ -28,32 +30,19 @@ struct Builder {
 }
 
 /// The straight worldline of a uniformly moving object and the boost of
-/// its rest frame (identity unless a V_obj under the Lorentz transform);
-/// errors name the field relative to the object.
-pub(super) fn straight(
-    obj: &SceneObject,
-    lorentz: bool,
-) -> Result<(Worldline, Boost), (String, String)> {
+/// its rest frame (identity unless a V_obj under the Lorentz transform).
+fn straight(obj: &SceneObject, lorentz: bool) -> Result<(Worldline, Boost), Fault> {
     let v = match obj.motion {
         Motion::Extrusion { extrusion, .. } => extrusion.velocity(),
         Motion::Velocity { velocity, .. } => velocity,
         Motion::Keyframes(_) | Motion::Hyperbolic(_) => unreachable!("resolved into keyframes"),
     };
-    let bad = |f: &str, m: &str| Err((f.to_string(), m.to_string()));
+    let bad = |f: F, k: K| Err(Fault::new(f, k));
     if !v.is_finite() {
-        return bad(
-            "worldline",
-            "the velocity is not finite (zero-duration extrusion?)",
-        );
+        return bad(F::Motion, K::VelocityNotFinite);
     }
     if obj.kind == ObjectKind::VObj && v.length() >= 1.0 {
-        return Err((
-            "worldline".into(),
-            format!(
-                "a V_obj moves at {:.6}c; it must be slower than light (use an H_obj for a Lorentz-decoupled, superluminal object)",
-                v.length()
-            ),
-        ));
+        return bad(F::Motion, K::VObjTooFast { speed: v.length() });
     }
     let boost = match (obj.kind, lorentz) {
         (ObjectKind::VObj, true) => Boost::new(v).expect("checked above"),
@@ -62,16 +51,13 @@ pub(super) fn straight(
     let worldline = match obj.motion {
         Motion::Extrusion { start, extrusion } => {
             if !start.is_finite() {
-                return bad("worldline.start", "must be finite numbers");
+                return bad(F::Start, K::NotFinite);
             }
             if !extrusion.is_finite() {
-                return bad("worldline.extrusion", "must be finite numbers");
+                return bad(F::Extrusion, K::NotFinite);
             }
             if extrusion.t == 0.0 {
-                return bad(
-                    "worldline.extrusion",
-                    "zero-duration extrusion (dt = 0): the object would exist for no time",
-                );
+                return bad(F::Extrusion, K::ZeroDuration);
             }
             if extrusion.t < 0.0 {
                 Worldline {
@@ -88,13 +74,10 @@ pub(super) fn straight(
             proper_lifetime,
         } => {
             if !start.is_finite() {
-                return bad("worldline.start", "must be finite numbers");
+                return bad(F::Start, K::NotFinite);
             }
             if !(proper_lifetime > 0.0 && proper_lifetime.is_finite()) {
-                return bad(
-                    "worldline.proper_lifetime",
-                    "must be a positive finite time",
-                );
+                return bad(F::ProperLifetime, K::ProperLifetime);
             }
             let dt = boost.gamma() * proper_lifetime;
             Worldline {
@@ -109,14 +92,14 @@ pub(super) fn straight(
 
 impl Builder {
     /// Extrudes a keyframed object pose to pose, each interval one stretch
-    /// of its path. Errors name the keyframe, relative to the keyframe list.
+    /// of its path.
     fn keyframed(
         &mut self,
         object: u32,
         mesh: &Mesh,
         poses: &[Pose],
         contracted: bool,
-    ) -> Result<Vec<Stretch>, (String, String)> {
+    ) -> Result<Vec<Stretch>, Fault> {
         for (k, f) in poses.iter().enumerate() {
             let shape = Mesh {
                 vertices: f.vertices.clone(),
@@ -124,7 +107,7 @@ impl Builder {
             };
             shape
                 .validate()
-                .map_err(|e| (format!("[{k}]"), format!("at t = {}: {e}", f.t)))?;
+                .map_err(|error| Fault::new(F::Keyframe(k), K::PoseMesh { t: f.t, error }))?;
         }
         let mut stretches = Vec::with_capacity(poses.len() - 1);
         for (k, w) in poses.windows(2).enumerate() {
@@ -135,13 +118,7 @@ impl Builder {
             let v = worldline.velocity();
             let clock = if contracted {
                 Boost::new(v).ok_or_else(|| {
-                    (
-                        format!("[{}]", k + 1),
-                        format!(
-                            "the reference point moves at {:.6}c; a V_obj must be slower than light",
-                            v.length()
-                        ),
-                    )
+                    Fault::new(F::Keyframe(k + 1), K::StretchTooFast { speed: v.length() })
                 })?
             } else {
                 Boost::identity()
@@ -166,15 +143,8 @@ impl Builder {
 
     /// Inserts a uniformly moving object: one stretch, an analytic sphere
     /// or the mesh (Lorentz-contracted for a V_obj) extruded along it.
-    fn uniform(
-        &mut self,
-        i: usize,
-        obj: &SceneObject,
-        lorentz: bool,
-    ) -> Result<Stretch, SceneError> {
-        let at = |field: &str| format!("objects[{i}].{field}");
-        let named = |m: String| format!("object {:?}: {m}", obj.name);
-        let (worldline, boost) = straight(obj, lorentz).map_err(|(f, m)| err(at(&f), named(m)))?;
+    fn uniform(&mut self, i: usize, obj: &SceneObject, lorentz: bool) -> Result<Stretch, Fault> {
+        let (worldline, boost) = straight(obj, lorentz)?;
         if let Shape::Sphere { radius } = obj.shape {
             self.spheres.push(Sphere {
                 object: i as u32,
@@ -187,7 +157,7 @@ impl Builder {
         } else {
             let mesh = mesh_of(obj).map_vertices(|p| boost.contract(p));
             mesh.validate()
-                .map_err(|e| err(at("mesh"), named(format!("after Lorentz contraction: {e}"))))?;
+                .map_err(|e| Fault::new(F::Shape, K::ContractedMesh(e)))?;
             let first = self.prisms.len();
             extrude(
                 &mesh,
@@ -217,42 +187,28 @@ impl Builder {
         i: usize,
         obj: &SceneObject,
         lorentz: bool,
-    ) -> Result<Vec<Stretch>, SceneError> {
-        let at = |field: &str| format!("objects[{i}].{field}");
-        let named = |m: String| format!("object {:?}: {m}", obj.name);
+    ) -> Result<Vec<Stretch>, Fault> {
         match &obj.shape {
             Shape::Sphere { radius: r } if !(*r > 0.0 && r.is_finite()) => {
-                return Err(err(
-                    at("mesh"),
-                    named(format!("sphere radius {r}: expected a positive length")),
-                ));
+                return Err(Fault::new(F::Shape, K::SphereRadius(*r)));
             }
             Shape::Sphere { .. } => {}
             Shape::Mesh(mesh) => mesh
                 .validate()
-                .map_err(|e| err(at("mesh"), named(e.to_string())))?,
+                .map_err(|e| Fault::new(F::Shape, K::Mesh(e)))?,
         }
         let mesh = mesh_of(obj);
         let contracted = lorentz && obj.kind == ObjectKind::VObj;
         let poses = match &obj.motion {
-            Motion::Keyframes(k) => Some(
-                geometry::resolve(k, mesh, contracted)
-                    .map_err(|(f, m)| err(at(&format!("worldline.keyframes{f}")), named(m)))?,
-            ),
-            Motion::Hyperbolic(h) => Some(
-                h.poses(mesh, contracted)
-                    .map_err(|(f, m)| err(at(&format!("worldline.hyperbolic.{f}")), named(m)))?,
-            ),
+            Motion::Keyframes(k) => Some(geometry::resolve(k, mesh, contracted)?),
+            Motion::Hyperbolic(h) => Some(h.poses(mesh, contracted)?),
             _ => None,
         };
         match poses {
-            Some(_) if matches!(obj.shape, Shape::Sphere { .. }) => Err(err(
-                at("worldline"),
-                named("an analytic sphere moves uniformly (extrusion or velocity); give a tessellated sphere keyframes or hyperbolic motion".into()),
-            )),
-            Some(poses) => self
-                .keyframed(i as u32, mesh, &poses, contracted)
-                .map_err(|(f, m)| err(at(&format!("worldline.keyframes{f}")), named(m))),
+            Some(_) if matches!(obj.shape, Shape::Sphere { .. }) => {
+                Err(Fault::new(F::Motion, K::SphereNotUniform))
+            }
+            Some(poses) => self.keyframed(i as u32, mesh, &poses, contracted),
             None => Ok(vec![self.uniform(i, obj, lorentz)?]),
         }
     }
@@ -264,10 +220,10 @@ impl Database {
     /// clocks dilated; with it off every object is inserted as an H_obj.
     pub fn build(scene: &Scene, lorentz: bool) -> Result<Database, SceneError> {
         let mut b = Builder::default();
-        let mut objects = Vec::new();
+        let mut records = Vec::new();
         for (i, obj) in scene.objects.iter().enumerate() {
-            let stretches = b.insert(i, obj, lorentz)?;
-            objects.push(ObjectRecord {
+            let stretches = b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
+            records.push(ObjectRecord {
                 name: obj.name.clone(),
                 kind: obj.kind,
                 material: obj.material.clone(),
@@ -278,19 +234,20 @@ impl Database {
         for t in &b.tets {
             let p = PreparedTet::new(t).ok_or_else(|| {
                 let prism = b.prisms[t.prism as usize];
-                err(
-                    format!("objects[{}].mesh", prism.object),
-                    format!(
-                        "triangle {} extrudes to a tetrahedron with no 3-volume",
-                        prism.triangle
-                    ),
+                let object = prism.object as usize;
+                Fault::new(
+                    F::Shape,
+                    K::FlatTetrahedron {
+                        triangle: prism.triangle,
+                    },
                 )
+                .of(object, &records[object].name)
             })?;
             prepared.push(p);
         }
         let accel = TwoLevel::build(&b.stretch_prisms, &b.tets);
         Ok(Database {
-            objects,
+            records,
             prisms: b.prisms,
             tets: b.tets,
             prepared,

@@ -2,10 +2,8 @@
 //! extruded once, and never modified between frames (paper 3, item 6).
 
 mod build;
-mod error;
 mod object;
 
-pub use error::SceneError;
 pub use object::{ObjectRecord, Stretch};
 
 use crate::accel::TwoLevel;
@@ -25,7 +23,7 @@ pub enum Traversal {
 
 /// The static 4D database.
 pub struct Database {
-    objects: Vec<ObjectRecord>,
+    records: Vec<ObjectRecord>,
     prisms: Vec<Prism>,
     tets: Vec<Tetrahedron>,
     prepared: Vec<PreparedTet>,
@@ -61,7 +59,7 @@ impl Database {
 
     /// The objects as inserted, in scene order.
     pub fn objects(&self) -> &[ObjectRecord] {
-        &self.objects
+        &self.records
     }
 
     /// Every extruded triangle.
@@ -129,7 +127,7 @@ impl Database {
             let prism = &self.prisms[t.prism as usize];
             trace.record(Step::Candidate {
                 tet,
-                object: self.objects[prism.object as usize].name.clone(),
+                object: self.records[prism.object as usize].name.clone(),
                 triangle: prism.triangle,
                 prism: t.prism,
                 piece: t.piece,

@@ -18,7 +18,10 @@
 //!   Rindler congruence), so distances in the instantaneous rest frame never
 //!   change. The object must lie in front of the horizon, 1 + a xi > 0.
 
-use crate::scene::{Hyperbolic, Keyframe, Mesh, MAX_KEYFRAMES};
+use crate::scene::{
+    Fault, Hyperbolic, HyperbolicField as H, Keyframe, Mesh, SceneErrorKind as K, SceneField as F,
+    MAX_KEYFRAMES,
+};
 use crate::spacetime::Boost;
 use glam::DVec3;
 
@@ -48,11 +51,7 @@ impl Hyperbolic {
     /// <= 1/A. Linear interpolation over a lab interval h is off by at most
     /// h^2 max|s''| / 8 <= h^2 / (8 A_min), so intervals of
     /// h = sqrt(8 tolerance A_min) keep every vertex within `tolerance`.
-    pub(crate) fn poses(
-        &self,
-        mesh: &Mesh,
-        born_rigid: bool,
-    ) -> Result<Vec<Pose>, (String, String)> {
+    pub(crate) fn poses(&self, mesh: &Mesh, born_rigid: bool) -> Result<Vec<Pose>, Fault> {
         self.validate()?;
         let n = self.direction;
         let a = self.acceleration;
@@ -63,25 +62,25 @@ impl Hyperbolic {
             .collect();
         let xi_min = xi.iter().copied().fold(0.0, f64::min);
         if 1.0 + a * xi_min <= 0.0 {
-            return Err((
-                "acceleration".into(),
-                format!(
-                    "a Born-rigid object under proper acceleration {a} must lie within 1/a = {} behind its reference point (the Rindler horizon); a vertex is {} behind it",
-                    1.0 / a,
-                    -xi_min
-                ),
+            return Err(Fault::new(
+                F::Hyperbolic(H::Acceleration),
+                K::BeyondHorizon {
+                    acceleration: a,
+                    behind: -xi_min,
+                },
             ));
         }
         let a_min = 1.0 / a + xi_min;
         let h = (8.0 * self.tolerance * a_min).sqrt();
         let count = (self.duration / h).ceil().max(1.0);
         if count.is_nan() || count > MAX_KEYFRAMES as f64 {
-            return Err((
-                "tolerance".into(),
-                format!(
-                    "tolerance {} would take {count} keyframes (at most {MAX_KEYFRAMES}); loosen it",
-                    self.tolerance
-                ),
+            return Err(Fault::new(
+                F::Hyperbolic(H::Tolerance),
+                K::TooManyKeyframes {
+                    tolerance: self.tolerance,
+                    count,
+                    max: MAX_KEYFRAMES,
+                },
             ));
         }
         let count = count as usize;
@@ -120,45 +119,43 @@ impl Hyperbolic {
 
 /// Rejects fewer than two keyframes, non-finite ones, ones out of time
 /// order and vertex lists that do not match the mesh.
-fn check_keyframes(keyframes: &[Keyframe], mesh: &Mesh) -> Result<(), (String, String)> {
+fn check_keyframes(keyframes: &[Keyframe], mesh: &Mesh) -> Result<(), Fault> {
     if keyframes.len() < 2 {
-        return Err((
-            String::new(),
-            format!("{} keyframe(s): at least 2 are needed", keyframes.len()),
+        return Err(Fault::new(
+            F::Keyframes,
+            K::TooFewKeyframes(keyframes.len()),
         ));
     }
     for (k, f) in keyframes.iter().enumerate() {
         if !(f.t.is_finite() && f.position.is_finite()) {
-            return Err((
-                format!("[{k}]"),
-                "t and position must be finite numbers".into(),
-            ));
+            return Err(Fault::new(F::Keyframe(k), K::KeyframeNotFinite));
         }
         if k > 0 && f.t <= keyframes[k - 1].t {
-            return Err((
-                format!("[{k}].t"),
-                format!(
-                    "keyframes out of time order: t = {} follows t = {}",
-                    f.t,
-                    keyframes[k - 1].t
-                ),
+            return Err(Fault::new(
+                F::KeyframeTime(k),
+                K::KeyframesOutOfOrder {
+                    t: f.t,
+                    previous: keyframes[k - 1].t,
+                },
             ));
         }
         if let Some(o) = &f.offsets {
             if o.len() != mesh.vertices.len() {
-                return Err((
-                    format!("[{k}].vertices"),
-                    format!(
-                        "{} vertices given; the mesh has {}",
-                        o.len(),
-                        mesh.vertices.len()
-                    ),
+                return Err(Fault::new(
+                    F::KeyframeVertices(k),
+                    K::VertexCount {
+                        given: o.len(),
+                        mesh: mesh.vertices.len(),
+                    },
                 ));
             }
             if let Some(v) = o.iter().position(|p| !p.is_finite()) {
-                return Err((
-                    format!("[{k}].vertices[{v}]"),
-                    "must be finite numbers".into(),
+                return Err(Fault::new(
+                    F::KeyframeVertex {
+                        keyframe: k,
+                        vertex: v,
+                    },
+                    K::NotFinite,
                 ));
             }
         }
@@ -170,13 +167,12 @@ fn check_keyframes(keyframes: &[Keyframe], mesh: &Mesh) -> Result<(), (String, S
 /// with the Lorentz transform on) each keyframe's rest-frame shape is
 /// contracted along the reference point's velocity there (central
 /// difference of the neighbouring keyframes; one-sided at the ends), and
-/// the proper time accumulates dt / gamma over each interval. Errors name
-/// the field relative to the keyframe list.
+/// the proper time accumulates dt / gamma over each interval.
 pub(crate) fn resolve(
     keyframes: &[Keyframe],
     mesh: &Mesh,
     contract: bool,
-) -> Result<Vec<Pose>, (String, String)> {
+) -> Result<Vec<Pose>, Fault> {
     check_keyframes(keyframes, mesh)?;
     let last = keyframes.len() - 1;
     let velocity = |k: usize| {
@@ -188,12 +184,11 @@ pub(crate) fn resolve(
         let offsets = f.offsets.as_deref().unwrap_or(&mesh.vertices);
         let boost = if contract {
             Boost::new(velocity(k)).ok_or_else(|| {
-                (
-                    format!("[{k}].position"),
-                    format!(
-                        "a V_obj's reference point moves at {:.6}c here; it must be slower than light",
-                        velocity(k).length()
-                    ),
+                Fault::new(
+                    F::KeyframePosition(k),
+                    K::KeyframeTooFast {
+                        speed: velocity(k).length(),
+                    },
                 )
             })?
         } else {
@@ -233,13 +228,13 @@ pub(crate) fn resolve(
             {
                 let speed = (*b - *a).length() / dt;
                 if speed.is_nan() || speed >= 1.0 {
-                    return Err((
-                        format!("[{k}]"),
-                        format!(
-                            "vertex {v} of a V_obj moves at {speed:.6}c between t = {} and t = {}; a V_obj's vertices must be slower than light (use an H_obj for a Lorentz-decoupled object)",
-                            frames[k - 1].t,
-                            frames[k].t
-                        ),
+                    return Err(Fault::new(
+                        F::Keyframe(k),
+                        K::VertexTooFast {
+                            vertex: v,
+                            speed,
+                            between: (frames[k - 1].t, frames[k].t),
+                        },
                     ));
                 }
             }
@@ -252,6 +247,7 @@ pub(crate) fn resolve(
 mod tests {
     use super::*;
     use crate::spacetime::Event;
+    use approx::assert_abs_diff_eq;
 
     fn bar() -> Mesh {
         Mesh::cuboid(DVec3::new(-0.5, -1.0, -0.1), DVec3::new(0.5, 1.0, 0.1))
@@ -285,7 +281,7 @@ mod tests {
                         let xi = if born { p.x } else { 0.0 };
                         let exact = m.start.x.x + p.x - xi + m.along(xi, t);
                         worst = worst.max((lerp.x - exact).abs());
-                        assert!((lerp.y - (m.start.x.y + p.y)).abs() < 1e-12);
+                        assert_abs_diff_eq!(lerp.y, m.start.x.y + p.y, epsilon = 1e-12);
                     }
                 }
             }
@@ -306,12 +302,12 @@ mod tests {
             let h = 1e-5;
             (m.along(0.0, t + h) - m.along(0.0, t - h)) / (2.0 * h)
         };
-        assert!((v(m.start.t) - m.initial_velocity).abs() < 1e-8);
+        assert_abs_diff_eq!(v(m.start.t), m.initial_velocity, epsilon = 1e-8);
         for t in [-2.0, 0.0, 4.0] {
             let h = 1e-3;
             let dv = (v(t + h) - v(t - h)) / (2.0 * h);
             let gamma = 1.0 / (1.0 - v(t) * v(t)).sqrt();
-            assert!((gamma.powi(3) * dv - m.acceleration).abs() < 1e-5);
+            assert_abs_diff_eq!(gamma.powi(3) * dv, m.acceleration, epsilon = 1e-5);
         }
     }
 
@@ -333,7 +329,7 @@ mod tests {
             let s_other = (1.0 / a + xi) / (1.0 - ratio * ratio).sqrt();
             let t_other = ratio * s_other;
             let proper = ((s_other - s_ref).powi(2) - (t_other - big_t).powi(2)).sqrt();
-            assert!((proper - xi).abs() < 1e-12, "t {t}: {proper}");
+            assert_abs_diff_eq!(proper, xi, epsilon = 1e-12);
         }
     }
 
@@ -345,8 +341,15 @@ mod tests {
             offsets: None,
         };
         let e = resolve(&[k(0.0), k(2.0), k(1.0)], &bar(), false).unwrap_err();
-        assert_eq!(e.0, "[2].t");
-        assert!(e.1.contains("out of time order"), "{}", e.1);
+        assert_eq!(e.field, F::KeyframeTime(2));
+        assert_eq!(
+            e.kind,
+            K::KeyframesOutOfOrder {
+                t: 1.0,
+                previous: 2.0
+            }
+        );
+        assert!(e.kind.to_string().contains("out of time order"));
     }
 
     #[test]
@@ -367,8 +370,9 @@ mod tests {
             },
         ];
         let e = resolve(&frames, &bar(), true).unwrap_err();
-        assert_eq!(e.0, "[1]");
-        assert!(e.1.contains("slower than light"), "{}", e.1);
+        assert_eq!(e.field, F::Keyframe(1));
+        assert!(matches!(e.kind, K::VertexTooFast { .. }), "{:?}", e.kind);
+        assert!(e.kind.to_string().contains("slower than light"));
         assert!(resolve(&frames, &bar(), false).is_ok(), "an H_obj may");
     }
 
@@ -385,9 +389,9 @@ mod tests {
             xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
         };
         for f in &r {
-            assert!((width(f) - 0.8).abs() < 1e-12, "{}", width(f));
+            assert_abs_diff_eq!(width(f), 0.8, epsilon = 1e-12);
         }
-        assert!((r[2].proper_time - 1.6).abs() < 1e-12);
+        assert_abs_diff_eq!(r[2].proper_time, 1.6, epsilon = 1e-12);
     }
 
     #[test]
@@ -395,7 +399,8 @@ mod tests {
         let mut m = motion(1e-3);
         m.acceleration = 3.0; // 1/a = 0.33 < the bar's half width 0.5
         let e = m.poses(&bar(), true).unwrap_err();
-        assert_eq!(e.0, "acceleration");
+        assert_eq!(e.field, F::Hyperbolic(H::Acceleration));
+        assert!(matches!(e.kind, K::BeyondHorizon { .. }), "{:?}", e.kind);
         assert!(m.poses(&bar(), false).is_ok());
     }
 }

@@ -2,10 +2,13 @@
 //! and a background. [`crate::Database::build`] turns it into the
 //! static 4D database.
 
+mod error;
 mod material;
 mod mesh;
 mod motion;
 
+pub(crate) use error::Fault;
+pub use error::{HyperbolicField, SceneError, SceneErrorKind, SceneField};
 pub use material::{Blink, Light, Material};
 pub use mesh::{Mesh, MeshError};
 pub(crate) use motion::MAX_KEYFRAMES;

@@ -2,6 +2,7 @@
 //! straight worldline, through keyframes, or under constant proper
 //! acceleration (paper 3.1, and the curved temporal extrusions of paper 6).
 
+use super::{Fault, HyperbolicField as H, SceneErrorKind as K, SceneField};
 use crate::spacetime::{Event, FourVector};
 use glam::DVec3;
 
@@ -129,31 +130,25 @@ impl Hyperbolic {
     }
 
     /// Rejects a motion that cannot be generated; the error names the field.
-    pub(crate) fn validate(&self) -> Result<(), (String, String)> {
-        let bad = |f: &str, m: &str| Err((f.to_string(), m.to_string()));
+    pub(crate) fn validate(&self) -> Result<(), Fault> {
+        let bad = |f: H, k: K| Err(Fault::new(SceneField::Hyperbolic(f), k));
         if !self.start.is_finite() {
-            return bad("start", "must be finite numbers");
+            return bad(H::Start, K::NotFinite);
         }
         if !(self.direction.is_finite() && (self.direction.length() - 1.0).abs() < 1e-9) {
-            return bad(
-                "direction",
-                "must be a unit vector (the acceleration's direction)",
-            );
+            return bad(H::Direction, K::NotUnit);
         }
         if !(self.acceleration > 0.0 && self.acceleration.is_finite()) {
-            return bad(
-                "acceleration",
-                "must be a positive proper acceleration (1/l.units); for uniform motion use a velocity worldline",
-            );
+            return bad(H::Acceleration, K::AccelerationNotPositive);
         }
         if self.initial_velocity.is_nan() || self.initial_velocity.abs() >= 1.0 {
-            return bad("initial_velocity", "must be slower than light (|v| < 1)");
+            return bad(H::InitialVelocity, K::InitialVelocity);
         }
         if !(self.duration > 0.0 && self.duration.is_finite()) {
-            return bad("duration", "must be a positive finite lab time");
+            return bad(H::Duration, K::Duration);
         }
         if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
-            return bad("tolerance", "must be a positive finite length");
+            return bad(H::Tolerance, K::Tolerance);
         }
         Ok(())
     }
