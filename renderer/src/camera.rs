@@ -4,12 +4,14 @@
 
 use crate::spacetime::{Boost, Event, FourVector};
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
 /// How fast light travels between events (paper 4.1.5, Figure 1 top band).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
 pub enum LightSpeed {
     /// Conventional ray tracing: every ray stays in the slice t = const.
     Infinite,
@@ -57,8 +59,12 @@ impl Ray {
 }
 
 /// Camera attitude: either a target to look at, or yaw and pitch.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum Attitude {
     /// Look from the camera position towards `look_at`, with `up` giving the image's up.
     LookAt {

@@ -9,11 +9,13 @@
 use crate::geometry::{Hit, Miss};
 use crate::spacetime::{Event, FourVector};
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 /// What a ray is for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum RayKind {
     /// From the camera.
     Primary,
@@ -24,8 +26,9 @@ pub enum RayKind {
 }
 
 /// The outcome of one barycentric solve.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(tag = "result", rename_all = "snake_case")]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize))]
+#[cfg_attr(feature = "serde", serde(tag = "result", rename_all = "snake_case"))]
 pub enum Outcome {
     /// The ray meets the tetrahedron.
     Accepted {
@@ -69,8 +72,9 @@ impl From<&Result<Hit, Miss>> for Outcome {
 }
 
 /// One recorded step.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(tag = "step", rename_all = "snake_case")]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize))]
+#[cfg_attr(feature = "serde", serde(tag = "step", rename_all = "snake_case"))]
 pub enum Step {
     /// A sample of the pixel: where in the pixel and at which camera time.
     Sample {

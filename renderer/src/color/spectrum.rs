@@ -17,6 +17,7 @@
 
 use super::cie::{band_wavelength_nm, colorimetry, BAND_LEN};
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
 
 /// The second radiation constant c2 = h c / k_B in nm K (exact in the 2019 SI).
@@ -48,8 +49,12 @@ const TRANSITION_HALF_WIDTH_NM: f64 = 12.0;
 /// `{"blackbody": {"kelvin": .., "scale": ..}}` or
 /// `{"samples": {"nm": [..], "values": [..]}}`; unknown fields are rejected and
 /// `scale` defaults to 1.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum Spectrum {
     /// The smooth spectrum of a linear-sRGB colour, zero outside the visible.
     ///
@@ -77,7 +82,7 @@ pub enum Spectrum {
         /// Standard deviation, nm.
         width_nm: f64,
         /// Peak value (default 1).
-        #[serde(default = "unit_scale")]
+        #[cfg_attr(feature = "serde", serde(default = "unit_scale"))]
         scale: f64,
     },
     /// Planck's law for the spectral radiance per unit wavelength of a black
@@ -93,7 +98,7 @@ pub enum Spectrum {
         /// Temperature, K.
         kelvin: f64,
         /// Peak value (default 1).
-        #[serde(default = "unit_scale")]
+        #[cfg_attr(feature = "serde", serde(default = "unit_scale"))]
         scale: f64,
     },
     /// Piecewise linear through (`nm[i]`, `values[i]`), zero outside
@@ -106,6 +111,7 @@ pub enum Spectrum {
     },
 }
 
+#[cfg(feature = "serde")]
 fn unit_scale() -> f64 {
     1.0
 }

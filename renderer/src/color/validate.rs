@@ -306,6 +306,7 @@ mod tests {
         }
     }
 
+    #[cfg(feature = "serde")]
     #[test]
     fn serde_forms() {
         let parse = |json: &str| serde_json::from_str::<Spectrum>(json);

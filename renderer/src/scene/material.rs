@@ -3,24 +3,26 @@
 
 use crate::color::Spectrum;
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
 
 /// A point light at rest in the lab frame.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Light {
     /// Lab position, l.units.
     pub position: DVec3,
     /// Linear RGB intensity.
-    #[serde(default = "white")]
+    #[cfg_attr(feature = "serde", serde(default = "white"))]
     pub color: DVec3,
     /// Fraction of a material's colour seen without direct light.
-    #[serde(default = "default_ambient")]
+    #[cfg_attr(feature = "serde", serde(default = "default_ambient"))]
     pub ambient: f64,
     /// The light's spectrum for Doppler rendering (default: the smooth
     /// spectrum of `color`).
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub spectrum: Option<Spectrum>,
 }
 
@@ -44,9 +46,11 @@ impl Light {
     }
 }
 
+#[cfg(feature = "serde")]
 fn white() -> DVec3 {
     DVec3::ONE
 }
+#[cfg(feature = "serde")]
 fn default_ambient() -> f64 {
     0.25
 }
@@ -59,8 +63,9 @@ fn default_shininess() -> f64 {
 
 /// A colour that alternates with the object's own (proper) time, so that
 /// time dilation is visible (paper 3, item 2d).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Blink {
     /// Period in the object's proper time, t.units.
     pub period: f64,
@@ -69,33 +74,34 @@ pub struct Blink {
 }
 
 /// Surface appearance. Colours are linear RGB in [0, 1].
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Material {
     /// Base colour (albedo), linear RGB.
     pub color: DVec3,
     /// Weight of the Lambert term.
-    #[serde(default = "default_diffuse")]
+    #[cfg_attr(feature = "serde", serde(default = "default_diffuse"))]
     pub diffuse: f64,
     /// Weight of the Phong specular term.
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub specular: f64,
     /// Phong exponent.
-    #[serde(default = "default_shininess")]
+    #[cfg_attr(feature = "serde", serde(default = "default_shininess"))]
     pub shininess: f64,
     /// Fraction of the colour taken from the mirror reflection, 0..=1.
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub mirror: f64,
     /// A colour alternating with the object's proper time.
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub blink: Option<Blink>,
     /// The reflectance spectrum for Doppler rendering (default: the smooth
     /// spectrum of `color`, or of the blink colour while it shows).
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub spectrum: Option<Spectrum>,
     /// Light the surface gives off itself, in its own frame: spectral
     /// radiance (its RGB is added when wavelengths are not shifted).
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub emission: Option<Spectrum>,
 }
 

@@ -21,19 +21,21 @@ pub(crate) static NO_MESH: Mesh = Mesh {
 };
 
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
 
 /// The two object classes of paper 3.1.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
 pub enum ObjectKind {
     /// Lorentz-decoupled: the mesh is already in lab-frame dimensions and is
     /// inserted as is. May be superluminal.
-    #[serde(rename = "H_obj")]
+    #[cfg_attr(feature = "serde", serde(rename = "H_obj"))]
     HObj,
     /// Given in rest-frame dimensions plus a lab velocity; Lorentz-transformed
     /// on insertion (contraction along the velocity, dilation of its clock).
     /// Must be slower than light.
-    #[serde(rename = "V_obj")]
+    #[cfg_attr(feature = "serde", serde(rename = "V_obj"))]
     VObj,
 }
 

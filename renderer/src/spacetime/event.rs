@@ -5,11 +5,13 @@
 //! (-, +, +, +): a null (light-like) displacement has interval zero.
 
 use glam::{DVec3, DVec4};
+#[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
 use std::ops::{Add, Mul, Neg, Sub};
 
 /// A point of spacetime: lab time `t` and lab position `x` (paper 2.1).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
 pub struct Event {
     /// Lab-frame time, t.units.
     pub t: f64,
@@ -18,7 +20,8 @@ pub struct Event {
 }
 
 /// A displacement between two events (a 4-vector), lab frame.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
 pub struct FourVector {
     /// Time component, t.units.
     pub t: f64,
@@ -132,7 +135,8 @@ impl Neg for FourVector {
 /// and moves along `extrusion` (paper 3.1: the velocity 4-vector whose `t`
 /// is the object's lab lifetime). Positions of mesh vertices are given
 /// relative to the reference point.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
 pub struct Worldline {
     /// Where and when the reference point starts.
     pub start: Event,
