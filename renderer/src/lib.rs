@@ -45,7 +45,7 @@ pub use color::{
 pub use database::{Database, ObjectRecord, Stretch, Surface, Traversal};
 pub use geometry::{
     corner_order, extrude, extrude_between, split_between, split_prism, tetrahedron_volume, Hit,
-    Miss, Pose, PrimitiveId, Prism, Tetrahedron, BARY_EPS,
+    Miss, Pose, PrimitiveId, Prism, Tetrahedron,
 };
 pub use render::{pixel, pixel_traced, render, shader, Image, RenderSettings};
 pub use rng::SplitMix64;
@@ -53,6 +53,6 @@ pub use scene::{
     Blink, Hyperbolic, HyperbolicField, Keyframe, Light, Material, Mesh, MeshError, Motion,
     ObjectKind, Scene, SceneError, SceneErrorKind, SceneField, SceneObject, Shape,
 };
-pub use shading::{self_hit_margin, to_frame, Band, Effects, Leg, Shader};
+pub use shading::{Band, Effects, Leg, Shader};
 pub use spacetime::{gamma, Boost, Event, FourVector, Worldline};
 pub use trace::{NoTrace, Outcome, RayKind, Recorder, Step, Trace};

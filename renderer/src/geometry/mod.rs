@@ -17,4 +17,4 @@ pub use hit::{nearer, Hit, Miss, PrimitiveId};
 pub(crate) use poses::resolve;
 pub use poses::Pose;
 pub(crate) use sphere::Sphere;
-pub use tetrahedron::{PreparedTet, BARY_EPS};
+pub(crate) use tetrahedron::PreparedTet;

@@ -15,11 +15,11 @@ use glam::{DMat3, DVec3, DVec4};
 
 /// Barycentric slack for hits exactly on a shared face, so that a ray
 /// through a face or edge between two tetrahedra cannot slip through both.
-pub const BARY_EPS: f64 = 1e-12;
+pub(crate) const BARY_EPS: f64 = 1e-12;
 
 /// A tetrahedron with its solve prepared once, when the database is built.
 #[derive(Clone, Copy, Debug)]
-pub struct PreparedTet {
+pub(crate) struct PreparedTet {
     v0: DVec4,
     normal: DVec4,
     /// The rows of the inverse of the projected 3x3 edge matrix, spread back

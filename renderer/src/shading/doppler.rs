@@ -67,7 +67,7 @@ pub enum Leg {
 /// 1 - v.k (classical Doppler, gamma = 1, for a Lorentz-decoupled object or
 /// the classical model). Light emitted in that frame arrives in the lab with
 /// the inverse factor.
-pub fn to_frame(velocity: DVec3, gamma: f64, k: DVec3) -> f64 {
+pub(crate) fn to_frame(velocity: DVec3, gamma: f64, k: DVec3) -> f64 {
     gamma * (1.0 - velocity.dot(k))
 }
 

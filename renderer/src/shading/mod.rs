@@ -5,5 +5,5 @@
 mod doppler;
 mod shader;
 
-pub use doppler::{to_frame, Effects, Leg};
-pub use shader::{self_hit_margin, Band, Shader};
+pub use doppler::{Effects, Leg};
+pub use shader::{Band, Shader};

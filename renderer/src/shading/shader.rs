@@ -29,7 +29,7 @@ fn scaled(nm: &Band, f: f64) -> Band {
 /// The start of the searched stretch of a secondary ray leaving `event`:
 /// far enough to step off the surface it leaves, relative to the scale of
 /// the coordinates.
-pub fn self_hit_margin(event: Event) -> f64 {
+pub(crate) fn self_hit_margin(event: Event) -> f64 {
     1e-9 * (1.0 + event.x.abs().max_element() + event.t.abs())
 }
 
