@@ -8,7 +8,7 @@
 //!
 //! Splits are chosen by the surface area heuristic over binned centroids
 //! on x, y, z and t, with the 4D boundary measure of a box as its area: the
-//! time segments of moving objects are told apart by t, while for static
+//! time slices of moving objects are told apart by t, while for static
 //! objects (which all live for the whole scene) a split along t gains
 //! nothing and is not chosen.
 

@@ -90,8 +90,8 @@ pub(crate) struct TwoLevel {
 fn comoving_box(g: &StretchPrisms, p: usize, tets: &[Tetrahedron]) -> (DVec3, DVec3) {
     let (t0, v) = (g.span.0, g.velocity);
     let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-    let pieces = if g.translation { 1 } else { 3 };
-    for tet in &tets[3 * p..3 * p + pieces] {
+    let tets_needed = if g.translation { 1 } else { 3 };
+    for tet in &tets[3 * p..3 * p + tets_needed] {
         for e in &tet.vertices[..if g.translation { 3 } else { 4 }] {
             let x = e.x - v * (e.t - t0) - g.origin.x;
             a = a.min(x);

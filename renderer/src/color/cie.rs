@@ -127,6 +127,7 @@ pub fn chromaticity(xyz: DVec3) -> Option<(f64, f64)> {
 mod tests {
     use super::*;
     use crate::color::Spectrum;
+    use approx::assert_abs_diff_eq;
 
     fn sample(s: &Spectrum) -> [f64; BAND_LEN] {
         s.sample_scaled(1.0)
@@ -153,8 +154,8 @@ mod tests {
     #[test]
     fn cmf_peaks() {
         let (y_nm, y_max) = argmax(|nm| cmf(nm).y, 360.0, 830.0, 0.1);
-        assert!((y_nm - 555.0).abs() < 1.5, "ybar peaks at {y_nm} nm");
-        assert!((y_max - 1.0).abs() < 0.03, "ybar peak {y_max}");
+        assert_abs_diff_eq!(y_nm, 555.0, epsilon = 1.5);
+        assert_abs_diff_eq!(y_max, 1.0, epsilon = 0.03);
         let (x_main_nm, _) = argmax(|nm| cmf(nm).x, 360.0, 830.0, 0.1);
         assert!(
             (x_main_nm - 599.0).abs() < 3.0,
@@ -167,13 +168,13 @@ mod tests {
         );
         assert!(cmf(x_blue_nm - 20.0).x < x_blue && cmf(x_blue_nm + 20.0).x < x_blue);
         let (z_nm, _) = argmax(|nm| cmf(nm).z, 360.0, 830.0, 0.1);
-        assert!((z_nm - 446.0).abs() < 5.0, "zbar peaks at {z_nm} nm");
+        assert_abs_diff_eq!(z_nm, 446.0, epsilon = 5.0);
     }
 
     #[test]
     fn rgb_round_trips() {
         let white = to_rgb(&sample(&Spectrum::Rgb(DVec3::ONE)));
-        assert!((white - DVec3::ONE).abs().max_element() < 1e-12, "{white}");
+        assert_abs_diff_eq!(white, DVec3::ONE, epsilon = 1e-12);
         for c in [
             DVec3::X,
             DVec3::Y,
@@ -188,7 +189,7 @@ mod tests {
             DVec3::ZERO,
         ] {
             let back = to_rgb(&sample(&Spectrum::Rgb(c)));
-            assert!((back - c).abs().max_element() < 1e-9, "{c} -> {back}");
+            assert_abs_diff_eq!(back, c, epsilon = 1e-9);
         }
     }
 
@@ -209,7 +210,7 @@ mod tests {
     #[test]
     fn white_chromaticity_is_near_equal_energy() {
         let white = xyz(&sample(&Spectrum::Rgb(DVec3::ONE)));
-        assert!((white.y - 1.0).abs() < 1e-12);
+        assert_abs_diff_eq!(white.y, 1.0, epsilon = 1e-12);
         let (x, y) = chromaticity(white).unwrap();
         assert!(
             (x - 0.33).abs() < 0.05 && (y - 0.33).abs() < 0.05,

@@ -224,6 +224,7 @@ fn piecewise_linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::color::{band_nm, to_rgb};
+    use approx::assert_abs_diff_eq;
 
     fn sample(s: &Spectrum) -> [f64; BAND_LEN] {
         s.sample_scaled(1.0)
@@ -253,9 +254,9 @@ mod tests {
         for nm in [
             375.0, 390.0, 420.0, 493.0, 550.0, 588.0, 650.0, 700.0, 725.0,
         ] {
-            assert!((white.at(nm) - window(nm)).abs() < 1e-12, "{nm} nm");
+            assert_abs_diff_eq!(white.at(nm), window(nm), epsilon = 1e-12);
         }
-        assert!((window(550.0) - 1.0).abs() < 1e-15);
+        assert_abs_diff_eq!(window(550.0), 1.0, epsilon = 1e-15);
     }
 
     #[test]
@@ -288,7 +289,7 @@ mod tests {
             scale: 2.0,
         };
         assert_eq!(line.at(500.0), 2.0);
-        assert!((line.at(510.0) - 2.0 * (-0.5f64).exp()).abs() < 1e-15);
+        assert_abs_diff_eq!(line.at(510.0), 2.0 * (-0.5f64).exp(), epsilon = 1e-15);
         let nm = band_nm();
         for d in [0.8, 1.0, 1.1, 1.25] {
             let s = line.sample_scaled(d);
@@ -329,8 +330,8 @@ mod tests {
                 (nm / wien - 1.0).abs() < 0.005,
                 "{kelvin} K peaks at {nm} nm"
             );
-            assert!((peak - 2.0).abs() < 1e-6, "{kelvin} K peak value {peak}");
-            assert!((s.at(wien) - 2.0).abs() < 1e-9);
+            assert_abs_diff_eq!(peak, 2.0, epsilon = 1e-6);
+            assert_abs_diff_eq!(s.at(wien), 2.0, epsilon = 1e-9);
         }
     }
 
@@ -346,7 +347,7 @@ mod tests {
         let ratio = s.at(500.0) / planck(500.0, kelvin);
         for nm in [200.0, 380.0, 724.5, 1500.0, 10_000.0] {
             let r = s.at(nm) / planck(nm, kelvin);
-            assert!((r / ratio - 1.0).abs() < 1e-9, "{nm} nm");
+            assert_abs_diff_eq!(r / ratio, 1.0, epsilon = 1e-9);
         }
     }
 
@@ -361,7 +362,7 @@ mod tests {
                 scale: 1.5,
             });
             for (a, b) in shifted.iter().zip(&hotter) {
-                assert!((a / b - 1.0).abs() < 1e-12, "D = {d}: {a} vs {b}");
+                assert_abs_diff_eq!(a / b, 1.0, epsilon = 1e-12);
             }
             let colder = sample(&Spectrum::Blackbody {
                 kelvin: kelvin / d,

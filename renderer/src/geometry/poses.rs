@@ -179,7 +179,7 @@ pub(crate) fn resolve(
         let (i, j) = (k.saturating_sub(1), (k + 1).min(last));
         (keyframes[j].position - keyframes[i].position) / (keyframes[j].t - keyframes[i].t)
     };
-    let mut frames: Vec<Pose> = Vec::with_capacity(keyframes.len());
+    let mut poses: Vec<Pose> = Vec::with_capacity(keyframes.len());
     for (k, f) in keyframes.iter().enumerate() {
         let offsets = f.offsets.as_deref().unwrap_or(&mesh.vertices);
         let boost = if contract {
@@ -194,7 +194,7 @@ pub(crate) fn resolve(
         } else {
             Boost::identity()
         };
-        let proper_time = match frames.last() {
+        let proper_time = match poses.last() {
             None => 0.0,
             Some(prev) => {
                 let dt = f.t - prev.t;
@@ -207,7 +207,7 @@ pub(crate) fn resolve(
                 prev.proper_time + dtau
             }
         };
-        frames.push(Pose {
+        poses.push(Pose {
             t: f.t,
             reference: f.position,
             vertices: offsets
@@ -218,12 +218,12 @@ pub(crate) fn resolve(
         });
     }
     if contract {
-        for k in 1..frames.len() {
-            let dt = frames[k].t - frames[k - 1].t;
-            for (v, (a, b)) in frames[k - 1]
+        for k in 1..poses.len() {
+            let dt = poses[k].t - poses[k - 1].t;
+            for (v, (a, b)) in poses[k - 1]
                 .vertices
                 .iter()
-                .zip(&frames[k].vertices)
+                .zip(&poses[k].vertices)
                 .enumerate()
             {
                 let speed = (*b - *a).length() / dt;
@@ -233,14 +233,14 @@ pub(crate) fn resolve(
                         K::VertexTooFast {
                             vertex: v,
                             speed,
-                            between: (frames[k - 1].t, frames[k].t),
+                            between: (poses[k - 1].t, poses[k].t),
                         },
                     ));
                 }
             }
         }
     }
-    Ok(frames)
+    Ok(poses)
 }
 
 #[cfg(test)]
@@ -270,9 +270,9 @@ mod tests {
     fn polyline_error_is_within_the_stated_bound() {
         for born in [false, true] {
             let m = motion(1e-3);
-            let frames = m.poses(&bar(), born).unwrap();
+            let poses = m.poses(&bar(), born).unwrap();
             let mut worst: f64 = 0.0;
-            for w in frames.windows(2) {
+            for w in poses.windows(2) {
                 for i in 0..10 {
                     let f = (i as f64 + 0.5) / 10.0;
                     let t = w[0].t + f * (w[1].t - w[0].t);
@@ -357,7 +357,7 @@ mod tests {
         // The reference point is at rest but the bar turns: its ends sweep
         // 0.5 * pi l.units in 1 t.unit.
         let turned: Vec<DVec3> = bar().vertices.iter().map(|p| -*p).collect();
-        let frames = [
+        let keyframes = [
             Keyframe {
                 t: 0.0,
                 position: DVec3::ZERO,
@@ -369,21 +369,21 @@ mod tests {
                 offsets: Some(turned),
             },
         ];
-        let e = resolve(&frames, &bar(), true).unwrap_err();
+        let e = resolve(&keyframes, &bar(), true).unwrap_err();
         assert_eq!(e.field, F::Keyframe(1));
         assert!(matches!(e.kind, K::VertexTooFast { .. }), "{:?}", e.kind);
         assert!(e.kind.to_string().contains("slower than light"));
-        assert!(resolve(&frames, &bar(), false).is_ok(), "an H_obj may");
+        assert!(resolve(&keyframes, &bar(), false).is_ok(), "an H_obj may");
     }
 
     #[test]
     fn keyframed_v_obj_is_contracted_along_its_velocity() {
-        let frames = [0.0, 1.0, 2.0].map(|t| Keyframe {
+        let keyframes = [0.0, 1.0, 2.0].map(|t| Keyframe {
             t,
             position: DVec3::new(0.6 * t, 0.0, 0.0),
             offsets: None,
         });
-        let r = resolve(&frames, &bar(), true).unwrap();
+        let r = resolve(&keyframes, &bar(), true).unwrap();
         let width = |f: &Pose| {
             let xs = f.vertices.iter().map(|p| p.x);
             xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)

@@ -243,6 +243,7 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
 
     #[test]
     fn cuboid_is_closed_and_outward() {
@@ -255,7 +256,7 @@ mod tests {
                 a.dot(b.cross(c)) / 6.0
             })
             .sum();
-        assert!((vol - 8.0).abs() < 1e-12, "volume {vol}");
+        assert_abs_diff_eq!(vol, 8.0, epsilon = 1e-12);
     }
 
     #[test]
