@@ -2,44 +2,57 @@
 //! Relativistic Spacetime Geometry".
 //!
 //! Data flows one way:
-//! scene ([`scene`], [`mesh`]) -> temporal extrusion ([`extrude`], with
-//! [`boost`] for V_obj objects and [`keyframe`] for accelerated ones) -> static 4D database ([`database`], searched
-//! through [`bvh`]) -> light-cone rays ([`lightcone`]) -> barycentric solve
-//! ([`intersect`]) -> shading with shadow and mirror rays ([`shade`]; colour
-//! effects of motion by [`doppler`] on [`spectrum`]s) ->
-//! image ([`render`]).
+//!
+//! 1. `scene`: 3D objects as given ([`Scene`], [`SceneObject`] with its
+//!    [`Mesh`], [`Motion`], [`Material`]), a point [`Light`], in `spacetime`
+//!    terms ([`Event`], [`FourVector`], [`Worldline`], [`Boost`]).
+//! 2. `geometry`: temporal extrusion of every triangle along its object's
+//!    path into a prism of three [`Tetrahedron`]s (paper 3.1), the path cut
+//!    into straight [`Stretch`]es (keyframed and accelerated paths first
+//!    resolved into [`Pose`]s); analytic spheres kept exact.
+//! 3. `database`: the static 4D [`Database`] of all prisms, built once
+//!    (paper 3, items 1-2) and searched through `accel`, a two-level
+//!    bounding volume hierarchy over 4D boxes.
+//! 4. `camera`: rays on the camera's past light cone ([`Camera`], [`Ray`];
+//!    the light-speed [`Model`] of paper 4.1.5), met by the barycentric
+//!    solve ([`Hit`], paper 3.2).
+//! 5. `shading`: Lambert and Phong with shadow and mirror rays on light
+//!    cones ([`Shader`]), with the colour effects of motion ([`Effects`])
+//!    on `color` spectra ([`Spectrum`]).
+//! 6. `render`: pixels to an [`Image`], with 4D anti-aliasing; `trace`
+//!    records every step of a pixel for the debug mode.
 //!
 //! Natural units throughout (c = 1); events are lab-frame (t, x, y, z) in f64,
 //! y up, the stage in the x-z plane.
 
-pub mod boost;
-pub mod bvh;
-pub mod database;
-pub mod doppler;
-pub mod extrude;
-pub mod intersect;
-pub mod keyframe;
-pub mod lightcone;
-pub mod mesh;
-pub mod model;
-pub mod render;
-pub mod rng;
-pub mod scene;
-pub mod shade;
-pub mod spacetime;
-pub mod spectrum;
-pub mod trace;
+mod accel;
+mod camera;
+mod color;
+mod database;
+mod geometry;
+mod render;
+mod rng;
+mod scene;
+mod shading;
+mod spacetime;
+mod trace;
 
-pub use boost::Boost;
-pub use database::{Database, SceneError, Surface, Traversal};
-pub use doppler::Effects;
-pub use extrude::{Prism, Tetrahedron};
-pub use intersect::Hit;
-pub use keyframe::{Hyperbolic, Keyframe};
-pub use lightcone::{Attitude, Camera, Kinematics, LightSpeed, Ray};
-pub use mesh::Mesh;
-pub use model::Model;
-pub use render::{render, Image, RenderSettings};
-pub use scene::{Motion, ObjectKind, Scene, SceneObject};
-pub use shade::{Light, Material};
-pub use spacetime::{Event, FourVector, Worldline};
+pub use camera::{Attitude, Camera, Kinematics, LightSpeed, Model, Ray};
+pub use color::{
+    band_nm, chromaticity, cmf, to_rgb, xyz, xyz_to_rgb, Spectrum, SpectrumError,
+    SpectrumErrorKind, SpectrumField, BAND_LEN,
+};
+pub use database::{Database, ObjectRecord, Stretch, Surface, Traversal};
+pub use geometry::{
+    corner_order, extrude, extrude_between, split_between, split_prism, tetrahedron_volume, Hit,
+    Miss, Pose, PrimitiveId, Prism, Tetrahedron,
+};
+pub use render::{pixel, pixel_traced, render, shader, Image, RenderSettings};
+pub use rng::SplitMix64;
+pub use scene::{
+    Blink, Hyperbolic, HyperbolicField, Keyframe, Light, Material, Mesh, MeshError, Motion,
+    ObjectKind, Scene, SceneError, SceneErrorKind, SceneField, SceneObject, Shape,
+};
+pub use shading::{Band, Effects, Leg, Shader};
+pub use spacetime::{gamma, Boost, Event, FourVector, Worldline};
+pub use trace::{NoTrace, Outcome, RayKind, Recorder, Step, Trace};

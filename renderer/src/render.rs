@@ -6,13 +6,11 @@
 //! pixels are independent, so the image is the same bit for bit whatever
 //! the number of threads.
 
+use crate::camera::{Camera, Kinematics, Model};
 use crate::database::Database;
-use crate::doppler::Effects;
-use crate::lightcone::{Camera, Kinematics};
-use crate::model::Model;
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
-use crate::shade::Shader;
+use crate::shading::{Effects, Shader};
 use crate::trace::{NoTrace, Step, Trace};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -24,6 +22,7 @@ pub struct RenderSettings {
     pub spp: u32,
     /// Length of the shutter interval of camera time, centred on t_c (t.units).
     pub shutter: f64,
+    /// Seed of the per-pixel sample generators.
     pub seed: u64,
     /// Mirror bounces followed.
     pub max_depth: u32,
@@ -49,8 +48,11 @@ impl Default for RenderSettings {
 /// Linear RGB pixels, row-major from the top left.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
+    /// Width, pixels.
     pub width: u32,
+    /// Height, pixels.
     pub height: u32,
+    /// Linear RGB, `width * height` of them.
     pub pixels: Vec<DVec3>,
 }
 

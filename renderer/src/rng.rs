@@ -2,10 +2,13 @@
 //! renderer is drawn from a hash of (seed, pixel, sample), so an image does not
 //! depend on the order in which pixels are rendered or on the thread count.
 
+/// The SplitMix64 generator (Steele, Lea and Flood): a 64-bit state
+/// advanced by a Weyl sequence and mixed.
 #[derive(Clone, Debug)]
 pub struct SplitMix64(u64);
 
 impl SplitMix64 {
+    /// A generator seeded with `seed`.
     pub fn new(seed: u64) -> Self {
         Self(seed)
     }
@@ -17,6 +20,7 @@ impl SplitMix64 {
         Self(a ^ ((u64::from(y) << 32) | u64::from(x)).wrapping_mul(0xD1B5_4A32_D192_ED03))
     }
 
+    /// The next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;

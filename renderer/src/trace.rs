@@ -6,36 +6,54 @@
 //! [`NoTrace`], whose recording compiles away, and the debug command passes a
 //! [`Recorder`]. There is no second implementation of the physics to drift.
 
-use crate::intersect::{Hit, Miss};
+use crate::geometry::{Hit, Miss};
 use crate::spacetime::{Event, FourVector};
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use serde::Serialize;
 
 /// What a ray is for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum RayKind {
+    /// From the camera.
     Primary,
+    /// From a hit towards the light.
     Shadow,
+    /// From a mirror hit along the reflected direction.
     Reflection,
 }
 
 /// The outcome of one barycentric solve.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(tag = "result", rename_all = "snake_case")]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize))]
+#[cfg_attr(feature = "serde", serde(tag = "result", rename_all = "snake_case"))]
 pub enum Outcome {
+    /// The ray meets the tetrahedron.
     Accepted {
+        /// Ray parameter.
         s: f64,
+        /// The event met.
         event: Event,
+        /// Its barycentric coordinates, clamped to [0, 1].
         bary: [f64; 4],
     },
     /// The ray is parallel to the tetrahedron's hyperplane.
     Parallel,
     /// The hyperplane is met outside the searched stretch of the ray
     /// (behind the origin, or beyond a hit already found).
-    OutOfRange { s: f64 },
+    OutOfRange {
+        /// Ray parameter where the hyperplane is met.
+        s: f64,
+    },
     /// The hyperplane is met outside the tetrahedron.
-    Outside { s: f64, bary: [f64; 4] },
+    Outside {
+        /// Ray parameter where the hyperplane is met.
+        s: f64,
+        /// Barycentric coordinates there, one of them negative.
+        bary: [f64; 4],
+    },
 }
 
 impl From<&Result<Hit, Miss>> for Outcome {
@@ -54,43 +72,63 @@ impl From<&Result<Hit, Miss>> for Outcome {
 }
 
 /// One recorded step.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(tag = "step", rename_all = "snake_case")]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize))]
+#[cfg_attr(feature = "serde", serde(tag = "step", rename_all = "snake_case"))]
 pub enum Step {
     /// A sample of the pixel: where in the pixel and at which camera time.
     Sample {
+        /// Sample number within the pixel.
         index: u32,
+        /// Continuous pixel position, x.
         px: f64,
+        /// Continuous pixel position, y.
         py: f64,
+        /// Camera time of the sample, t.units.
         camera_t: f64,
     },
     /// A ray about to be searched.
     Ray {
+        /// What the ray is for.
         kind: RayKind,
+        /// Mirror bounces before this ray.
         depth: u32,
+        /// The event the ray starts from.
         origin: Event,
         /// Spatial part a unit vector; t = -1 on a light cone, 0 for infinite light speed.
         direction: FourVector,
         /// The same direction with unit Euclidean length in 4D (t = -sqrt(2)/2 on a light cone).
         normalized: FourVector,
+        /// Searched range of the ray parameter.
         range: (f64, f64),
     },
     /// A tetrahedron tested against the current ray.
     Candidate {
+        /// Index of the tetrahedron (analytic spheres numbered after the tetrahedra).
         tet: u32,
+        /// Name of the object.
         object: String,
+        /// Index of the triangle in the object's mesh.
         triangle: u32,
+        /// Index of the prism.
         prism: u32,
+        /// Which of the prism's three tetrahedra, 0..3.
         piece: u8,
+        /// The result of the solve.
         outcome: Outcome,
     },
     /// The hit kept for the current ray (the most recent event), or the first
     /// blocker of a shadow ray.
     Hit {
+        /// What the ray is for.
         kind: RayKind,
+        /// Index of the tetrahedron (analytic spheres numbered after the tetrahedra).
         tet: u32,
+        /// Name of the object.
         object: String,
+        /// Index of the triangle in the object's mesh.
         triangle: u32,
+        /// Where the ray meets it.
         event: Event,
         /// The hit in the object's frame: rest-frame offset from its reference point.
         surface_point: DVec3,
@@ -98,35 +136,52 @@ pub enum Step {
         proper_time: f64,
         /// Lab-frame unit normal of the triangle, and the same turned towards the ray's origin.
         normal: DVec3,
+        /// The normal turned towards the ray's origin.
         facing_normal: DVec3,
     },
     /// The current ray met nothing.
-    Miss { kind: RayKind, background: DVec3 },
+    Miss {
+        /// What the ray was for.
+        kind: RayKind,
+        /// The background colour returned.
+        background: DVec3,
+    },
     /// The shading terms at a hit.
     Shading {
+        /// Mirror bounces before this ray.
         depth: u32,
+        /// Material colour at the object's proper time.
         albedo: DVec3,
+        /// Ambient term.
         ambient: DVec3,
         /// Unit vector from the hit towards the light, and the distance.
         light_vector: DVec3,
+        /// Distance to the light, l.units.
         light_distance: f64,
         /// n . l with the facing normal.
         lambert: f64,
+        /// Whether the light is hidden.
         in_shadow: bool,
+        /// Lambert term.
         diffuse: DVec3,
+        /// Phong term.
         specular: f64,
+        /// Mirror fraction of the material.
         mirror: f64,
         /// Colour before the mirror term, and the colour returned.
         local: DVec3,
+        /// Colour returned.
         color: DVec3,
     },
     /// The colour effects of the surface's motion at a hit (with
     /// `--doppler` or `--searchlight`). Frequency ratios are 1 when off.
     Doppler {
+        /// Mirror bounces before this ray.
         depth: u32,
         /// Lab velocity of the surface, and its clock's gamma (1:
         /// classical Doppler).
         surface_velocity: DVec3,
+        /// Gamma of the surface's clock.
         gamma: f64,
         /// nu_surface / nu_lab of the light arriving from the lamp.
         from_light: f64,
@@ -138,6 +193,7 @@ pub enum Step {
         /// With Doppler: the band's wavelengths in the surface's frame, nm,
         /// and the spectral radiance leaving the surface there.
         surface_nm: Option<Vec<f64>>,
+        /// Spectral radiance leaving the surface, at those wavelengths.
         surface_radiance: Option<Vec<f64>>,
     },
     /// What the camera records for the sample (with `--doppler` or
@@ -148,6 +204,7 @@ pub enum Step {
         /// With Doppler: the lab wavelengths of the observed band, nm, and
         /// the CIE XYZ of the observed spectrum.
         lab_nm: Option<Vec<f64>>,
+        /// CIE XYZ of the observed spectrum.
         xyz: Option<DVec3>,
         /// Linear sRGB.
         color: DVec3,
@@ -158,6 +215,7 @@ pub enum Step {
 pub trait Trace {
     /// Whether anything is recorded: when false, callers skip building steps.
     const ENABLED: bool;
+    /// Keeps one step.
     fn record(&mut self, step: Step);
 }
 
@@ -173,6 +231,7 @@ impl Trace for NoTrace {
 /// Records every step, in order (debugging).
 #[derive(Default, Debug)]
 pub struct Recorder {
+    /// The steps recorded, in order.
     pub steps: Vec<Step>,
 }
 

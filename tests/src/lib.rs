@@ -1,8 +1,10 @@
 //! Helpers shared by the workspace-level integration tests in `tests/tests/`.
 
 use glam::DVec3;
-use renderer::rng::SplitMix64;
-use renderer::{Event, FourVector, Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject};
+use renderer::SplitMix64;
+use renderer::{
+    Event, FourVector, Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject, Shape,
+};
 
 /// A random point in the cube [-r, r]^3.
 pub fn point(rng: &mut SplitMix64, r: f64) -> DVec3 {
@@ -67,10 +69,9 @@ pub fn scene(objects: Vec<SceneObject>) -> Scene {
 /// (0.8, 0.5, 0.2), neither an analytic sphere nor blinking.
 pub fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> SceneObject {
     SceneObject {
-        sphere: None,
         name: name.into(),
         kind,
-        mesh,
+        shape: Shape::Mesh(mesh),
         motion,
         material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
     }

@@ -4,10 +4,10 @@
 
 use crate::fixture::{Fixture, Overrides, View};
 use glam::DVec3;
-use renderer::rng::SplitMix64;
+use renderer::SplitMix64;
 use renderer::{
     Attitude, Camera, Database, Event, FourVector, Light, Material, Mesh, Model, Motion,
-    ObjectKind, RenderSettings, Scene, SceneObject, Traversal,
+    ObjectKind, RenderSettings, Scene, SceneObject, Shape, Traversal,
 };
 use std::fmt::Write as _;
 use std::time::Instant;
@@ -120,14 +120,13 @@ pub fn tessellated_boxes(n: usize, k: u32, seed: u64) -> Scene {
                 rng.range(0.2, 1.0),
             );
             SceneObject {
-                sphere: None,
                 name: format!("box {i}"),
                 kind: ObjectKind::HObj,
-                mesh: if k == 1 {
+                shape: Shape::Mesh(if k == 1 {
                     Mesh::cuboid(-half, half)
                 } else {
                     tessellated_cuboid(half, k)
-                },
+                }),
                 motion: Motion::Extrusion {
                     start: Event::new(-300.0, at - v * 300.0),
                     extrusion: FourVector::new(400.0, v * 400.0),

@@ -5,8 +5,8 @@
 
 use crate::fixture::{Fixture, View};
 use glam::DVec3;
-use renderer::trace::{Outcome, Recorder, Step};
 use renderer::Database;
+use renderer::{Outcome, Recorder, Step};
 use serde::Serialize;
 use serde_json::Value;
 use std::fmt::Write as _;
@@ -46,9 +46,9 @@ pub fn trace_pixel(
             view.camera.width, view.camera.height
         ));
     }
-    let shader = renderer::render::shader(db, &f.scene, view.model, &view.settings);
+    let shader = renderer::shader(db, &f.scene, view.model, &view.settings);
     let mut rec = Recorder::default();
-    let color = renderer::render::pixel_traced(
+    let color = renderer::pixel_traced(
         &shader,
         &view.camera,
         view.camera_t,
@@ -110,7 +110,7 @@ pub fn describe(log: &PixelLog) -> String {
             }
             Step::Ray { kind, depth, origin, direction, normalized, range } => {
                 indent = match kind {
-                    renderer::trace::RayKind::Shadow => "      ",
+                    renderer::RayKind::Shadow => "      ",
                     _ => "  ",
                 };
                 format!(
@@ -135,7 +135,7 @@ pub fn describe(log: &PixelLog) -> String {
             }
             Step::Hit { kind, tet, object, triangle, event, surface_point, proper_time, normal, facing_normal } => format!(
                 "{} {object:?} (tet {tet}, triangle {triangle}) at {}; in the object's frame {}; proper time {proper_time:.9}; normal {}, facing {}",
-                if *kind == renderer::trace::RayKind::Shadow { "BLOCKED by" } else { "HIT" },
+                if *kind == renderer::RayKind::Shadow { "BLOCKED by" } else { "HIT" },
                 ev(*event),
                 v3(*surface_point),
                 v3(*normal),

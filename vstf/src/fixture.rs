@@ -5,7 +5,7 @@
 use glam::DVec3;
 use renderer::{
     Attitude, Camera, Event, FourVector, Hyperbolic, Keyframe, Light, Material, Mesh, Model,
-    Motion, ObjectKind, RenderSettings, Scene, SceneObject,
+    Motion, ObjectKind, RenderSettings, Scene, SceneError, SceneObject, Shape, SpectrumField,
 };
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -132,7 +132,7 @@ pub enum MeshSpec {
     Cuboid { min: DVec3, max: DVec3 },
     /// The paper's right-angle flange (two two-sided planes).
     Flange { height: f64, width: f64, depth: f64 },
-    /// Bars of square section on the plane y (see `Mesh::bar_grid`).
+    /// Bars of square section on the plane y (see [`bar_grid`]).
     BarGrid {
         count: u32,
         spacing: f64,
@@ -385,7 +385,10 @@ impl Fixture {
         let scene = build_scene(&spec, file).map_err(|(p, m)| fail(p, m))?;
         // Insert once with each Lorentz setting, so that errors surface on load.
         for lorentz in [false, true] {
-            renderer::Database::build(&scene, lorentz).map_err(|e| fail(e.path, e.message))?;
+            renderer::Database::build(&scene, lorentz).map_err(|e| {
+                let (path, message) = scene_error(&e);
+                fail(path, message)
+            })?;
         }
         let name = file
             .file_stem()
@@ -566,7 +569,7 @@ fn build_mesh(spec: &MeshSpec, path: &str, file: &Path) -> Result<Mesh, (String,
             positive("flange.height", *height)?;
             positive("flange.width", *width)?;
             positive("flange.depth", *depth)?;
-            Mesh::flange(*height, *width, *depth)
+            flange(*height, *width, *depth)
         }
         MeshSpec::BarGrid {
             count,
@@ -580,7 +583,7 @@ fn build_mesh(spec: &MeshSpec, path: &str, file: &Path) -> Result<Mesh, (String,
             if *count == 0 {
                 return bad("bar_grid.count must be at least 1".into());
             }
-            Mesh::bar_grid(*count, *spacing, *first, *thickness, *y)
+            bar_grid(*count, *spacing, *first, *thickness, *y)
         }
         MeshSpec::Obj { path: p } => {
             let full = file.parent().unwrap_or(Path::new(".")).join(p);
@@ -625,19 +628,62 @@ fn build_mesh(spec: &MeshSpec, path: &str, file: &Path) -> Result<Mesh, (String,
     })
 }
 
+/// A scene error as the JSON path of the object's field and the message.
+fn scene_error(e: &SceneError) -> (String, String) {
+    use renderer::{HyperbolicField as H, SceneField as F};
+    let keyframe = |k: usize| format!("worldline.keyframes[{k}]");
+    let field = match e.field {
+        F::Shape => "mesh".to_string(),
+        F::Motion => "worldline".to_string(),
+        F::Start => "worldline.start".to_string(),
+        F::Extrusion => "worldline.extrusion".to_string(),
+        F::ProperLifetime => "worldline.proper_lifetime".to_string(),
+        F::Keyframes => "worldline.keyframes".to_string(),
+        F::Keyframe(k) => keyframe(k),
+        F::KeyframeTime(k) => format!("{}.t", keyframe(k)),
+        F::KeyframePosition(k) => format!("{}.position", keyframe(k)),
+        F::KeyframeVertices(k) => format!("{}.vertices", keyframe(k)),
+        F::KeyframeVertex {
+            keyframe: k,
+            vertex,
+        } => format!("{}.vertices[{vertex}]", keyframe(k)),
+        F::Hyperbolic(h) => format!(
+            "worldline.hyperbolic.{}",
+            match h {
+                H::Start => "start",
+                H::Direction => "direction",
+                H::Acceleration => "acceleration",
+                H::InitialVelocity => "initial_velocity",
+                H::Duration => "duration",
+                H::Tolerance => "tolerance",
+            }
+        ),
+    };
+    (format!("objects[{}].{field}", e.object), e.to_string())
+}
+
 fn event(a: [f64; 4]) -> Event {
     Event::new(a[0], DVec3::new(a[1], a[2], a[3]))
 }
 
 /// A spectrum's own check, its message naming the field under `path`.
-fn spectrum_ok(
-    path: &str,
-    s: Option<&renderer::spectrum::Spectrum>,
-) -> Result<(), (String, String)> {
-    match s.map(|s| s.validate()) {
-        Some(Err(m)) => Err((path.to_string(), m)),
-        _ => Ok(()),
-    }
+fn spectrum_ok(path: &str, s: Option<&renderer::Spectrum>) -> Result<(), (String, String)> {
+    let Some(Err(e)) = s.map(|s| s.validate()) else {
+        return Ok(());
+    };
+    let field = match e.field {
+        SpectrumField::Rgb(i) => format!("rgb[{i}]"),
+        SpectrumField::GaussianPeak => "gaussian.peak_nm".into(),
+        SpectrumField::GaussianWidth => "gaussian.width_nm".into(),
+        SpectrumField::GaussianScale => "gaussian.scale".into(),
+        SpectrumField::BlackbodyKelvin => "blackbody.kelvin".into(),
+        SpectrumField::BlackbodyScale => "blackbody.scale".into(),
+        SpectrumField::SampleWavelengths => "samples.nm".into(),
+        SpectrumField::SampleValues => "samples.values".into(),
+        SpectrumField::SampleWavelength(i) => format!("samples.nm[{i}]"),
+        SpectrumField::SampleValue(i) => format!("samples.values[{i}]"),
+    };
+    Err((path.to_string(), format!("{field}: {}", e.kind)))
 }
 
 /// The motion a worldline spec gives; errors name the field under `at`.
@@ -748,15 +794,14 @@ fn build_scene(spec: &FixtureSpec, file: &Path) -> Result<Scene, (String, String
             }
             (Some(w), None) => motion(w, &mesh, &at("worldline"))?,
         };
-        let sphere = match o.mesh {
-            MeshSpec::AnalyticSphere { radius } => Some(radius),
-            _ => None,
+        let shape = match o.mesh {
+            MeshSpec::AnalyticSphere { radius } => Shape::Sphere { radius },
+            _ => Shape::Mesh(mesh),
         };
         objects.push(SceneObject {
             name: o.name.clone(),
             kind: o.kind,
-            mesh,
-            sphere,
+            shape,
             motion,
             material: o.material.clone(),
         });
@@ -766,4 +811,55 @@ fn build_scene(spec: &FixtureSpec, file: &Path) -> Result<Scene, (String, String
         light: spec.light.clone(),
         background: spec.background,
     })
+}
+
+/// The paper's right-angle flange (4.1.1): two two-sided planes meeting
+/// at a right angle along the trailing vertical edge x = 0.
+/// The front plane z = `depth` spans x in [0, width]; the side plane
+/// x = 0 spans z in [0, depth]; both span y in [0, height].
+/// The reference point (origin) is the trailing lower far corner.
+pub fn flange(height: f64, width: f64, depth: f64) -> Mesh {
+    let mut m = Mesh::quad(
+        DVec3::new(0.0, 0.0, depth),
+        DVec3::new(width, 0.0, 0.0),
+        DVec3::new(0.0, height, 0.0),
+    );
+    m.append(
+        &Mesh::quad(
+            DVec3::ZERO,
+            DVec3::new(0.0, 0.0, depth),
+            DVec3::new(0.0, height, 0.0),
+        ),
+        DVec3::ZERO,
+    );
+    m
+}
+
+/// Bars of square cross-section `thickness` lying on the plane y = `y`
+/// (tops at y, bottoms at y - thickness): `count` bars parallel to z at
+/// x = first, first + spacing, ... and `count` parallel to x likewise,
+/// each spanning [first - thickness/2, last + thickness/2].
+pub fn bar_grid(count: u32, spacing: f64, first: f64, thickness: f64, y: f64) -> Mesh {
+    let half = thickness / 2.0;
+    let last = first + spacing * f64::from(count.saturating_sub(1));
+    let (lo, hi) = (first - half, last + half);
+    let mut m = Mesh::default();
+    for i in 0..count {
+        let c = first + spacing * f64::from(i);
+        m.append(
+            &Mesh::cuboid(
+                DVec3::new(c - half, y - thickness, lo),
+                DVec3::new(c + half, y, hi),
+            ),
+            DVec3::ZERO,
+        );
+        m.append(
+            &Mesh::cuboid(
+                DVec3::new(lo, y - thickness, c - half),
+                DVec3::new(hi, y, c + half),
+            ),
+            DVec3::ZERO,
+        );
+    }
+    m
 }

@@ -1,8 +1,8 @@
 //! Debug mode records what rendering computes, and debug-diff tells two
 //! logs apart.
 
-use renderer::trace::{RayKind, Step};
 use renderer::{LightSpeed, Traversal};
+use renderer::{RayKind, Step};
 use vstf::debug::{diff_logs, trace_pixel};
 use vstf::fixture::{Fixture, Overrides, View};
 
@@ -233,7 +233,7 @@ fn doppler_factors_and_spectra_are_logged() {
         "the fixture renders with Doppler on"
     );
     let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
-    let band = renderer::spectrum::band_nm();
+    let band = renderer::band_nm();
     let mut checked = 0;
     for (x, y) in (0..64).flat_map(|x| (0..48).map(move |y| (x, y))) {
         let log = trace_pixel(&f, &view, &db, x, y).unwrap();

@@ -5,7 +5,7 @@
 //! by the same comparison.
 
 use glam::DVec3;
-use renderer::spectrum::{self, Spectrum};
+use renderer::{self as spectrum, Spectrum};
 use renderer::{Attitude, Boost, Camera, Event, FourVector, Model};
 use vstf::measure::colorimetry::{observer, xyz_of_rgb, Blackbody, Chromaticity};
 use vstf::measure::{Kinematics, Pinhole};

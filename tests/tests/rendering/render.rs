@@ -3,8 +3,8 @@
 //! a moving point is seen at its retarded position.
 
 use glam::DVec3;
-use renderer::lightcone::{Attitude, LightSpeed, Ray};
-use renderer::rng::SplitMix64;
+use renderer::SplitMix64;
+use renderer::{Attitude, LightSpeed, Ray};
 use renderer::{
     Camera, Database, Event, Image, Mesh, Model, Motion, ObjectKind, RenderSettings, Traversal,
 };

@@ -2,9 +2,9 @@
 //! anti-aliasing blurs motion, and V_obj clocks and lifetimes are dilated.
 
 use glam::DVec3;
-use renderer::lightcone::{Attitude, LightSpeed, Ray};
-use renderer::shade::{Blink, Shader};
 use renderer::Effects;
+use renderer::{Attitude, LightSpeed, Ray};
+use renderer::{Blink, Shader};
 use renderer::{
     Camera, Database, Event, FourVector, Light, Material, Mesh, Model, Motion, ObjectKind,
     RenderSettings, Scene,

@@ -2,8 +2,8 @@
 //! and neighbouring prisms cut their shared faces the same way.
 
 use glam::DVec3;
-use renderer::extrude::{corner_order, extrude, split_prism, tetrahedron_volume};
-use renderer::rng::SplitMix64;
+use renderer::SplitMix64;
+use renderer::{corner_order, extrude, split_prism, tetrahedron_volume};
 use renderer::{Event, FourVector, Mesh, Worldline};
 use std::collections::{BTreeSet, HashMap};
 use workspace_tests::{point, unit};

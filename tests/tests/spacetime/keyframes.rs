@@ -4,8 +4,10 @@
 //! brute force finds.
 
 use glam::{DQuat, DVec3};
-use renderer::rng::SplitMix64;
-use renderer::{Database, Event, Keyframe, LightSpeed, Mesh, Motion, ObjectKind, Ray, Traversal};
+use renderer::SplitMix64;
+use renderer::{
+    Database, Event, Keyframe, LightSpeed, Mesh, Motion, ObjectKind, PrimitiveId, Ray, Traversal,
+};
 use workspace_tests::{object, scene, unit};
 
 /// Radians turned per keyframe interval.
@@ -146,11 +148,11 @@ fn the_hierarchy_finds_what_brute_force_finds() {
                 Ray::backwards(o, (aim - o.x).normalize(), LightSpeed::Finite)
             })
             .collect();
-        let found = |db: &Database| -> Vec<Option<(u32, u64)>> {
+        let found = |db: &Database| -> Vec<Option<(PrimitiveId, u64)>> {
             rays.iter()
                 .map(|r| {
                     db.closest_hit(r, (0.0, f64::INFINITY))
-                        .map(|h| (h.tet, h.s.to_bits()))
+                        .map(|h| (h.primitive, h.s.to_bits()))
                 })
                 .collect()
         };

@@ -3,9 +3,9 @@
 //! comoving coordinates on 100,000 random rays.
 
 use glam::DVec3;
-use renderer::lightcone::{LightSpeed, Ray};
-use renderer::rng::SplitMix64;
+use renderer::SplitMix64;
 use renderer::{Database, Event, Motion, ObjectKind, Traversal};
+use renderer::{LightSpeed, Ray};
 use workspace_tests::{object, point, random_mesh, random_motion, scene, unit};
 
 /// Closed-form hit of `ray` with a triangle (corners relative to the
@@ -129,7 +129,7 @@ fn hits_lie_on_the_light_cone_inside_their_tetrahedron() {
             );
             assert_abs_diff_eq!(hit.bary.iter().sum::<f64>(), 1.0, epsilon = 1e-9);
             // Rebuild the event from the barycentric coordinates alone.
-            let v = db.tetrahedra()[hit.tet as usize].vertices;
+            let v = db.tetrahedra()[hit.primitive.tetrahedron().unwrap() as usize].vertices;
             let from_bary = (0..4).fold(glam::DVec4::ZERO, |acc, i| {
                 acc + v[i].to_xyzt() * hit.bary[i]
             });

@@ -3,9 +3,9 @@
 //! path finds the same hits as brute force.
 
 use glam::DVec3;
-use renderer::lightcone::{LightSpeed, Ray};
-use renderer::rng::SplitMix64;
-use renderer::{Database, Event, Mesh, Motion, ObjectKind, SceneObject, Traversal};
+use renderer::SplitMix64;
+use renderer::{Database, Event, Mesh, Motion, ObjectKind, SceneObject, Shape, Traversal};
+use renderer::{LightSpeed, Ray};
 use workspace_tests::{object, scene, unit};
 
 fn sphere_object(kind: ObjectKind, v: DVec3, analytic: bool) -> SceneObject {
@@ -24,7 +24,9 @@ fn sphere_object(kind: ObjectKind, v: DVec3, analytic: bool) -> SceneObject {
         },
         motion,
     );
-    o.sphere = analytic.then_some(1.5);
+    if analytic {
+        o.shape = Shape::Sphere { radius: 1.5 };
+    }
     o
 }
 
@@ -157,7 +159,7 @@ fn bvh_and_brute_force_agree_with_spheres_present() {
 #[test]
 fn a_bad_sphere_radius_is_refused() {
     let mut o = sphere_object(ObjectKind::VObj, DVec3::X * 0.5, true);
-    o.sphere = Some(-1.0);
+    o.shape = Shape::Sphere { radius: -1.0 };
     let e = Database::build(&scene(vec![o]), true)
         .err()
         .expect("a negative radius was accepted");

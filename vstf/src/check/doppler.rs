@@ -21,7 +21,7 @@ use crate::measure::{self, Pinhole};
 use crate::oracle::{body_point, gamma_of_squared, retarded};
 use glam::DVec3;
 use image::RgbImage;
-use renderer::spectrum::Spectrum;
+use renderer::Spectrum;
 
 const NAME: &str = "doppler";
 const PANELS: [&str; 3] = ["head-on", "receding", "transverse"];

@@ -232,7 +232,10 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
         .iter()
         .find(|o| o.name == SPHERE)
         .ok_or("no sphere")?;
-    let radius = obj.sphere.ok_or("the sphere must be analytic")?;
+    let radius = obj
+        .shape
+        .sphere_radius()
+        .ok_or("the sphere must be analytic")?;
     let (start, u) = obj
         .motion
         .uniform()

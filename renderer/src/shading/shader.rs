@@ -4,16 +4,15 @@
 //! the light a surface receives left the light source, or the reflected
 //! object, earlier.
 
+use super::doppler::{self, Effects, Leg};
+use crate::camera::{Camera, Kinematics, LightSpeed, Ray};
+use crate::color::{self, Spectrum, BAND_LEN};
 use crate::database::Database;
-use crate::doppler::{self, Effects, Leg};
-use crate::intersect::Hit;
-use crate::lightcone::{Camera, Kinematics, LightSpeed, Ray};
-use crate::spacetime::Event;
-use crate::spectrum::{self, Spectrum, BAND_LEN};
+use crate::geometry::Hit;
+use crate::scene::Light;
+use crate::spacetime::{gamma, Event};
 use crate::trace::{NoTrace, RayKind, Step, Trace};
 use glam::DVec3;
-use serde::{Deserialize, Serialize};
-use std::borrow::Cow;
 
 /// Values at the wavelengths of the observed band, carried into whatever
 /// frame a leg of the path is in.
@@ -27,140 +26,22 @@ fn scaled(nm: &Band, f: f64) -> Band {
     nm.map(|x| x * f)
 }
 
-/// A point light at rest in the lab frame.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Light {
-    /// Lab position, l.units.
-    pub position: DVec3,
-    /// Linear RGB intensity.
-    #[serde(default = "white")]
-    pub color: DVec3,
-    /// Fraction of a material's colour seen without direct light.
-    #[serde(default = "default_ambient")]
-    pub ambient: f64,
-    /// The light's spectrum for Doppler rendering (default: the smooth
-    /// spectrum of `color`).
-    #[serde(default)]
-    pub spectrum: Option<Spectrum>,
-}
-
-impl Light {
-    /// A white light with the given ambient fraction.
-    pub fn white(position: DVec3, ambient: f64) -> Light {
-        Light {
-            position,
-            color: DVec3::ONE,
-            ambient,
-            spectrum: None,
-        }
-    }
-
-    /// The spectrum used when wavelengths are shifted.
-    pub fn spectrum(&self) -> Cow<'_, Spectrum> {
-        match &self.spectrum {
-            Some(s) => Cow::Borrowed(s),
-            None => Cow::Owned(Spectrum::Rgb(self.color)),
-        }
-    }
-}
-
-fn white() -> DVec3 {
-    DVec3::ONE
-}
-fn default_ambient() -> f64 {
-    0.25
-}
-fn default_diffuse() -> f64 {
-    0.75
-}
-fn default_shininess() -> f64 {
-    32.0
-}
-
-/// A colour that alternates with the object's own (proper) time, so that
-/// time dilation is visible (paper 3, item 2d).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Blink {
-    /// Period in the object's proper time, t.units.
-    pub period: f64,
-    /// Colour during the first half of each period (the base colour the rest).
-    pub color: DVec3,
-}
-
-/// Surface appearance. Colours are linear RGB in [0, 1].
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Material {
-    pub color: DVec3,
-    #[serde(default = "default_diffuse")]
-    pub diffuse: f64,
-    #[serde(default)]
-    pub specular: f64,
-    #[serde(default = "default_shininess")]
-    pub shininess: f64,
-    /// Fraction of the colour taken from the mirror reflection, 0..=1.
-    #[serde(default)]
-    pub mirror: f64,
-    #[serde(default)]
-    pub blink: Option<Blink>,
-    /// The reflectance spectrum for Doppler rendering (default: the smooth
-    /// spectrum of `color`, or of the blink colour while it shows).
-    #[serde(default)]
-    pub spectrum: Option<Spectrum>,
-    /// Light the surface gives off itself, in its own frame: spectral
-    /// radiance (its RGB is added when wavelengths are not shifted).
-    #[serde(default)]
-    pub emission: Option<Spectrum>,
-}
-
-impl Material {
-    pub fn matte(color: DVec3) -> Material {
-        Material {
-            color,
-            diffuse: default_diffuse(),
-            specular: 0.0,
-            shininess: default_shininess(),
-            mirror: 0.0,
-            blink: None,
-            spectrum: None,
-            emission: None,
-        }
-    }
-
-    /// The reflectance spectrum at the object's proper time `tau`.
-    pub fn reflectance_at(&self, tau: f64) -> Cow<'_, Spectrum> {
-        match (&self.spectrum, self.blink) {
-            (_, Some(b)) if (tau / b.period).rem_euclid(1.0) < 0.5 => {
-                Cow::Owned(Spectrum::Rgb(b.color))
-            }
-            (Some(s), _) => Cow::Borrowed(s),
-            (None, _) => Cow::Owned(Spectrum::Rgb(self.color)),
-        }
-    }
-
-    /// The colour at the object's proper time `tau`.
-    pub fn color_at(&self, tau: f64) -> DVec3 {
-        match self.blink {
-            Some(b) if (tau / b.period).rem_euclid(1.0) < 0.5 => b.color,
-            _ => self.color,
-        }
-    }
-}
-
 /// The start of the searched stretch of a secondary ray leaving `event`:
 /// far enough to step off the surface it leaves, relative to the scale of
 /// the coordinates.
-pub fn self_hit_margin(event: Event) -> f64 {
+pub(crate) fn self_hit_margin(event: Event) -> f64 {
     1e-9 * (1.0 + event.x.abs().max_element() + event.t.abs())
 }
 
 /// Everything fixed for one render: the database and how light travels.
 pub struct Shader<'a> {
+    /// The static 4D database searched by every ray.
     pub db: &'a Database,
+    /// The scene's point light.
     pub light: &'a Light,
+    /// Colour where a ray meets nothing.
     pub background: DVec3,
+    /// Whether rays lie on light cones or in constant-time slices.
     pub light_speed: LightSpeed,
     /// Number of mirror bounces followed.
     pub max_depth: u32,
@@ -239,7 +120,7 @@ impl Shader<'_> {
         let object = &self.db.objects()[surface.object as usize];
         Step::Hit {
             kind,
-            tet: hit.tet,
+            tet: self.db.primitive_number(hit.primitive),
             object: object.name.clone(),
             triangle: surface.triangle,
             event: hit.event,
@@ -317,8 +198,8 @@ impl Shader<'_> {
                 specular = m.specular * r.dot(view).max(0.0).powf(m.shininess);
             }
         }
-        let piece = object.piece_at(hit.event.t);
-        let (velocity, gamma) = (piece.worldline.velocity(), piece.clock.gamma());
+        let stretch = object.stretch_at(hit.event.t);
+        let (velocity, gamma) = (stretch.worldline.velocity(), stretch.clock.gamma());
         let from_light = self.to_surface(velocity, gamma, -l);
         let out = 1.0 / self.to_surface(velocity, gamma, view.normalize());
         Lit {
@@ -380,7 +261,7 @@ impl Shader<'_> {
             ambient + self.light.color * (diffuse + DVec3::splat(specular))
         };
         if let Some(e) = &m.emission {
-            local += spectrum::to_rgb(&e.sample_scaled(1.0));
+            local += color::to_rgb(&e.sample_scaled(1.0));
         }
         let mut color = local;
         let mut mirror_factor = None;
@@ -556,19 +437,16 @@ impl Shader<'_> {
         }
         let k = -ray.direction.x.normalize();
         let f = match camera.kinematics {
-            Kinematics::Lorentz => {
-                let g = 1.0 / (1.0 - camera.velocity.length_squared()).sqrt();
-                doppler::to_frame(camera.velocity, g, k)
-            }
+            Kinematics::Lorentz => doppler::to_frame(camera.velocity, gamma(camera.velocity), k),
             Kinematics::Galilean => doppler::to_frame(camera.velocity, 1.0, k),
             Kinematics::None => 1.0,
         };
         let gain = fx.intensity(f, Leg::Radiance);
         let (color, spectral) = if fx.doppler {
-            let lab_nm = scaled(&spectrum::band_nm(), f);
+            let lab_nm = scaled(&color::band_nm(), f);
             let seen = self.spectral_traced(ray, 0, RayKind::Primary, &lab_nm, trace);
-            let xyz = spectrum::xyz(&seen.map(|l| l * gain));
-            (spectrum::xyz_to_rgb(xyz), Some((lab_nm, xyz)))
+            let xyz = color::xyz(&seen.map(|l| l * gain));
+            (color::xyz_to_rgb(xyz), Some((lab_nm, xyz)))
         } else {
             (
                 self.radiance_traced(ray, 0, RayKind::Primary, trace) * gain,

@@ -1,23 +1,48 @@
-//! A bounding volume hierarchy over the tetrahedra's 4D bounding boxes.
-//! Built once per database; it only decides which tetrahedra a ray is tested
-//! against, never how (that is [`crate::intersect`]).
+//! A bounding volume hierarchy over 4D boxes (x, y, z, t). Built once per
+//! database; it only decides which items a ray is tested against, never how
+//! (that is the barycentric solve of `geometry`).
 //!
 //! Items are anything with 4D bounds: the database uses one hierarchy over
-//! objects (lab frame) and one per object over its prisms (in the object's
-//! comoving coordinates).
+//! the time slices of its stretches (lab frame) and one per stretch over its
+//! prisms (in the stretch's comoving coordinates).
 //!
 //! Splits are chosen by the surface area heuristic over binned centroids
 //! on x, y, z and t, with the 4D boundary measure of a box as its area: the
-//! time segments of moving objects are told apart by t, while for static
+//! time slices of moving objects are told apart by t, while for static
 //! objects (which all live for the whole scene) a split along t gains
 //! nothing and is not chosen.
 
-use crate::intersect::{nearer, Hit};
+use crate::geometry::{nearer, Hit};
 use glam::DVec4;
 
 const LEAF_SIZE: usize = 4;
 /// Deeper subtrees become leaves, so that the traversal stack (64) never overflows.
 const MAX_DEPTH: usize = 48;
+
+/// An axis-aligned box of spacetime: lower and upper corners, (x, y, z, t).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Bounds4 {
+    pub(crate) min: DVec4,
+    pub(crate) max: DVec4,
+}
+
+impl Bounds4 {
+    /// The box from `min` to `max`.
+    pub(crate) fn new(min: DVec4, max: DVec4) -> Bounds4 {
+        Bounds4 { min, max }
+    }
+
+    fn centroid(self) -> DVec4 {
+        (self.min + self.max) * 0.5
+    }
+}
+
+/// How far a box is widened for the rounding of coordinates computed inside
+/// it: 1e-9 of its extent plus 1e-12 of its coordinates' magnitude, per axis.
+#[inline]
+pub(crate) fn rounding_margin(min: DVec4, max: DVec4) -> DVec4 {
+    (max - min) * 1e-9 + (max.abs() + min.abs()) * 1e-12
+}
 
 #[derive(Clone, Copy, Debug)]
 struct Node {
@@ -26,13 +51,13 @@ struct Node {
     /// Leaf: first index into `order`; inner: index of the second child
     /// (the first child follows the node).
     index: u32,
-    /// Number of tetrahedra of a leaf; 0 for an inner node.
+    /// Number of items of a leaf; 0 for an inner node.
     count: u32,
 }
 
-/// The hierarchy: nodes in depth-first order and the tetrahedron order they index.
+/// The hierarchy: nodes in depth-first order and the item order they index.
 #[derive(Clone, Debug, Default)]
-pub struct Bvh {
+pub(crate) struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
 }
@@ -47,24 +72,16 @@ fn area(min: DVec4, max: DVec4) -> f64 {
 }
 
 /// Chooses a split of `items` by the surface area heuristic over binned
-/// centroids on x, y and z, reorders `items` so that the left part comes
+/// centroids on x, y, z and t, reorders `items` so that the left part comes
 /// first, and returns its length; `None` when no split beats a leaf.
-fn sah_split(
-    bounds: &[(DVec4, DVec4)],
-    items: &mut [u32],
-    cmin: DVec4,
-    extent: DVec4,
-) -> Option<usize> {
+fn sah_split(bounds: &[Bounds4], items: &mut [u32], cmin: DVec4, extent: DVec4) -> Option<usize> {
     const BINS: usize = 16;
-    let centroid = |i: u32| {
-        let (lo, hi) = bounds[i as usize];
-        (lo + hi) * 0.5
-    };
+    let centroid = |i: u32| bounds[i as usize].centroid();
     let (mut pmin, mut pmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
     for &i in items.iter() {
-        let (lo, hi) = bounds[i as usize];
-        pmin = pmin.min(lo);
-        pmax = pmax.max(hi);
+        let b = bounds[i as usize];
+        pmin = pmin.min(b.min);
+        pmax = pmax.max(b.max);
     }
     let leaf_cost = items.len() as f64;
     let parent = area(pmin, pmax).max(1e-300);
@@ -81,10 +98,10 @@ fn sah_split(
         let mut bmax = [DVec4::splat(f64::NEG_INFINITY); BINS];
         for &i in items.iter() {
             let b = bin_of(i);
-            let (lo, hi) = bounds[i as usize];
+            let item = bounds[i as usize];
             count[b] += 1;
-            bmin[b] = bmin[b].min(lo);
-            bmax[b] = bmax[b].max(hi);
+            bmin[b] = bmin[b].min(item.min);
+            bmax[b] = bmax[b].max(item.max);
         }
         // Sweep from the right to know each right part's box.
         let mut right_area = [0.0; BINS];
@@ -139,13 +156,13 @@ fn sah_split(
 
 /// Pads a box so that hits accepted with barycentric slack are never culled.
 fn pad(min: DVec4, max: DVec4) -> (DVec4, DVec4) {
-    let e = (max - min) * 1e-9 + (max.abs() + min.abs()) * 1e-12 + DVec4::splat(1e-300);
+    let e = rounding_margin(min, max) + DVec4::splat(1e-300);
     (min - e, max + e)
 }
 
 impl Bvh {
     /// Builds the hierarchy over items given by their 4D bounds (x, y, z, t).
-    pub fn build(bounds: &[(DVec4, DVec4)]) -> Bvh {
+    pub(crate) fn build(bounds: &[Bounds4]) -> Bvh {
         let mut bvh = Bvh {
             nodes: Vec::new(),
             order: (0..bounds.len() as u32).collect(),
@@ -160,7 +177,7 @@ impl Bvh {
 
     fn build_node(
         &mut self,
-        bounds: &[(DVec4, DVec4)],
+        bounds: &[Bounds4],
         items: &mut [u32],
         first: usize,
         depth: usize,
@@ -168,10 +185,10 @@ impl Bvh {
         let (mut min, mut max) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
         let (mut cmin, mut cmax) = (min, max);
         for &i in items.iter() {
-            let (lo, hi) = bounds[i as usize];
-            min = min.min(lo);
-            max = max.max(hi);
-            let c = (lo + hi) * 0.5;
+            let b = bounds[i as usize];
+            min = min.min(b.min);
+            max = max.max(b.max);
+            let c = b.centroid();
             cmin = cmin.min(c);
             cmax = cmax.max(c);
         }
@@ -219,8 +236,8 @@ impl Bvh {
     /// The closest hit along the ray `o + s d` (both (x, y, z, t), in the
     /// coordinates the bounds were built in) within `range`: `test(item,
     /// range)` is called for every item whose box the ray enters, with the
-    /// range shrunk to the best hit so far. Ties go to the lower tetrahedron.
-    pub fn closest(
+    /// range shrunk to the best hit so far. Ties go to the lower primitive.
+    pub(crate) fn closest(
         &self,
         o: DVec4,
         d: DVec4,

@@ -1,4 +1,4 @@
-//! Colour effects of motion (issue 6): the Doppler shift of wavelengths and
+//! Colour effects of motion: the Doppler shift of wavelengths and
 //! the searchlight change of intensity, both off by default (paper 6: they
 //! can hide the geometry). Derivations are in docs/physics.md.
 //!
@@ -24,11 +24,13 @@ pub struct Effects {
 }
 
 impl Effects {
+    /// Both off.
     pub const NONE: Effects = Effects {
         doppler: false,
         searchlight: false,
     };
 
+    /// Whether either effect is on.
     pub fn any(self) -> bool {
         self.doppler || self.searchlight
     }
@@ -65,25 +67,35 @@ pub enum Leg {
 /// 1 - v.k (classical Doppler, gamma = 1, for a Lorentz-decoupled object or
 /// the classical model). Light emitted in that frame arrives in the lab with
 /// the inverse factor.
-pub fn to_frame(velocity: DVec3, gamma: f64, k: DVec3) -> f64 {
+pub(crate) fn to_frame(velocity: DVec3, gamma: f64, k: DVec3) -> f64 {
     gamma * (1.0 - velocity.dot(k))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spacetime::gamma;
+    use approx::assert_abs_diff_eq;
 
     /// Head-on, receding and transverse emitters at speed b: the textbook
     /// factors sqrt((1+b)/(1-b)), sqrt((1-b)/(1+b)) and 1/gamma.
     #[test]
     fn classic_doppler_factors() {
         let b: f64 = 0.6;
-        let g = 1.0 / (1.0 - b * b).sqrt();
         let u = DVec3::new(b, 0.0, 0.0);
+        let g = gamma(u);
         let seen = |k: DVec3| 1.0 / to_frame(u, g, k);
-        assert!((seen(DVec3::X) - ((1.0 + b) / (1.0 - b)).sqrt()).abs() < 1e-12);
-        assert!((seen(-DVec3::X) - ((1.0 - b) / (1.0 + b)).sqrt()).abs() < 1e-12);
-        assert!((seen(DVec3::Y) - 1.0 / g).abs() < 1e-12);
+        assert_abs_diff_eq!(
+            seen(DVec3::X),
+            ((1.0 + b) / (1.0 - b)).sqrt(),
+            epsilon = 1e-12
+        );
+        assert_abs_diff_eq!(
+            seen(-DVec3::X),
+            ((1.0 - b) / (1.0 + b)).sqrt(),
+            epsilon = 1e-12
+        );
+        assert_abs_diff_eq!(seen(DVec3::Y), 1.0 / g, epsilon = 1e-12);
     }
 
     #[test]

@@ -1,6 +1,5 @@
 //! Triangle meshes in an object's own coordinates (l.units, relative to the
-//! object's reference point), the primitives the paper's scenes need, and a
-//! Wavefront OBJ reader.
+//! object's reference point), a few primitives, and a Wavefront OBJ reader.
 
 use glam::DVec3;
 use std::fmt;
@@ -9,18 +8,43 @@ use std::fmt;
 /// sets the direction of the stored normal.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
+    /// Vertex positions, l.units.
     pub vertices: Vec<DVec3>,
+    /// Vertex indices of each triangle.
     pub triangles: Vec<[u32; 3]>,
 }
 
 /// Why a mesh cannot be extruded.
 #[derive(Clone, Debug, PartialEq)]
 pub enum MeshError {
+    /// No triangles.
     Empty,
-    NonFiniteVertex { vertex: usize },
-    IndexOutOfRange { triangle: usize, index: u32 },
-    DegenerateTriangle { triangle: usize, area: f64 },
-    Obj { line: usize, message: String },
+    /// A vertex with a non-finite coordinate.
+    NonFiniteVertex {
+        /// Its index.
+        vertex: usize,
+    },
+    /// A triangle naming a vertex that does not exist.
+    IndexOutOfRange {
+        /// The triangle.
+        triangle: usize,
+        /// The vertex index it gives.
+        index: u32,
+    },
+    /// A triangle with no area.
+    DegenerateTriangle {
+        /// The triangle.
+        triangle: usize,
+        /// Its area.
+        area: f64,
+    },
+    /// A line of an OBJ file that cannot be read.
+    Obj {
+        /// Line number, from 1.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
 }
 
 impl fmt::Display for MeshError {
@@ -59,6 +83,7 @@ impl Mesh {
             .extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
     }
 
+    /// The same triangles with every vertex mapped by `f`.
     pub fn map_vertices(&self, f: impl Fn(DVec3) -> DVec3) -> Mesh {
         Mesh {
             vertices: self.vertices.iter().map(|v| f(*v)).collect(),
@@ -124,57 +149,6 @@ impl Mesh {
                 .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
                 .collect(),
         }
-    }
-
-    /// The paper's right-angle flange (4.1.1): two two-sided planes meeting
-    /// at a right angle along the trailing vertical edge x = 0.
-    /// The front plane z = `depth` spans x in [0, width]; the side plane
-    /// x = 0 spans z in [0, depth]; both span y in [0, height].
-    /// The reference point (origin) is the trailing lower far corner.
-    pub fn flange(height: f64, width: f64, depth: f64) -> Mesh {
-        let mut m = Mesh::quad(
-            DVec3::new(0.0, 0.0, depth),
-            DVec3::new(width, 0.0, 0.0),
-            DVec3::new(0.0, height, 0.0),
-        );
-        m.append(
-            &Mesh::quad(
-                DVec3::ZERO,
-                DVec3::new(0.0, 0.0, depth),
-                DVec3::new(0.0, height, 0.0),
-            ),
-            DVec3::ZERO,
-        );
-        m
-    }
-
-    /// Bars of square cross-section `thickness` lying on the plane y = `y`
-    /// (tops at y, bottoms at y - thickness): `count` bars parallel to z at
-    /// x = first, first + spacing, ... and `count` parallel to x likewise,
-    /// each spanning [first - thickness/2, last + thickness/2].
-    pub fn bar_grid(count: u32, spacing: f64, first: f64, thickness: f64, y: f64) -> Mesh {
-        let half = thickness / 2.0;
-        let last = first + spacing * f64::from(count.saturating_sub(1));
-        let (lo, hi) = (first - half, last + half);
-        let mut m = Mesh::default();
-        for i in 0..count {
-            let c = first + spacing * f64::from(i);
-            m.append(
-                &Mesh::cuboid(
-                    DVec3::new(c - half, y - thickness, lo),
-                    DVec3::new(c + half, y, hi),
-                ),
-                DVec3::ZERO,
-            );
-            m.append(
-                &Mesh::cuboid(
-                    DVec3::new(lo, y - thickness, c - half),
-                    DVec3::new(hi, y, c + half),
-                ),
-                DVec3::ZERO,
-            );
-        }
-        m
     }
 
     /// A sphere of `radius` about the origin: `segments` around the axis
@@ -269,6 +243,7 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
 
     #[test]
     fn cuboid_is_closed_and_outward() {
@@ -281,7 +256,7 @@ mod tests {
                 a.dot(b.cross(c)) / 6.0
             })
             .sum();
-        assert!((vol - 8.0).abs() < 1e-12, "volume {vol}");
+        assert_abs_diff_eq!(vol, 8.0, epsilon = 1e-12);
     }
 
     #[test]

@@ -18,51 +18,21 @@
 //!   Rindler congruence), so distances in the instantaneous rest frame never
 //!   change. The object must lie in front of the horizon, 1 + a xi > 0.
 
-use crate::boost::Boost;
-use crate::mesh::Mesh;
-use crate::spacetime::Event;
+use crate::scene::{
+    Fault, Hyperbolic, HyperbolicField as H, Keyframe, Mesh, SceneErrorKind as K, SceneField as F,
+    MAX_KEYFRAMES,
+};
+use crate::spacetime::Boost;
 use glam::DVec3;
 
-/// The object at one lab time.
+/// The object at one lab time, resolved from a keyframe (or generated):
+/// lab positions of every vertex (after any contraction), and the reference
+/// point's state. Consecutive poses bound one stretch of the path.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Keyframe {
+pub struct Pose {
     /// Lab time, t.units.
     pub t: f64,
     /// Lab position of the reference point, l.units.
-    pub position: DVec3,
-    /// Vertex positions relative to the reference point, rest-frame
-    /// dimensions for a V_obj (turned or deformed mesh); `None` keeps the
-    /// mesh's own vertices.
-    pub offsets: Option<Vec<DVec3>>,
-}
-
-/// Constant proper acceleration along a straight line (hyperbolic motion).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hyperbolic {
-    /// Where and when the reference point starts.
-    pub start: Event,
-    /// Unit direction of the acceleration.
-    pub direction: DVec3,
-    /// Proper acceleration of the reference point, 1/l.units (c = 1).
-    pub acceleration: f64,
-    /// Lab velocity of the reference point at the start, along `direction`
-    /// (negative: first moving against the acceleration).
-    pub initial_velocity: f64,
-    /// Lab time the motion lasts, t.units.
-    pub duration: f64,
-    /// Largest allowed lab distance, l.units, between a vertex's generated
-    /// polyline and its exact hyperbola.
-    pub tolerance: f64,
-}
-
-/// Most keyframes a hyperbolic motion may be cut into.
-pub const MAX_KEYFRAMES: usize = 100_000;
-
-/// One resolved keyframe: lab positions of every vertex (after any
-/// contraction), and the reference point's state.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Frame {
-    pub t: f64,
     pub reference: DVec3,
     /// Lab positions of the mesh's vertices, l.units.
     pub vertices: Vec<DVec3>,
@@ -72,62 +42,7 @@ pub struct Frame {
 }
 
 impl Hyperbolic {
-    /// Rapidity at the start, phi0 = atanh(initial_velocity).
-    pub fn initial_rapidity(&self) -> f64 {
-        self.initial_velocity.atanh()
-    }
-
-    /// The reference point's position along `direction` at lab time `t`,
-    /// relative to the start, for a point whose rest-frame offset along the
-    /// direction is `xi` (Born-rigid) or whose lab offset is fixed (`xi` = 0):
-    /// on the hyperbola S^2 - T^2 = A^2 about the common centre, with
-    /// A = 1/a + xi, S = s + cosh(phi0)/a and T = t - t0 + sinh(phi0)/a.
-    pub fn along(&self, xi: f64, t: f64) -> f64 {
-        let a = self.acceleration;
-        let phi0 = self.initial_rapidity();
-        let big_t = t - self.start.t + phi0.sinh() / a;
-        (1.0 / a + xi).hypot(big_t) - phi0.cosh() / a
-    }
-
-    /// The reference point's proper time at lab time `t`:
-    /// tau = (asinh(a T) - phi0) / a.
-    pub fn proper_time(&self, t: f64) -> f64 {
-        let a = self.acceleration;
-        let phi0 = self.initial_rapidity();
-        ((a * (t - self.start.t) + phi0.sinh()).asinh() - phi0) / a
-    }
-
-    /// Rejects a motion that cannot be generated; the error names the field.
-    fn validate(&self) -> Result<(), (String, String)> {
-        let bad = |f: &str, m: &str| Err((f.to_string(), m.to_string()));
-        if !self.start.is_finite() {
-            return bad("start", "must be finite numbers");
-        }
-        if !(self.direction.is_finite() && (self.direction.length() - 1.0).abs() < 1e-9) {
-            return bad(
-                "direction",
-                "must be a unit vector (the acceleration's direction)",
-            );
-        }
-        if !(self.acceleration > 0.0 && self.acceleration.is_finite()) {
-            return bad(
-                "acceleration",
-                "must be a positive proper acceleration (1/l.units); for uniform motion use a velocity worldline",
-            );
-        }
-        if self.initial_velocity.is_nan() || self.initial_velocity.abs() >= 1.0 {
-            return bad("initial_velocity", "must be slower than light (|v| < 1)");
-        }
-        if !(self.duration > 0.0 && self.duration.is_finite()) {
-            return bad("duration", "must be a positive finite lab time");
-        }
-        if !(self.tolerance > 0.0 && self.tolerance.is_finite()) {
-            return bad("tolerance", "must be a positive finite length");
-        }
-        Ok(())
-    }
-
-    /// The keyframes of this motion for `mesh`, Born-rigid when
+    /// The poses of this motion for `mesh`, Born-rigid when
     /// `born_rigid` (a V_obj with the Lorentz transform on), else every
     /// vertex translated with the reference point.
     ///
@@ -136,7 +51,7 @@ impl Hyperbolic {
     /// <= 1/A. Linear interpolation over a lab interval h is off by at most
     /// h^2 max|s''| / 8 <= h^2 / (8 A_min), so intervals of
     /// h = sqrt(8 tolerance A_min) keep every vertex within `tolerance`.
-    pub fn keyframes(&self, mesh: &Mesh, born_rigid: bool) -> Result<Vec<Frame>, (String, String)> {
+    pub(crate) fn poses(&self, mesh: &Mesh, born_rigid: bool) -> Result<Vec<Pose>, Fault> {
         self.validate()?;
         let n = self.direction;
         let a = self.acceleration;
@@ -147,25 +62,25 @@ impl Hyperbolic {
             .collect();
         let xi_min = xi.iter().copied().fold(0.0, f64::min);
         if 1.0 + a * xi_min <= 0.0 {
-            return Err((
-                "acceleration".into(),
-                format!(
-                    "a Born-rigid object under proper acceleration {a} must lie within 1/a = {} behind its reference point (the Rindler horizon); a vertex is {} behind it",
-                    1.0 / a,
-                    -xi_min
-                ),
+            return Err(Fault::new(
+                F::Hyperbolic(H::Acceleration),
+                K::BeyondHorizon {
+                    acceleration: a,
+                    behind: -xi_min,
+                },
             ));
         }
         let a_min = 1.0 / a + xi_min;
         let h = (8.0 * self.tolerance * a_min).sqrt();
         let count = (self.duration / h).ceil().max(1.0);
         if count.is_nan() || count > MAX_KEYFRAMES as f64 {
-            return Err((
-                "tolerance".into(),
-                format!(
-                    "tolerance {} would take {count} keyframes (at most {MAX_KEYFRAMES}); loosen it",
-                    self.tolerance
-                ),
+            return Err(Fault::new(
+                F::Hyperbolic(H::Tolerance),
+                K::TooManyKeyframes {
+                    tolerance: self.tolerance,
+                    count,
+                    max: MAX_KEYFRAMES,
+                },
             ));
         }
         let count = count as usize;
@@ -187,7 +102,7 @@ impl Hyperbolic {
                         x0 + across + n * self.along(xi, t)
                     })
                     .collect();
-                Frame {
+                Pose {
                     t,
                     reference,
                     vertices,
@@ -202,81 +117,84 @@ impl Hyperbolic {
     }
 }
 
-/// Resolves keyframes into lab vertex positions. With `contract` (a V_obj
-/// with the Lorentz transform on) each keyframe's rest-frame shape is
-/// contracted along the reference point's velocity there (central
-/// difference of the neighbouring keyframes; one-sided at the ends), and
-/// the proper time accumulates dt / gamma over each interval. Errors name
-/// the field relative to the keyframe list.
-pub fn resolve(
-    keyframes: &[Keyframe],
-    mesh: &Mesh,
-    contract: bool,
-) -> Result<Vec<Frame>, (String, String)> {
+/// Rejects fewer than two keyframes, non-finite ones, ones out of time
+/// order and vertex lists that do not match the mesh.
+fn check_keyframes(keyframes: &[Keyframe], mesh: &Mesh) -> Result<(), Fault> {
     if keyframes.len() < 2 {
-        return Err((
-            String::new(),
-            format!("{} keyframe(s): at least 2 are needed", keyframes.len()),
+        return Err(Fault::new(
+            F::Keyframes,
+            K::TooFewKeyframes(keyframes.len()),
         ));
     }
     for (k, f) in keyframes.iter().enumerate() {
         if !(f.t.is_finite() && f.position.is_finite()) {
-            return Err((
-                format!("[{k}]"),
-                "t and position must be finite numbers".into(),
-            ));
+            return Err(Fault::new(F::Keyframe(k), K::KeyframeNotFinite));
         }
         if k > 0 && f.t <= keyframes[k - 1].t {
-            return Err((
-                format!("[{k}].t"),
-                format!(
-                    "keyframes out of time order: t = {} follows t = {}",
-                    f.t,
-                    keyframes[k - 1].t
-                ),
+            return Err(Fault::new(
+                F::KeyframeTime(k),
+                K::KeyframesOutOfOrder {
+                    t: f.t,
+                    previous: keyframes[k - 1].t,
+                },
             ));
         }
         if let Some(o) = &f.offsets {
             if o.len() != mesh.vertices.len() {
-                return Err((
-                    format!("[{k}].vertices"),
-                    format!(
-                        "{} vertices given; the mesh has {}",
-                        o.len(),
-                        mesh.vertices.len()
-                    ),
+                return Err(Fault::new(
+                    F::KeyframeVertices(k),
+                    K::VertexCount {
+                        given: o.len(),
+                        mesh: mesh.vertices.len(),
+                    },
                 ));
             }
             if let Some(v) = o.iter().position(|p| !p.is_finite()) {
-                return Err((
-                    format!("[{k}].vertices[{v}]"),
-                    "must be finite numbers".into(),
+                return Err(Fault::new(
+                    F::KeyframeVertex {
+                        keyframe: k,
+                        vertex: v,
+                    },
+                    K::NotFinite,
                 ));
             }
         }
     }
+    Ok(())
+}
+
+/// Resolves keyframes into lab vertex positions. With `contract` (a V_obj
+/// with the Lorentz transform on) each keyframe's rest-frame shape is
+/// contracted along the reference point's velocity there (central
+/// difference of the neighbouring keyframes; one-sided at the ends), and
+/// the proper time accumulates dt / gamma over each interval.
+pub(crate) fn resolve(
+    keyframes: &[Keyframe],
+    mesh: &Mesh,
+    contract: bool,
+) -> Result<Vec<Pose>, Fault> {
+    check_keyframes(keyframes, mesh)?;
     let last = keyframes.len() - 1;
     let velocity = |k: usize| {
         let (i, j) = (k.saturating_sub(1), (k + 1).min(last));
         (keyframes[j].position - keyframes[i].position) / (keyframes[j].t - keyframes[i].t)
     };
-    let mut frames: Vec<Frame> = Vec::with_capacity(keyframes.len());
+    let mut poses: Vec<Pose> = Vec::with_capacity(keyframes.len());
     for (k, f) in keyframes.iter().enumerate() {
         let offsets = f.offsets.as_deref().unwrap_or(&mesh.vertices);
         let boost = if contract {
             Boost::new(velocity(k)).ok_or_else(|| {
-                (
-                    format!("[{k}].position"),
-                    format!(
-                        "a V_obj's reference point moves at {:.6}c here; it must be slower than light",
-                        velocity(k).length()
-                    ),
+                Fault::new(
+                    F::KeyframePosition(k),
+                    K::KeyframeTooFast {
+                        speed: velocity(k).length(),
+                    },
                 )
             })?
         } else {
             Boost::identity()
         };
-        let proper_time = match frames.last() {
+        let proper_time = match poses.last() {
             None => 0.0,
             Some(prev) => {
                 let dt = f.t - prev.t;
@@ -289,7 +207,7 @@ pub fn resolve(
                 prev.proper_time + dtau
             }
         };
-        frames.push(Frame {
+        poses.push(Pose {
             t: f.t,
             reference: f.position,
             vertices: offsets
@@ -300,34 +218,36 @@ pub fn resolve(
         });
     }
     if contract {
-        for k in 1..frames.len() {
-            let dt = frames[k].t - frames[k - 1].t;
-            for (v, (a, b)) in frames[k - 1]
+        for k in 1..poses.len() {
+            let dt = poses[k].t - poses[k - 1].t;
+            for (v, (a, b)) in poses[k - 1]
                 .vertices
                 .iter()
-                .zip(&frames[k].vertices)
+                .zip(&poses[k].vertices)
                 .enumerate()
             {
                 let speed = (*b - *a).length() / dt;
                 if speed.is_nan() || speed >= 1.0 {
-                    return Err((
-                        format!("[{k}]"),
-                        format!(
-                            "vertex {v} of a V_obj moves at {speed:.6}c between t = {} and t = {}; a V_obj's vertices must be slower than light (use an H_obj for a Lorentz-decoupled object)",
-                            frames[k - 1].t,
-                            frames[k].t
-                        ),
+                    return Err(Fault::new(
+                        F::Keyframe(k),
+                        K::VertexTooFast {
+                            vertex: v,
+                            speed,
+                            between: (poses[k - 1].t, poses[k].t),
+                        },
                     ));
                 }
             }
         }
     }
-    Ok(frames)
+    Ok(poses)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spacetime::Event;
+    use approx::assert_abs_diff_eq;
 
     fn bar() -> Mesh {
         Mesh::cuboid(DVec3::new(-0.5, -1.0, -0.1), DVec3::new(0.5, 1.0, 0.1))
@@ -350,9 +270,9 @@ mod tests {
     fn polyline_error_is_within_the_stated_bound() {
         for born in [false, true] {
             let m = motion(1e-3);
-            let frames = m.keyframes(&bar(), born).unwrap();
+            let poses = m.poses(&bar(), born).unwrap();
             let mut worst: f64 = 0.0;
-            for w in frames.windows(2) {
+            for w in poses.windows(2) {
                 for i in 0..10 {
                     let f = (i as f64 + 0.5) / 10.0;
                     let t = w[0].t + f * (w[1].t - w[0].t);
@@ -361,7 +281,7 @@ mod tests {
                         let xi = if born { p.x } else { 0.0 };
                         let exact = m.start.x.x + p.x - xi + m.along(xi, t);
                         worst = worst.max((lerp.x - exact).abs());
-                        assert!((lerp.y - (m.start.x.y + p.y)).abs() < 1e-12);
+                        assert_abs_diff_eq!(lerp.y, m.start.x.y + p.y, epsilon = 1e-12);
                     }
                 }
             }
@@ -382,12 +302,12 @@ mod tests {
             let h = 1e-5;
             (m.along(0.0, t + h) - m.along(0.0, t - h)) / (2.0 * h)
         };
-        assert!((v(m.start.t) - m.initial_velocity).abs() < 1e-8);
+        assert_abs_diff_eq!(v(m.start.t), m.initial_velocity, epsilon = 1e-8);
         for t in [-2.0, 0.0, 4.0] {
             let h = 1e-3;
             let dv = (v(t + h) - v(t - h)) / (2.0 * h);
             let gamma = 1.0 / (1.0 - v(t) * v(t)).sqrt();
-            assert!((gamma.powi(3) * dv - m.acceleration).abs() < 1e-5);
+            assert_abs_diff_eq!(gamma.powi(3) * dv, m.acceleration, epsilon = 1e-5);
         }
     }
 
@@ -409,7 +329,7 @@ mod tests {
             let s_other = (1.0 / a + xi) / (1.0 - ratio * ratio).sqrt();
             let t_other = ratio * s_other;
             let proper = ((s_other - s_ref).powi(2) - (t_other - big_t).powi(2)).sqrt();
-            assert!((proper - xi).abs() < 1e-12, "t {t}: {proper}");
+            assert_abs_diff_eq!(proper, xi, epsilon = 1e-12);
         }
     }
 
@@ -421,8 +341,15 @@ mod tests {
             offsets: None,
         };
         let e = resolve(&[k(0.0), k(2.0), k(1.0)], &bar(), false).unwrap_err();
-        assert_eq!(e.0, "[2].t");
-        assert!(e.1.contains("out of time order"), "{}", e.1);
+        assert_eq!(e.field, F::KeyframeTime(2));
+        assert_eq!(
+            e.kind,
+            K::KeyframesOutOfOrder {
+                t: 1.0,
+                previous: 2.0
+            }
+        );
+        assert!(e.kind.to_string().contains("out of time order"));
     }
 
     #[test]
@@ -430,7 +357,7 @@ mod tests {
         // The reference point is at rest but the bar turns: its ends sweep
         // 0.5 * pi l.units in 1 t.unit.
         let turned: Vec<DVec3> = bar().vertices.iter().map(|p| -*p).collect();
-        let frames = [
+        let keyframes = [
             Keyframe {
                 t: 0.0,
                 position: DVec3::ZERO,
@@ -442,36 +369,38 @@ mod tests {
                 offsets: Some(turned),
             },
         ];
-        let e = resolve(&frames, &bar(), true).unwrap_err();
-        assert_eq!(e.0, "[1]");
-        assert!(e.1.contains("slower than light"), "{}", e.1);
-        assert!(resolve(&frames, &bar(), false).is_ok(), "an H_obj may");
+        let e = resolve(&keyframes, &bar(), true).unwrap_err();
+        assert_eq!(e.field, F::Keyframe(1));
+        assert!(matches!(e.kind, K::VertexTooFast { .. }), "{:?}", e.kind);
+        assert!(e.kind.to_string().contains("slower than light"));
+        assert!(resolve(&keyframes, &bar(), false).is_ok(), "an H_obj may");
     }
 
     #[test]
     fn keyframed_v_obj_is_contracted_along_its_velocity() {
-        let frames = [0.0, 1.0, 2.0].map(|t| Keyframe {
+        let keyframes = [0.0, 1.0, 2.0].map(|t| Keyframe {
             t,
             position: DVec3::new(0.6 * t, 0.0, 0.0),
             offsets: None,
         });
-        let r = resolve(&frames, &bar(), true).unwrap();
-        let width = |f: &Frame| {
+        let r = resolve(&keyframes, &bar(), true).unwrap();
+        let width = |f: &Pose| {
             let xs = f.vertices.iter().map(|p| p.x);
             xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
         };
         for f in &r {
-            assert!((width(f) - 0.8).abs() < 1e-12, "{}", width(f));
+            assert_abs_diff_eq!(width(f), 0.8, epsilon = 1e-12);
         }
-        assert!((r[2].proper_time - 1.6).abs() < 1e-12);
+        assert_abs_diff_eq!(r[2].proper_time, 1.6, epsilon = 1e-12);
     }
 
     #[test]
     fn an_object_behind_the_horizon_is_an_error() {
         let mut m = motion(1e-3);
         m.acceleration = 3.0; // 1/a = 0.33 < the bar's half width 0.5
-        let e = m.keyframes(&bar(), true).unwrap_err();
-        assert_eq!(e.0, "acceleration");
-        assert!(m.keyframes(&bar(), false).is_ok());
+        let e = m.poses(&bar(), true).unwrap_err();
+        assert_eq!(e.field, F::Hyperbolic(H::Acceleration));
+        assert!(matches!(e.kind, K::BeyondHorizon { .. }), "{:?}", e.kind);
+        assert!(m.poses(&bar(), false).is_ok());
     }
 }

@@ -2,8 +2,8 @@
 //! worldline is a prism, a 3-manifold of spacetime, cut into three
 //! tetrahedra by a fixed table (paper Figure 4).
 
-use crate::keyframe::Frame;
-use crate::mesh::Mesh;
+use super::Pose;
+use crate::scene::Mesh;
 use crate::spacetime::{Event, FourVector, Worldline};
 use glam::DVec3;
 use std::cmp::Ordering;
@@ -11,6 +11,7 @@ use std::cmp::Ordering;
 /// A 3-simplex of spacetime: one of the three pieces of an extruded triangle.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tetrahedron {
+    /// Its corners, lab frame.
     pub vertices: [Event; 4],
     /// Index of the prism (extruded triangle) this piece belongs to.
     pub prism: u32,
@@ -137,8 +138,8 @@ pub fn extrude(
 /// checked that no triangle is degenerate at either keyframe.
 pub fn extrude_between(
     mesh: &Mesh,
-    from: &Frame,
-    to: &Frame,
+    from: &Pose,
+    to: &Pose,
     object: u32,
     prisms: &mut Vec<Prism>,
     tets: &mut Vec<Tetrahedron>,

@@ -5,11 +5,13 @@
 //! (-, +, +, +): a null (light-like) displacement has interval zero.
 
 use glam::{DVec3, DVec4};
+#[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
 use std::ops::{Add, Mul, Neg, Sub};
 
 /// A point of spacetime: lab time `t` and lab position `x` (paper 2.1).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
 pub struct Event {
     /// Lab-frame time, t.units.
     pub t: f64,
@@ -18,7 +20,8 @@ pub struct Event {
 }
 
 /// A displacement between two events (a 4-vector), lab frame.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
 pub struct FourVector {
     /// Time component, t.units.
     pub t: f64,
@@ -27,6 +30,7 @@ pub struct FourVector {
 }
 
 impl Event {
+    /// The event at lab time `t` and lab position `x`.
     pub const fn new(t: f64, x: DVec3) -> Self {
         Self { t, x }
     }
@@ -36,6 +40,7 @@ impl Event {
         self.x.extend(self.t)
     }
 
+    /// Unpacks `(x, y, z, t)` as packed by `to_xyzt`.
     pub fn from_xyzt(v: DVec4) -> Self {
         Self {
             t: v.w,
@@ -43,12 +48,14 @@ impl Event {
         }
     }
 
+    /// Whether every component is finite.
     pub fn is_finite(self) -> bool {
         self.t.is_finite() && self.x.is_finite()
     }
 }
 
 impl FourVector {
+    /// The 4-vector with time part `t` and spatial part `x`.
     pub const fn new(t: f64, x: DVec3) -> Self {
         Self { t, x }
     }
@@ -58,6 +65,7 @@ impl FourVector {
         self.x.extend(self.t)
     }
 
+    /// Unpacks `(x, y, z, t)` as packed by `to_xyzt`.
     pub fn from_xyzt(v: DVec4) -> Self {
         Self {
             t: v.w,
@@ -75,6 +83,7 @@ impl FourVector {
         self.x / self.t
     }
 
+    /// Whether every component is finite.
     pub fn is_finite(self) -> bool {
         self.t.is_finite() && self.x.is_finite()
     }
@@ -126,9 +135,12 @@ impl Neg for FourVector {
 /// and moves along `extrusion` (paper 3.1: the velocity 4-vector whose `t`
 /// is the object's lab lifetime). Positions of mesh vertices are given
 /// relative to the reference point.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
 pub struct Worldline {
+    /// Where and when the reference point starts.
     pub start: Event,
+    /// The lab 4-vector from the start to the end of the worldline.
     pub extrusion: FourVector,
 }
 
@@ -138,6 +150,7 @@ impl Worldline {
         self.extrusion.velocity()
     }
 
+    /// Where and when the reference point ends.
     pub fn end(&self) -> Event {
         self.start + self.extrusion
     }

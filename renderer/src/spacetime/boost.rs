@@ -2,7 +2,7 @@
 //! (paper 3, item 2c: beta = dx/dt, rapidity theta = artanh(beta), and the
 //! boost matrix LT; generalised here to a velocity in any direction).
 
-use crate::spacetime::FourVector;
+use super::{lorentz_factor, FourVector};
 use glam::DVec3;
 
 /// The pure boost carrying rest-frame 4-vectors of an object moving with lab
@@ -22,10 +22,11 @@ impl Boost {
         }
         Some(Self {
             beta,
-            gamma: 1.0 / (1.0 - b2).sqrt(),
+            gamma: lorentz_factor(b2),
         })
     }
 
+    /// The boost of an object at rest: changes nothing.
     pub fn identity() -> Self {
         Self {
             beta: DVec3::ZERO,
@@ -33,6 +34,7 @@ impl Boost {
         }
     }
 
+    /// The lab velocity of the rest frame (fraction of c).
     pub fn beta(&self) -> DVec3 {
         self.beta
     }

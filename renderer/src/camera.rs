@@ -1,13 +1,17 @@
-//! Rays on the camera's past light cone, and the camera that casts them
-//! (paper 3, item 3, and 3.2, eq. 11-12).
+//! Rays on the camera's past light cone, the camera that casts them
+//! (paper 3, item 3, and 3.2, eq. 11-12), and the light-speed models of
+//! paper 4.1.5 (Figure 1) that decide how rays and moving cameras behave.
 
-use crate::spacetime::{Event, FourVector};
+use crate::spacetime::{Boost, Event, FourVector};
 use glam::DVec3;
+#[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
+use std::fmt;
 
 /// How fast light travels between events (paper 4.1.5, Figure 1 top band).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "lowercase"))]
 pub enum LightSpeed {
     /// Conventional ray tracing: every ray stays in the slice t = const.
     Infinite,
@@ -21,7 +25,9 @@ pub enum LightSpeed {
 /// null) and 0 for infinitely fast light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
+    /// The event light arrives at.
     pub origin: Event,
+    /// Spatial part a unit vector towards where the light came from.
     pub direction: FourVector,
 }
 
@@ -39,6 +45,7 @@ impl Ray {
         }
     }
 
+    /// The event at ray parameter `s`.
     pub fn at(&self, s: f64) -> Event {
         self.origin + self.direction * s
     }
@@ -52,14 +59,28 @@ impl Ray {
 }
 
 /// Camera attitude: either a target to look at, or yaw and pitch.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum Attitude {
     /// Look from the camera position towards `look_at`, with `up` giving the image's up.
-    LookAt { look_at: DVec3, up: DVec3 },
+    LookAt {
+        /// The point looked at.
+        look_at: DVec3,
+        /// Approximately up in the image.
+        up: DVec3,
+    },
     /// Yaw: right-handed rotation about +y, degrees; 0 looks along -z and
     /// 90 along -x. Pitch: degrees above the horizontal. Image up follows +y.
-    YawPitch { yaw_deg: f64, pitch_deg: f64 },
+    YawPitch {
+        /// Yaw, degrees.
+        yaw_deg: f64,
+        /// Pitch, degrees.
+        pitch_deg: f64,
+    },
 }
 
 /// How a moving camera's lines of sight are carried into the lab frame.
@@ -74,7 +95,8 @@ pub enum Kinematics {
 }
 
 impl Kinematics {
-    pub fn of(model: crate::model::Model) -> Kinematics {
+    /// The kinematics of a model's moving camera.
+    pub fn of(model: Model) -> Kinematics {
         match (model.light_speed, model.lorentz) {
             (LightSpeed::Infinite, _) => Kinematics::None,
             (LightSpeed::Finite, false) => Kinematics::Galilean,
@@ -92,16 +114,23 @@ impl Kinematics {
 /// centres are at half-integers.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
+    /// Where and when the camera is (at the view's time).
     pub event: Event,
+    /// Unit view direction, camera frame.
     pub forward: DVec3,
+    /// Unit right of the image, camera frame.
     pub right: DVec3,
+    /// Unit up of the image, camera frame.
     pub up: DVec3,
     /// Vertical field of view, degrees.
     pub vfov_deg: f64,
+    /// Image width, pixels.
     pub width: u32,
+    /// Image height, pixels.
     pub height: u32,
     /// Lab velocity (fraction of c).
     pub velocity: DVec3,
+    /// How lines of sight are carried into the lab.
     pub kinematics: Kinematics,
 }
 
@@ -141,7 +170,7 @@ impl Camera {
 
     /// The same camera moving with lab `velocity`, its rays carried into the
     /// lab as `model` says; `None` at or above light speed.
-    pub fn moving(self, velocity: DVec3, model: crate::model::Model) -> Option<Camera> {
+    pub fn moving(self, velocity: DVec3, model: Model) -> Option<Camera> {
         (velocity.is_finite() && velocity.length_squared() < 1.0).then_some(Camera {
             velocity,
             kinematics: Kinematics::of(model),
@@ -162,9 +191,9 @@ impl Camera {
             Kinematics::None => n,
             // The past-directed null vector (-1, n) of the camera's frame, boosted.
             Kinematics::Lorentz => {
-                let lab = crate::boost::Boost::new(v)
+                let lab = Boost::new(v)
                     .expect("checked in moving()")
-                    .to_lab(crate::spacetime::FourVector::new(-1.0, n));
+                    .to_lab(FourVector::new(-1.0, n));
                 (lab.x / -lab.t).normalize()
             }
             // Light moves at c in the lab; in the camera's frame its velocity is
@@ -184,9 +213,9 @@ impl Camera {
             _ if v == DVec3::ZERO => d,
             Kinematics::None => d,
             Kinematics::Lorentz => {
-                let rest = crate::boost::Boost::new(v)
+                let rest = Boost::new(v)
                     .expect("checked in moving()")
-                    .to_rest(crate::spacetime::FourVector::new(-1.0, d));
+                    .to_rest(FourVector::new(-1.0, d));
                 (rest.x / -rest.t).normalize()
             }
             Kinematics::Galilean => (d + v).normalize(),
@@ -251,9 +280,59 @@ impl Camera {
     }
 }
 
+/// Light speed (infinite | finite) and Lorentz transform (off | on).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Model {
+    /// Whether light is instantaneous or travels at c = 1.
+    pub light_speed: LightSpeed,
+    /// Whether V_obj objects are Lorentz-transformed on insertion; when off
+    /// every object is inserted as an H_obj.
+    pub lorentz: bool,
+}
+
+impl Model {
+    /// Conventional ray tracing of the lab slice t = t_c (Figure 1, top band).
+    pub const INFINITE: Model = Model {
+        light_speed: LightSpeed::Infinite,
+        lorentz: false,
+    };
+    /// Finite light speed, no Lorentz transform (Figure 1, centre band).
+    pub const CLASSICAL: Model = Model {
+        light_speed: LightSpeed::Finite,
+        lorentz: false,
+    };
+    /// Finite light speed with the Lorentz transform (Figure 1, bottom band).
+    pub const RELATIVISTIC: Model = Model {
+        light_speed: LightSpeed::Finite,
+        lorentz: true,
+    };
+
+    /// `infinite`, `classical` or `relativistic`.
+    pub fn from_name(name: &str) -> Option<Model> {
+        match name {
+            "infinite" => Some(Model::INFINITE),
+            "classical" => Some(Model::CLASSICAL),
+            "relativistic" => Some(Model::RELATIVISTIC),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Model {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match (self.light_speed, self.lorentz) {
+            (LightSpeed::Infinite, false) => write!(f, "infinite"),
+            (LightSpeed::Finite, false) => write!(f, "classical"),
+            (LightSpeed::Finite, true) => write!(f, "relativistic"),
+            (LightSpeed::Infinite, true) => write!(f, "infinite+lorentz"),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
 
     fn cam(attitude: Attitude) -> Camera {
         Camera::new(
@@ -314,7 +393,8 @@ mod tests {
         });
         for (px, py) in [(0.5, 0.5), (32.0, 24.0), (63.2, 10.7)] {
             let (x, y) = c.pixel_of(c.direction(px, py)).unwrap();
-            assert!((x - px).abs() < 1e-9 && (y - py).abs() < 1e-9);
+            assert_abs_diff_eq!(x, px, epsilon = 1e-9);
+            assert_abs_diff_eq!(y, py, epsilon = 1e-9);
         }
         assert!(c.pixel_of(-c.forward).is_none());
         assert!(Camera::new(

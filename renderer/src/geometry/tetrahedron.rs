@@ -8,18 +8,18 @@
 //! triangle onto its dominant plane), which keeps the solve well conditioned
 //! even for tetrahedra thousands of t.units long and 1/20 l.unit wide.
 
-use crate::extrude::Tetrahedron;
-use crate::lightcone::Ray;
+use super::{Hit, Miss, PrimitiveId, Tetrahedron};
+use crate::camera::Ray;
 use crate::spacetime::Event;
 use glam::{DMat3, DVec3, DVec4};
 
 /// Barycentric slack for hits exactly on a shared face, so that a ray
 /// through a face or edge between two tetrahedra cannot slip through both.
-pub const BARY_EPS: f64 = 1e-12;
+pub(crate) const BARY_EPS: f64 = 1e-12;
 
 /// A tetrahedron with its solve prepared once, when the database is built.
 #[derive(Clone, Copy, Debug)]
-pub struct PreparedTet {
+pub(crate) struct PreparedTet {
     v0: DVec4,
     normal: DVec4,
     /// The rows of the inverse of the projected 3x3 edge matrix, spread back
@@ -39,30 +39,6 @@ fn spread(v: DVec3, axis: usize) -> DVec4 {
         }
     }
     DVec4::from_array(out)
-}
-
-/// A ray meeting a tetrahedron.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hit {
-    /// Ray parameter: spatial distance from the ray's origin.
-    pub s: f64,
-    /// Where the ray meets the tetrahedron.
-    pub event: Event,
-    /// Index of the tetrahedron in the database.
-    pub tet: u32,
-    /// Barycentric coordinates of `event` in the tetrahedron, each in [0, 1], summing to 1.
-    pub bary: [f64; 4],
-}
-
-/// Why a tetrahedron was not hit.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Miss {
-    /// The ray is parallel to the tetrahedron's hyperplane.
-    Parallel,
-    /// The hyperplane is met outside the searched stretch of the ray.
-    OutOfRange { s: f64 },
-    /// The hyperplane is met outside the tetrahedron.
-    Outside { s: f64, bary: [f64; 4] },
 }
 
 fn drop_axis(v: DVec4, axis: usize) -> DVec3 {
@@ -153,27 +129,8 @@ impl PreparedTet {
         Ok(Hit {
             s,
             event: Event::from_xyzt(p),
-            tet,
+            primitive: PrimitiveId::Tetrahedron(tet),
             bary: clamped,
         })
-    }
-
-    /// Lower and upper corners of the tetrahedron's 4D bounding box, (x, y, z, t).
-    pub fn bounds(tet: &Tetrahedron) -> (DVec4, DVec4) {
-        let v = tet.vertices.map(|e| e.to_xyzt());
-        (
-            v[0].min(v[1]).min(v[2]).min(v[3]),
-            v[0].max(v[1]).max(v[2]).max(v[3]),
-        )
-    }
-}
-
-/// The better of two hits: the smaller ray parameter, that is the most
-/// recent event on a light-cone ray (paper 3, item 4); ties go to the lower
-/// tetrahedron index so that every traversal order picks the same hit.
-pub fn nearer(a: Option<Hit>, b: Hit) -> Hit {
-    match a {
-        Some(a) if (a.s, a.tet) <= (b.s, b.tet) => a,
-        _ => b,
     }
 }

@@ -1,0 +1,200 @@
+//! The two-level structure over the database's prisms. Each stretch of an
+//! object's path gets a hierarchy over its prisms in the stretch's comoving
+//! (sheared) coordinates x' = x - v (t - t0) - x0, where a constant-velocity
+//! object is static, so its bounds stay tight however fast or long-lived it
+//! is (instancing with a per-stretch transform). Over all stretches, a
+//! hierarchy of the lab-frame 4D bounds of their time slices.
+
+use super::bvh::{rounding_margin, Bounds4, Bvh};
+use crate::geometry::{Hit, Tetrahedron};
+use crate::spacetime::Event;
+use glam::{DVec3, DVec4};
+
+/// Most time slices one stretch is cut into in the top-level hierarchy.
+const MAX_SLICES: usize = 64;
+
+/// The prisms of one stretch, as the acceleration structure sees them: a
+/// run of prisms moving together, whose comoving frame follows the
+/// reference point from `origin` with `velocity`.
+pub(crate) struct StretchPrisms {
+    /// The reference point at the start of the stretch.
+    pub(crate) origin: Event,
+    /// Lab velocity of the reference point over the stretch.
+    pub(crate) velocity: DVec3,
+    /// Lab times covered.
+    pub(crate) span: (f64, f64),
+    /// Indices of the stretch's prisms in the database.
+    pub(crate) prisms: std::ops::Range<usize>,
+    /// Whether every prism is a pure translation along `velocity` (uniform
+    /// motion), rather than a keyframe interval that may turn or deform.
+    pub(crate) translation: bool,
+}
+
+/// One stretch's hierarchy over its prisms, in its comoving coordinates.
+struct StretchBvh {
+    origin: Event,
+    velocity: DVec3,
+    first_prism: u32,
+    bvh: Bvh,
+}
+
+impl StretchBvh {
+    /// The ray `o + s d` in comoving coordinates, with the same parameter s.
+    #[inline]
+    fn to_comoving(&self, o: DVec4, d: DVec4) -> (DVec4, DVec4) {
+        let x = o.truncate() - self.velocity * (o.w - self.origin.t) - self.origin.x;
+        let dx = d.truncate() - self.velocity * d.w;
+        (x.extend(o.w), dx.extend(d.w))
+    }
+}
+
+/// One entry of the top-level hierarchy: a stretch over a slice of its lab
+/// times, bounded by its sweep over that slice only (so a fast or
+/// long-lived object does not cover the whole scene; cf. STBVH).
+struct TimeSlice {
+    stretch: u32,
+    /// Lab times of the slice.
+    t0: f64,
+    t1: f64,
+}
+
+impl TimeSlice {
+    /// The part of `range` where the ray `o + s d` is within the slice's
+    /// lab times; `None` if it never is.
+    #[inline]
+    fn window(&self, o: DVec4, d: DVec4, range: (f64, f64)) -> Option<(f64, f64)> {
+        if d.w == 0.0 {
+            return (self.t0 <= o.w && o.w <= self.t1).then_some(range);
+        }
+        let (a, b) = ((self.t0 - o.w) / d.w, (self.t1 - o.w) / d.w);
+        let (lo, hi) = (range.0.max(a.min(b)), range.1.min(a.max(b)));
+        (lo <= hi).then_some((lo, hi))
+    }
+}
+
+/// The two-level structure: per stretch, a hierarchy over its prisms'
+/// comoving bounds; over all stretches, a hierarchy of the lab-frame 4D
+/// bounds of their time slices.
+pub(crate) struct TwoLevel {
+    top: Bvh,
+    stretches: Vec<StretchBvh>,
+    slices: Vec<TimeSlice>,
+}
+
+/// A prism's box in its stretch's comoving coordinates (the box of all six
+/// corners, which holds the prism since comoving coordinates are affine in
+/// the event). A translated prism's box is that of its start corners, which
+/// its first tetrahedron holds; a keyframe interval's takes all six corners,
+/// which the three tetrahedra hold, padded for the rounding of the comoving
+/// transform.
+fn comoving_box(g: &StretchPrisms, p: usize, tets: &[Tetrahedron]) -> (DVec3, DVec3) {
+    let (t0, v) = (g.span.0, g.velocity);
+    let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    let tets_needed = if g.translation { 1 } else { 3 };
+    for tet in &tets[3 * p..3 * p + tets_needed] {
+        for e in &tet.vertices[..if g.translation { 3 } else { 4 }] {
+            let x = e.x - v * (e.t - t0) - g.origin.x;
+            a = a.min(x);
+            b = b.max(x);
+        }
+    }
+    if !g.translation {
+        let pad = rounding_margin(a.extend(0.0), b.extend(0.0)).truncate();
+        (a, b) = (a - pad, b + pad);
+    }
+    (a, b)
+}
+
+/// Cuts a stretch into as many time slices as it takes for each to sweep
+/// about its own size (at most [`MAX_SLICES`]), given the comoving box
+/// `lo..hi` of all its prisms; returns each slice's lab times and bounds.
+fn slices(g: &StretchPrisms, lo: DVec3, hi: DVec3) -> Vec<(f64, f64, Bounds4)> {
+    let (t0, t1) = g.span;
+    let v = g.velocity;
+    let size = (hi - lo).max_element().max(1e-9);
+    let sweep = (v * (t1 - t0)).length();
+    let count = ((sweep / size).ceil() as usize).clamp(1, MAX_SLICES);
+    (0..count)
+        .map(|k| {
+            let (ta, tb) = (
+                t0 + (t1 - t0) * k as f64 / count as f64,
+                if k + 1 == count {
+                    t1
+                } else {
+                    t0 + (t1 - t0) * (k + 1) as f64 / count as f64
+                },
+            );
+            let (pa, pb) = (g.origin.x + v * (ta - t0), g.origin.x + v * (tb - t0));
+            let (bl, bh) = ((lo + pa).min(lo + pb), (hi + pa).max(hi + pb));
+            // Pad for the rounding of positions computed along the worldline.
+            let pad =
+                rounding_margin(bl.extend(0.0), bh.extend(0.0)).truncate() + DVec3::splat(1e-300);
+            (
+                ta,
+                tb,
+                Bounds4::new((bl - pad).extend(ta), (bh + pad).extend(tb)),
+            )
+        })
+        .collect()
+}
+
+impl TwoLevel {
+    /// Builds both levels over the prisms of `stretches` (tetrahedra three
+    /// per prism, in prism order).
+    pub(crate) fn build(stretches: &[StretchPrisms], tets: &[Tetrahedron]) -> TwoLevel {
+        let mut built = Vec::new();
+        let mut all_slices = Vec::new();
+        let mut slice_bounds = Vec::new();
+        for g in stretches {
+            let (t0, t1) = g.span;
+            let mut comoving = Vec::with_capacity(g.prisms.len());
+            let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+            for p in g.prisms.clone() {
+                let (a, b) = comoving_box(g, p, tets);
+                comoving.push(Bounds4::new(a.extend(t0), b.extend(t1)));
+                lo = lo.min(a);
+                hi = hi.max(b);
+            }
+            for (ta, tb, bounds) in slices(g, lo, hi) {
+                slice_bounds.push(bounds);
+                all_slices.push(TimeSlice {
+                    stretch: built.len() as u32,
+                    t0: ta,
+                    t1: tb,
+                });
+            }
+            built.push(StretchBvh {
+                origin: g.origin,
+                velocity: g.velocity,
+                first_prism: g.prisms.start as u32,
+                bvh: Bvh::build(&comoving),
+            });
+        }
+        TwoLevel {
+            top: Bvh::build(&slice_bounds),
+            stretches: built,
+            slices: all_slices,
+        }
+    }
+
+    /// The closest hit along the ray `o + s d` (lab frame, (x, y, z, t))
+    /// within `range`: `test(prism, range)` is called for every prism whose
+    /// boxes the ray enters, with the range shrunk to the best hit so far.
+    pub(crate) fn closest(
+        &self,
+        o: DVec4,
+        d: DVec4,
+        range: (f64, f64),
+        mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
+    ) -> Option<Hit> {
+        self.top.closest(o, d, range, |k, r| {
+            let slice = &self.slices[k as usize];
+            let r = slice.window(o, d, r)?;
+            let stretch = &self.stretches[slice.stretch as usize];
+            let (oc, dc) = stretch.to_comoving(o, d);
+            stretch
+                .bvh
+                .closest(oc, dc, r, |p, r| test(stretch.first_prism + p, r))
+        })
+    }
+}

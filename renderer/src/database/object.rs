@@ -1,0 +1,67 @@
+//! An object as inserted: its path as straight stretches with their clocks.
+
+use crate::scene::{Material, ObjectKind};
+use crate::spacetime::{Boost, Event, Worldline};
+use glam::DVec3;
+
+/// One straight stretch of an object's path: its whole worldline for
+/// uniform motion, or the interval between two consecutive poses of
+/// keyframed or accelerated motion. The unit of the object's path
+/// everywhere: its clock, its prisms, and one hierarchy of the two-level
+/// acceleration structure.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stretch {
+    /// Lab-frame worldline of the reference point over the stretch.
+    pub worldline: Worldline,
+    /// Boost from the stretch's comoving frame (identity when
+    /// Lorentz-decoupled).
+    pub clock: Boost,
+    /// The object's proper time at the start of the stretch.
+    pub proper_start: f64,
+}
+
+/// An object as inserted into the database.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectRecord {
+    /// The object's name in the scene.
+    pub name: String,
+    /// Whether it was given as an H_obj or a V_obj.
+    pub kind: ObjectKind,
+    /// Its surface appearance.
+    pub material: Material,
+    /// Its path in lab-time order: one stretch for uniform motion, one per
+    /// interval between poses otherwise.
+    pub stretches: Vec<Stretch>,
+}
+
+impl ObjectRecord {
+    /// The stretch of the path at lab time `t` (the first or last outside
+    /// the lifetime).
+    pub fn stretch_at(&self, t: f64) -> &Stretch {
+        let k = self.stretches.partition_point(|p| p.worldline.end().t < t);
+        &self.stretches[k.min(self.stretches.len() - 1)]
+    }
+
+    /// Lab times of the start and end of the object's existence.
+    pub fn lifetime(&self) -> (f64, f64) {
+        let (first, last) = (self.stretches[0], self.stretches[self.stretches.len() - 1]);
+        (first.worldline.start.t, last.worldline.end().t)
+    }
+
+    /// The object's own time at a lab event on it: the comoving frame's
+    /// time coordinate, zero at the start event; for a decoupled object, lab
+    /// time since the start. Drives time-dependent materials (paper 3,
+    /// item 2d).
+    pub fn proper_time(&self, event: Event) -> f64 {
+        let p = self.stretch_at(event.t);
+        p.proper_start + p.clock.to_rest(event - p.worldline.start).t
+    }
+
+    /// Where a lab event on the object lies in the object's frame:
+    /// comoving coordinates relative to the reference point at the start
+    /// of the stretch.
+    pub fn local_point(&self, event: Event) -> DVec3 {
+        let p = self.stretch_at(event.t);
+        p.clock.to_rest(event - p.worldline.start).x
+    }
+}

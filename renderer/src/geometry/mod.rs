@@ -1,0 +1,20 @@
+//! The 4D geometry of the database: temporal extrusion of triangles into
+//! prisms of three tetrahedra (paper 3.1), keyframed and accelerated paths
+//! resolved into poses (paper 6), and the ray tests: the barycentric solve
+//! against a tetrahedron (paper 3.2) and the analytic sphere.
+
+mod extrude;
+mod hit;
+mod poses;
+mod sphere;
+mod tetrahedron;
+
+pub use extrude::{
+    corner_order, extrude, extrude_between, split_between, split_prism, tetrahedron_volume, Prism,
+    Tetrahedron,
+};
+pub use hit::{nearer, Hit, Miss, PrimitiveId};
+pub(crate) use poses::resolve;
+pub use poses::Pose;
+pub(crate) use sphere::Sphere;
+pub(crate) use tetrahedron::PreparedTet;

@@ -1,0 +1,90 @@
+//! The scene as given: 3D objects with their motion and materials, a light
+//! and a background. [`crate::Database::build`] turns it into the
+//! static 4D database.
+
+mod error;
+mod material;
+mod mesh;
+mod motion;
+
+pub(crate) use error::Fault;
+pub use error::{HyperbolicField, SceneError, SceneErrorKind, SceneField};
+pub use material::{Blink, Light, Material};
+pub use mesh::{Mesh, MeshError};
+pub(crate) use motion::MAX_KEYFRAMES;
+pub use motion::{Hyperbolic, Keyframe, Motion};
+
+/// The mesh of an object without one (an analytic sphere).
+pub(crate) static NO_MESH: Mesh = Mesh {
+    vertices: Vec::new(),
+    triangles: Vec::new(),
+};
+
+use glam::DVec3;
+#[cfg(feature = "serde")]
+use serde::{Deserialize, Serialize};
+
+/// The two object classes of paper 3.1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(Serialize, Deserialize))]
+pub enum ObjectKind {
+    /// Lorentz-decoupled: the mesh is already in lab-frame dimensions and is
+    /// inserted as is. May be superluminal.
+    #[cfg_attr(feature = "serde", serde(rename = "H_obj"))]
+    HObj,
+    /// Given in rest-frame dimensions plus a lab velocity; Lorentz-transformed
+    /// on insertion (contraction along the velocity, dilation of its clock).
+    /// Must be slower than light.
+    #[cfg_attr(feature = "serde", serde(rename = "V_obj"))]
+    VObj,
+}
+
+/// What an object is made of, relative to its reference point; rest-frame
+/// dimensions for a V_obj.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// Triangles.
+    Mesh(Mesh),
+    /// An analytic sphere centred on the reference point.
+    Sphere {
+        /// Rest-frame radius, l.units.
+        radius: f64,
+    },
+}
+
+impl Shape {
+    /// The radius of an analytic sphere.
+    pub fn sphere_radius(&self) -> Option<f64> {
+        match self {
+            Shape::Sphere { radius } => Some(*radius),
+            Shape::Mesh(_) => None,
+        }
+    }
+}
+
+/// One 3D object of the scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneObject {
+    /// Name, unique in the scene.
+    pub name: String,
+    /// H_obj or V_obj.
+    pub kind: ObjectKind,
+    /// Its mesh or analytic sphere.
+    pub shape: Shape,
+    /// How its reference point moves.
+    pub motion: Motion,
+    /// Surface appearance.
+    pub material: Material,
+}
+
+/// Everything in the lab: objects, the one point light (at rest), and the
+/// colour seen where a ray meets nothing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// The objects.
+    pub objects: Vec<SceneObject>,
+    /// The one point light, at rest in the lab.
+    pub light: Light,
+    /// Colour where a ray meets nothing.
+    pub background: DVec3,
+}

@@ -1,0 +1,9 @@
+//! Shading (paper 3, item 5): what light a ray brings back from its hit,
+//! with shadow and mirror rays on past light cones, and the colour effects
+//! of motion (Doppler shift and searchlight, paper 6).
+
+mod doppler;
+mod shader;
+
+pub use doppler::{Effects, Leg};
+pub use shader::{Band, Shader};
