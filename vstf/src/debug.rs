@@ -1,7 +1,7 @@
 //! Debug mode (paper section 4): every variable along a pixel's rays, for a
 //! person to read or as JSON lines to compare later. The variables come from
 //! the renderer's own functions with recording switched on
-//! ([`renderer::trace`]), so what is logged is what is rendered.
+//! (`renderer::Trace`), so what is logged is what is rendered.
 
 use crate::fixture::{Fixture, View};
 use glam::DVec3;

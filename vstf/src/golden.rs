@@ -7,28 +7,10 @@
 //! Like WebRender's reftests, each fixture states its tolerance as
 //! `fuzzy(max_diff, max_pixels)`, comparing decoded pixels, never PNG bytes.
 
+pub use crate::fixture::Fuzzy;
 use image::{Rgb, RgbImage};
-use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::path::{Path, PathBuf};
-
-/// How far a render may stray from its golden: every pixel's difference
-/// (its largest channel difference) at most `max_diff`, and at most
-/// `max_pixels` pixels different at all.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Fuzzy {
-    /// Largest channel difference allowed in any pixel (0-255).
-    pub max_diff: u8,
-    /// Most pixels allowed to differ at all.
-    pub max_pixels: u64,
-}
-
-impl fmt::Display for Fuzzy {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "fuzzy({},{})", self.max_diff, self.max_pixels)
-    }
-}
 
 /// The result of comparing one view with its golden.
 #[derive(Clone, Debug, PartialEq)]

@@ -6,7 +6,7 @@
 //! first-principles expectations ([`oracle`]) scene by scene ([`check`]),
 //! and the views with their approved images ([`golden`]); [`report`]
 //! presents the verdict. Beside that: [`debug`] logs the variables along a
-//! pixel's rays, [`animate`] renders frame sequences, [`bench`] measures
+//! pixel's rays, [`animate`] renders frame sequences, [`mod@bench`] measures
 //! speed, and [`output`] writes files atomically.
 
 pub mod animate;

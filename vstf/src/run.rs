@@ -10,8 +10,7 @@ pub fn database(
     lorentz: bool,
     traversal: Traversal,
 ) -> Result<Database, String> {
-    let mut db = Database::build(&fixture.scene, lorentz)
-        .map_err(|e| format!("{}: {e}", fixture.file.display()))?;
+    let mut db = fixture.database(lorentz).map_err(|e| e.to_string())?;
     db.set_traversal(traversal);
     Ok(db)
 }
@@ -20,7 +19,7 @@ pub fn database(
 pub fn view(fixture: &Fixture, overrides: &Overrides) -> Result<View, String> {
     fixture
         .view(overrides)
-        .map_err(|(path, msg)| format!("{}: {path}: {msg}", fixture.file.display()))
+        .map_err(|e| e.in_file(&fixture.file).to_string())
 }
 
 /// Renders `view` of `fixture` with a database built for it.

@@ -214,37 +214,59 @@ impl Builder {
     }
 }
 
+/// Every object inserted, before the acceleration structure is built.
+struct Inserted {
+    builder: Builder,
+    records: Vec<ObjectRecord>,
+    prepared: Vec<PreparedTet>,
+}
+
+/// Extrudes every object and prepares every tetrahedron's solve; the
+/// errors are those of [`Database::build`].
+fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
+    let mut b = Builder::default();
+    let mut records = Vec::new();
+    for (i, obj) in scene.objects.iter().enumerate() {
+        let stretches = b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
+        records.push(ObjectRecord {
+            name: obj.name.clone(),
+            kind: obj.kind,
+            material: obj.material.clone(),
+            stretches,
+        });
+    }
+    let mut prepared = Vec::with_capacity(b.tets.len());
+    for t in &b.tets {
+        let p = PreparedTet::new(t).ok_or_else(|| {
+            let prism = b.prisms[t.prism as usize];
+            let object = prism.object as usize;
+            Fault::new(
+                F::Shape,
+                K::FlatTetrahedron {
+                    triangle: prism.triangle,
+                },
+            )
+            .of(object, &records[object].name)
+        })?;
+        prepared.push(p);
+    }
+    Ok(Inserted {
+        builder: b,
+        records,
+        prepared,
+    })
+}
+
 impl Database {
     /// Temporally extrudes every object of `scene`. With `lorentz` on, V_obj
     /// objects are contracted along their velocity and their lifetimes and
     /// clocks dilated; with it off every object is inserted as an H_obj.
     pub fn build(scene: &Scene, lorentz: bool) -> Result<Database, SceneError> {
-        let mut b = Builder::default();
-        let mut records = Vec::new();
-        for (i, obj) in scene.objects.iter().enumerate() {
-            let stretches = b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
-            records.push(ObjectRecord {
-                name: obj.name.clone(),
-                kind: obj.kind,
-                material: obj.material.clone(),
-                stretches,
-            });
-        }
-        let mut prepared = Vec::with_capacity(b.tets.len());
-        for t in &b.tets {
-            let p = PreparedTet::new(t).ok_or_else(|| {
-                let prism = b.prisms[t.prism as usize];
-                let object = prism.object as usize;
-                Fault::new(
-                    F::Shape,
-                    K::FlatTetrahedron {
-                        triangle: prism.triangle,
-                    },
-                )
-                .of(object, &records[object].name)
-            })?;
-            prepared.push(p);
-        }
+        let Inserted {
+            builder: b,
+            records,
+            prepared,
+        } = insert_all(scene, lorentz)?;
         let accel = TwoLevel::build(&b.stretch_prisms, &b.tets);
         Ok(Database {
             records,
@@ -255,5 +277,11 @@ impl Database {
             spheres: b.spheres,
             traversal: Traversal::Bvh,
         })
+    }
+
+    /// Whether [`Database::build`] would accept `scene`: the same insertion
+    /// and the same errors, without building the acceleration structure.
+    pub fn validate(scene: &Scene, lorentz: bool) -> Result<(), SceneError> {
+        insert_all(scene, lorentz).map(drop)
     }
 }

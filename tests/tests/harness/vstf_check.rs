@@ -172,7 +172,7 @@ fn the_report_shows_images_markers_and_rows() {
 #[test]
 fn a_flange_shifted_by_a_hundredth_is_caught() {
     let f = Fixture::load("flange").unwrap();
-    let model = f.model(&Overrides::default()).unwrap();
+    let model = f.model(&Overrides::default());
     let mut shifted = f.clone();
     let obj = shifted
         .scene

@@ -110,7 +110,7 @@ fn panel_pixels(
     name: &str,
     effort: &Effort,
 ) -> Result<(Vec<DVec3>, DVec3), String> {
-    let (model, tc) = (fixture_model(f)?, f.spec.camera.t);
+    let (model, tc) = (fixture_model(f), f.spec.camera.t);
     let setup = Setup {
         fixture: f,
         model,
@@ -134,7 +134,7 @@ fn panel_pixels(
 /// the searchlight ratios (D^5 shifted, D^4 in RGB), against
 /// D = 1 / (gamma (1 - u.k)) along the centre pixel's line of sight.
 pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
-    let model = fixture_model(f)?;
+    let model = fixture_model(f);
     let tc = f.spec.camera.t;
     let mut quantities = Vec::new();
     let mut marks = Vec::new();

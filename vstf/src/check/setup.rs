@@ -13,7 +13,7 @@ use crate::fixture::{Fixture, Overrides, View};
 use crate::measure::{self, Kinematics, Pinhole};
 use glam::DVec3;
 use image::RgbImage;
-use renderer::{Attitude, Camera, Database, Event, LightSpeed, Model, Traversal};
+use renderer::{Event, LightSpeed, Model, Traversal};
 
 /// Width of the full views: the report's images and the golden images,
 /// the same at every effort so that `cargo test` and `vstf check` compare
@@ -43,10 +43,8 @@ impl Effort {
 }
 
 /// The model the fixture names (no overrides).
-pub fn fixture_model(fixture: &Fixture) -> Result<Model, String> {
-    fixture
-        .model(&Overrides::default())
-        .map_err(|(p, m)| format!("{p}: {m}"))
+pub fn fixture_model(fixture: &Fixture) -> Model {
+    fixture.model(&Overrides::default())
 }
 
 /// A fixture with a model and camera time chosen.
@@ -147,35 +145,29 @@ impl Setup<'_> {
         height: u32,
         spp: u32,
     ) -> Result<(RgbImage, Pinhole), String> {
-        let mut scene = self.fixture.scene.clone();
-        scene.objects.retain(|o| keep.contains(&o.name.as_str()));
-        if scene.objects.len() != keep.len() {
-            return Err(format!(
-                "{}: probe needs objects {keep:?}",
-                self.fixture.file.display()
-            ));
-        }
-        let db = Database::build(&scene, self.model.lorentz)
-            .map_err(|e| format!("{}: {e}", self.fixture.file.display()))?;
         let aspect = f64::from(width) / f64::from(height);
         let vfov_deg = 2.0
             * ((hfov_deg.to_radians() / 2.0).tan() / aspect)
                 .atan()
                 .to_degrees();
-        let velocity = self.fixture.spec.camera.velocity.unwrap_or(DVec3::ZERO);
-        let camera = Camera::new(
-            Event::new(self.camera_t, self.camera_x()),
-            Attitude::LookAt {
-                look_at,
-                up: DVec3::Y,
+        let mut probe = self.fixture.only(keep).map_err(|e| e.to_string())?;
+        let (camera, image) = (&mut probe.spec.camera, &mut probe.spec.image);
+        (camera.t, camera.position) = (self.camera_t, self.camera_x());
+        (camera.look_at, camera.up, camera.vfov_deg) = (Some(look_at), DVec3::Y, vfov_deg);
+        (camera.yaw_deg, camera.pitch_deg) = (None, None);
+        (image.shutter, image.seed, image.max_depth, image.shadows) = (0.0, 1, 0, false);
+        let velocity = camera.velocity.unwrap_or(DVec3::ZERO);
+        let view = crate::run::view(
+            &probe,
+            &Overrides {
+                model: Some(self.model),
+                width: Some(width),
+                height: Some(height),
+                spp: Some(spp),
+                ..Overrides::default()
             },
-            vfov_deg,
-            width,
-            height,
-        )
-        .ok_or("degenerate probe camera")?
-        .moving(velocity, self.model)
-        .ok_or("the camera moves at or above light speed")?;
+        )?;
+        let img = crate::run::render(&probe, &view, Traversal::Bvh)?;
         let pinhole = Pinhole::looking_at(
             self.camera_x(),
             look_at,
@@ -185,18 +177,6 @@ impl Setup<'_> {
         )
         .and_then(|p| p.moving(velocity, self.kinematics()))
         .ok_or("degenerate probe camera")?;
-        let settings = renderer::RenderSettings {
-            spp,
-            shutter: 0.0,
-            seed: 1,
-            max_depth: 0,
-            shadows: false,
-            effects: renderer::Effects {
-                doppler: self.fixture.spec.image.doppler,
-                searchlight: self.fixture.spec.image.searchlight,
-            },
-        };
-        let img = renderer::render(&db, &scene, &camera, self.camera_t, self.model, &settings);
         Ok((img.to_rgb8(), pinhole))
     }
 

@@ -225,7 +225,7 @@ fn elevation(v: &DVec3) -> f64 {
 /// along and across the motion, and (contracted, where it is a circle) the
 /// fitted circle's radius and the outline's RMS deviation from a circle.
 pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
-    let model = fixture_model(f)?;
+    let model = fixture_model(f);
     let obj = f
         .scene
         .objects

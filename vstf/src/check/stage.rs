@@ -54,7 +54,7 @@ fn bar_along_z(f: &Fixture, object: &str, x: f64) -> Result<(f64, f64, f64), Str
 pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
     let setup = Setup {
         fixture: f,
-        model: fixture_model(f)?,
+        model: fixture_model(f),
         camera_t: f.spec.camera.t,
     };
     let (ax0, ax1, top) = bar_along_z(f, AXES, 0.0)?;

@@ -53,7 +53,7 @@ const FLANGES: [Flange; 2] = [
 /// bands' camera is advanced by the fixture's camera time.
 fn bands(f: &Fixture) -> Result<[(&'static str, Model, f64); 3], String> {
     let advanced = f.spec.camera.t;
-    let base = fixture_model(f)?;
+    let base = fixture_model(f);
     Ok([
         ("infinite", Model::INFINITE, 0.0),
         ("classical", Model::CLASSICAL, advanced),

@@ -119,7 +119,7 @@ fn seen(setup: &Setup, m: &UniformMotion, x: f64, y: f64, z: f64) -> Result<DVec
 /// the Lorentz contraction 1/gamma (the paper: 0.5 at 0.866c) for the
 /// V_obj and 1 for the H_obj.
 pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
-    let model = fixture_model(f)?;
+    let model = fixture_model(f);
     let m = motion_of(f, FRONT, model)?;
     let setup = Setup {
         fixture: f,

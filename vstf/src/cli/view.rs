@@ -9,7 +9,7 @@ impl ViewArgs {
     /// The fixture overrides these flags ask for.
     pub fn overrides(&self, fixture: &Fixture) -> Result<Overrides, String> {
         Ok(Overrides {
-            model: model_of(self.model, self.lorentz, fixture)?,
+            model: model_of(self.model, self.lorentz, fixture),
             camera_t: self.camera_t,
             width: self.width,
             height: self.height,
@@ -22,26 +22,18 @@ impl ViewArgs {
 
 /// The model `--model` and `--lorentz` ask for; `--lorentz` alone turns on
 /// the Lorentz transform in the fixture's own model.
-fn model_of(
-    arg: Option<ModelArg>,
-    lorentz: bool,
-    fixture: &Fixture,
-) -> Result<Option<Model>, String> {
+fn model_of(arg: Option<ModelArg>, lorentz: bool, fixture: &Fixture) -> Option<Model> {
     let base = match arg {
         Some(ModelArg::Infinite) => Some(Model::INFINITE),
         Some(ModelArg::Classical) => Some(Model::CLASSICAL),
         Some(ModelArg::Relativistic) => Some(Model::RELATIVISTIC),
-        None if lorentz => Some(
-            fixture
-                .model(&Overrides::default())
-                .map_err(|(p, m)| format!("{p}: {m}"))?,
-        ),
+        None if lorentz => Some(fixture.model(&Overrides::default())),
         None => None,
     };
-    Ok(base.map(|m| Model {
+    base.map(|m| Model {
         lorentz: m.lorentz || lorentz,
         ..m
-    }))
+    })
 }
 
 /// Loads a fixture, applies the view flags and builds the database.

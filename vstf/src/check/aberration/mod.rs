@@ -311,7 +311,7 @@ fn view(
 pub fn run(control: &Fixture, effort: &Effort) -> Result<Findings, String> {
     let mut quantities = Vec::new();
     let mut views = Vec::new();
-    for case in Case::all(fixture_model(control)?) {
+    for case in Case::all(fixture_model(control)) {
         let (q, v) = view(control, case, effort)?;
         quantities.extend(q);
         views.push(v);
