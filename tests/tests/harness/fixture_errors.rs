@@ -301,3 +301,49 @@ fn bad_spectra_name_the_field() {
     }));
     assert!(e.contains("light.spectrum"), "{e}");
 }
+
+#[test]
+fn validation_without_the_acceleration_structure_agrees_with_building() {
+    use renderer::Database;
+    let good = Fixture::parse(&flange_with(|_| {}), Path::new("fixtures/flange.json")).unwrap();
+    for lorentz in [false, true] {
+        assert!(Database::validate(&good.scene, lorentz).is_ok());
+        assert!(Database::build(&good.scene, lorentz).is_ok());
+    }
+    // A V_obj past light speed: refused the same way by both.
+    let mut fast = good.scene.clone();
+    let i = fast
+        .objects
+        .iter()
+        .position(|o| o.name == "flange")
+        .unwrap();
+    fast.objects[i].kind = renderer::ObjectKind::VObj;
+    if let renderer::Motion::Extrusion { extrusion, .. } = &mut fast.objects[i].motion {
+        extrusion.x.x = 1.5 * extrusion.t;
+    } else {
+        panic!("the flange moves by extrusion");
+    }
+    let (validated, built) = (
+        Database::validate(&fast, true).unwrap_err(),
+        Database::build(&fast, true).err().unwrap(),
+    );
+    assert_eq!(validated, built);
+    assert_eq!(validated.object, i);
+}
+
+#[test]
+fn keeping_only_some_objects_names_a_missing_one() {
+    let f = Fixture::load("flange").unwrap();
+    let only = f.only(&["flange"]).unwrap();
+    assert_eq!(only.scene.objects.len(), 1);
+    assert_eq!(only.spec.objects.len(), 1);
+    assert_eq!(only.scene.objects[0].name, "flange");
+    let e = f
+        .only(&["flange", "no such thing"])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("flange.json: objects: no object named \"no such thing\""),
+        "{e}"
+    );
+}
