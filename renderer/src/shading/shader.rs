@@ -4,6 +4,7 @@
 //! the light a surface receives left the light source, or the reflected
 //! object, earlier.
 
+use super::carried::Carried;
 use super::doppler::{self, Effects, Leg};
 use crate::camera::{Camera, Kinematics, LightSpeed, Ray};
 use crate::color::{self, Spectrum, BAND_LEN};
@@ -18,7 +19,7 @@ use glam::DVec3;
 /// frame a leg of the path is in.
 pub type Band = [f64; BAND_LEN];
 
-fn sample(s: &Spectrum, nm: &Band) -> Band {
+pub(super) fn sample(s: &Spectrum, nm: &Band) -> Band {
     std::array::from_fn(|i| s.at(nm[i]))
 }
 
@@ -87,6 +88,21 @@ impl Shader<'_> {
         kind: RayKind,
         trace: &mut T,
     ) -> DVec3 {
+        self.carry(ray, depth, kind, &(), trace)
+    }
+
+    /// The one path of every ray, primary, reflected or spectral: search
+    /// the database from the ray's origin (stepping off the surface it
+    /// leaves, for secondary rays), and shade the most recent event met in
+    /// the colour type `C`, or return the background.
+    pub(super) fn carry<C: Carried, T: Trace>(
+        &self,
+        ray: &Ray,
+        depth: u32,
+        kind: RayKind,
+        band: &C::Band,
+        trace: &mut T,
+    ) -> C {
         let margin = if depth == 0 {
             0.0
         } else {
@@ -104,13 +120,13 @@ impl Shader<'_> {
                         background: self.background,
                     });
                 }
-                self.background
+                C::background(self, band)
             }
             Some(hit) => {
                 if T::ENABLED {
                     trace.record(self.hit_step(kind, ray, &hit));
                 }
-                self.shade_traced(ray, &hit, depth, trace)
+                C::shade(self, ray, &hit, depth, band, trace)
             }
         }
     }
@@ -236,7 +252,13 @@ impl Shader<'_> {
     /// leg scales the frequency-integrated intensity: the light's
     /// irradiance by (nu_s/nu_lab)^2, mirrored radiance by ^4, the radiance
     /// leaving towards the ray's origin by (nu_lab/nu_s)^4.
-    fn shade_traced<T: Trace>(&self, ray: &Ray, hit: &Hit, depth: u32, trace: &mut T) -> DVec3 {
+    pub(super) fn shade_traced<T: Trace>(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        depth: u32,
+        trace: &mut T,
+    ) -> DVec3 {
         let lit = self.lit(ray, hit, trace);
         let m = &self.db.objects()[lit.object as usize].material;
         if self.effects.searchlight && (lit.out <= 0.0 || lit.from_light <= 0.0) {
@@ -331,32 +353,7 @@ impl Shader<'_> {
         nm: &Band,
         trace: &mut T,
     ) -> Band {
-        let margin = if depth == 0 {
-            0.0
-        } else {
-            self_hit_margin(ray.origin)
-        };
-        let range = (margin, f64::INFINITY);
-        if T::ENABLED {
-            trace.record(ray_step(kind, depth, ray, range));
-        }
-        match self.db.closest_hit_traced(ray, range, trace) {
-            None => {
-                if T::ENABLED {
-                    trace.record(Step::Miss {
-                        kind,
-                        background: self.background,
-                    });
-                }
-                sample(&Spectrum::Rgb(self.background), nm)
-            }
-            Some(hit) => {
-                if T::ENABLED {
-                    trace.record(self.hit_step(kind, ray, &hit));
-                }
-                self.shade_spectral(ray, &hit, depth, nm, trace)
-            }
-        }
+        self.carry(ray, depth, kind, nm, trace)
     }
 
     /// Spectral shading. In the surface's frame the lab wavelengths `nm`
@@ -364,7 +361,7 @@ impl Shader<'_> {
     /// spectrum evaluated at the wavelengths that left the lamp, times
     /// (nu_s/nu_lab)^3 with the searchlight), mirrors what reaches it, and
     /// emits; back in the lab the radiance scales by (nu_lab/nu_s)^5.
-    fn shade_spectral<T: Trace>(
+    pub(super) fn shade_spectral<T: Trace>(
         &self,
         ray: &Ray,
         hit: &Hit,
