@@ -20,3 +20,7 @@ pub mod oracle;
 pub mod output;
 pub mod report;
 pub mod run;
+
+pub use check::{Effort, FixtureReport, Row, Unit};
+pub use fixture::{FieldError, Fixture, FixtureError, Overrides, View};
+pub use golden::{Comparison, Fuzzy, Store};

@@ -223,30 +223,9 @@ fn piecewise_linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::color::test_support::{argmax, sample};
     use crate::color::{band_nm, to_rgb};
     use approx::assert_abs_diff_eq;
-
-    fn sample(s: &Spectrum) -> [f64; BAND_LEN] {
-        s.sample_scaled(1.0)
-    }
-
-    /// The argmax of `f` on a grid of step `step` over [lo, hi].
-    fn argmax(f: impl Fn(f64) -> f64, lo: f64, hi: f64, step: f64) -> (f64, f64) {
-        let n = ((hi - lo) / step).round() as usize;
-        (0..=n)
-            .map(|i| lo + step * i as f64)
-            .map(|x| (x, f(x)))
-            .fold(
-                (lo, f64::NEG_INFINITY),
-                |best, c| {
-                    if c.1 > best.1 {
-                        c
-                    } else {
-                        best
-                    }
-                },
-            )
-    }
 
     #[test]
     fn white_uplifts_to_the_window() {

@@ -50,14 +50,26 @@ pub fn retarded(p: &PointWorldline, tc: f64, camera: DVec3) -> Option<Retarded> 
     let qa = p.v.length_squared() - 1.0;
     let qb = 2.0 * (a.dot(p.v) + tc);
     let qc = a.length_squared() - tc * tc;
-    let t = quadratic_roots(qa, qb, qc, 1e-15)
-        .into_iter()
+    let times = quadratic_roots(qa, qb, qc, 1e-15).into_iter();
+    latest(times, tc, |t| p.at(t), camera)
+}
+
+/// The latest of the candidate emission times not after the camera's `tc`
+/// (within rounding), with where the point `at` is then, as seen from
+/// `camera`; `None` without one.
+fn latest(
+    times: impl Iterator<Item = f64>,
+    tc: f64,
+    at: impl Fn(f64) -> DVec3,
+    camera: DVec3,
+) -> Option<Retarded> {
+    let t = times
         .filter(|t| *t <= tc + 1e-12 * tc.abs().max(1.0))
         .fold(f64::NEG_INFINITY, f64::max);
     if !t.is_finite() {
         return None;
     }
-    let x = p.at(t);
+    let x = at(t);
     Some(Retarded {
         t,
         x,
@@ -143,21 +155,11 @@ pub fn retarded_hyperbolic(p: &PointHyperbola, tc: f64, camera: DVec3) -> Option
     let (dn, big_tc, a) = (d.dot(p.n), tc - p.centre_t, p.big_a);
     let k = d.length_squared() + a * a - big_tc * big_tc;
     let (qa, qb, qc) = (a * (dn - big_tc), -k, a * (dn + big_tc));
-    let t = quadratic_roots(qa, qb, qc, 1e-15 * (qb.abs() + qc.abs()))
+    let times = quadratic_roots(qa, qb, qc, 1e-15 * (qb.abs() + qc.abs()))
         .into_iter()
         .filter(|u| *u > 0.0)
-        .map(|u| p.centre_t + a * (u - 1.0 / u) / 2.0)
-        .filter(|t| *t <= tc + 1e-12 * tc.abs().max(1.0))
-        .fold(f64::NEG_INFINITY, f64::max);
-    if !t.is_finite() {
-        return None;
-    }
-    let x = p.at(t);
-    Some(Retarded {
-        t,
-        x,
-        direction: (x - camera).normalize(),
-    })
+        .map(|u| p.centre_t + a * (u - 1.0 / u) / 2.0);
+    latest(times, tc, |t| p.at(t), camera)
 }
 
 #[cfg(test)]
