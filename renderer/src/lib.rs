@@ -4,18 +4,18 @@
 //! Data flows one way:
 //!
 //! 1. `scene`: 3D objects as given ([`Scene`], [`SceneObject`] with its
-//!    [`Mesh`], [`Motion`], [`Material`]), a point [`Light`], in `spacetime`
-//!    terms ([`Event`], [`FourVector`], [`Worldline`], [`Boost`]).
+//!    [`Shape`], [`Motion`], [`Material`]), a point [`Light`], in `spacetime`
+//!    terms ([`Event`], [`FourVector`], [`Worldline`], [`Boost`], [`Ray`]).
 //! 2. `geometry`: temporal extrusion of every triangle along its object's
-//!    path into a prism of three [`Tetrahedron`]s (paper 3.1), the path cut
-//!    into straight [`Stretch`]es (keyframed and accelerated paths first
-//!    resolved into [`Pose`]s); analytic spheres kept exact.
+//!    path into a prism of three [`Tetrahedron`]s (paper 3.1), keyframed and
+//!    accelerated paths first resolved into [`Pose`]s; analytic spheres kept
+//!    exact; the barycentric solve ([`Hit`], paper 3.2).
 //! 3. `database`: the static 4D [`Database`] of all prisms, built once
-//!    (paper 3, items 1-2) and searched through `accel`, a two-level
-//!    bounding volume hierarchy over 4D boxes.
-//! 4. `camera`: rays on the camera's past light cone ([`Camera`], [`Ray`];
-//!    the light-speed [`Model`] of paper 4.1.5), met by the barycentric
-//!    solve ([`Hit`], paper 3.2).
+//!    (paper 3, items 1-2), each object's path cut into straight
+//!    [`Stretch`]es, searched through `accel`, a two-level bounding volume
+//!    hierarchy over 4D boxes.
+//! 4. `camera`: rays on the camera's past light cone ([`Camera`]; the
+//!    light-speed [`Model`] of paper 4.1.5).
 //! 5. `shading`: Lambert and Phong with shadow and mirror rays on light
 //!    cones ([`Shader`]), with the colour effects of motion ([`Effects`])
 //!    on `color` spectra ([`Spectrum`]).
@@ -37,7 +37,7 @@ mod shading;
 mod spacetime;
 mod trace;
 
-pub use camera::{Attitude, Camera, Kinematics, LightSpeed, Model, Ray};
+pub use camera::{Attitude, Camera, Kinematics, Model};
 pub use color::{
     band_nm, chromaticity, cmf, to_rgb, xyz, xyz_to_rgb, Spectrum, SpectrumError,
     SpectrumErrorKind, SpectrumField, BAND_LEN,
@@ -47,12 +47,12 @@ pub use geometry::{
     corner_order, extrude, extrude_between, split_between, split_prism, tetrahedron_volume, Hit,
     Miss, Pose, PrimitiveId, Prism, Tetrahedron,
 };
-pub use render::{pixel, pixel_traced, render, shader, Image, RenderSettings};
+pub use render::{pixel, pixel_traced, render, shader, Frame, Image, RenderSettings};
 pub use rng::SplitMix64;
 pub use scene::{
     Blink, Hyperbolic, HyperbolicField, Keyframe, Light, Material, Mesh, MeshError, Motion,
     ObjectKind, Scene, SceneError, SceneErrorKind, SceneField, SceneObject, Shape,
 };
 pub use shading::{Band, Effects, Leg, Shader};
-pub use spacetime::{gamma, Boost, Event, FourVector, Worldline};
+pub use spacetime::{gamma, Boost, Event, FourVector, LightSpeed, Ray, Worldline};
 pub use trace::{NoTrace, Outcome, RayKind, Recorder, Step, Trace};

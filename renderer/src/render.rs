@@ -102,6 +102,12 @@ pub fn render(
         kinematics: Kinematics::of(model),
         ..*camera
     };
+    let frame = Frame {
+        camera,
+        camera_t,
+        model,
+        settings,
+    };
     let (w, h) = (camera.width, camera.height);
     let mut pixels = vec![DVec3::ZERO; w as usize * h as usize];
     pixels
@@ -109,9 +115,7 @@ pub fn render(
         .enumerate()
         .for_each(|(y, row)| {
             for (x, px) in row.iter_mut().enumerate() {
-                *px = pixel(
-                    &shader, camera, camera_t, model, settings, x as u32, y as u32,
-                );
+                *px = pixel(&shader, &frame, x as u32, y as u32);
             }
         });
     Image {
@@ -121,41 +125,41 @@ pub fn render(
     }
 }
 
+/// What every pixel of one frame is rendered with: the camera at its lab
+/// time (the only thing animation changes), the light-speed model and the
+/// sampling settings.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame<'a> {
+    /// The camera casting the rays.
+    pub camera: &'a Camera,
+    /// The camera's lab time, t.units.
+    pub camera_t: f64,
+    /// Light speed and Lorentz transform.
+    pub model: Model,
+    /// Samples per pixel, shutter and seed.
+    pub settings: &'a RenderSettings,
+}
+
 /// One pixel: the mean of its samples. With n*n >= spp strata, sample k
 /// falls in stratum k (row-major), jittered within it.
-pub fn pixel(
-    shader: &Shader,
-    camera: &Camera,
-    camera_t: f64,
-    model: Model,
-    settings: &RenderSettings,
-    x: u32,
-    y: u32,
-) -> DVec3 {
-    pixel_traced(
-        shader,
-        camera,
-        camera_t,
-        model,
-        settings,
-        x,
-        y,
-        &mut NoTrace,
-    )
+pub fn pixel(shader: &Shader, frame: &Frame, x: u32, y: u32) -> DVec3 {
+    pixel_traced(shader, frame, x, y, &mut NoTrace)
 }
 
 /// [`pixel`], recording every sample's variables.
-#[allow(clippy::too_many_arguments)]
 pub fn pixel_traced<T: Trace>(
     shader: &Shader,
-    camera: &Camera,
-    camera_t: f64,
-    model: Model,
-    settings: &RenderSettings,
+    frame: &Frame,
     x: u32,
     y: u32,
     trace: &mut T,
 ) -> DVec3 {
+    let Frame {
+        camera,
+        camera_t,
+        model,
+        settings,
+    } = *frame;
     let sample = |index: u32, px: f64, py: f64, t: f64, trace: &mut T| {
         if T::ENABLED {
             trace.record(Step::Sample {

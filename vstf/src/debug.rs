@@ -48,16 +48,13 @@ pub fn trace_pixel(
     }
     let shader = renderer::shader(db, &f.scene, view.model, &view.settings);
     let mut rec = Recorder::default();
-    let color = renderer::pixel_traced(
-        &shader,
-        &view.camera,
-        view.camera_t,
-        view.model,
-        &view.settings,
-        x,
-        y,
-        &mut rec,
-    );
+    let frame = renderer::Frame {
+        camera: &view.camera,
+        camera_t: view.camera_t,
+        model: view.model,
+        settings: &view.settings,
+    };
+    let color = renderer::pixel_traced(&shader, &frame, x, y, &mut rec);
     let one = renderer::Image {
         width: 1,
         height: 1,

@@ -7,8 +7,8 @@ mod object;
 pub use object::{ObjectRecord, Stretch};
 
 use crate::accel::TwoLevel;
-use crate::camera::Ray;
 use crate::geometry::{nearer, Hit, Miss, PreparedTet, PrimitiveId, Prism, Sphere, Tetrahedron};
+use crate::spacetime::Ray;
 use crate::trace::{NoTrace, Outcome, Step, Trace};
 use glam::DVec3;
 

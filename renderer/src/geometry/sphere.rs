@@ -2,8 +2,8 @@
 //! a tessellated sphere is faceted.
 
 use super::{Hit, PrimitiveId};
-use crate::camera::Ray;
 use crate::spacetime::Event;
+use crate::spacetime::Ray;
 use glam::DVec3;
 
 /// An analytic sphere: in its object's comoving coordinates

@@ -9,8 +9,8 @@
 //! even for tetrahedra thousands of t.units long and 1/20 l.unit wide.
 
 use super::{Hit, Miss, PrimitiveId, Tetrahedron};
-use crate::camera::Ray;
 use crate::spacetime::Event;
+use crate::spacetime::Ray;
 use glam::{DMat3, DVec3, DVec4};
 
 /// Barycentric slack for hits exactly on a shared face, so that a ray

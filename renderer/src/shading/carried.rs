@@ -2,9 +2,9 @@
 //! the Doppler shift.
 
 use super::shader::{sample, Band, Shader};
-use crate::camera::Ray;
 use crate::color::Spectrum;
 use crate::geometry::Hit;
+use crate::spacetime::Ray;
 use crate::trace::Trace;
 use glam::DVec3;
 

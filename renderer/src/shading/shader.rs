@@ -6,12 +6,13 @@
 
 use super::carried::Carried;
 use super::doppler::{self, Effects, Leg};
-use crate::camera::{Camera, Kinematics, LightSpeed, Ray};
+use crate::camera::{Camera, Kinematics};
 use crate::color::{self, Spectrum, BAND_LEN};
 use crate::database::Database;
 use crate::geometry::Hit;
 use crate::scene::Light;
 use crate::spacetime::{gamma, Event};
+use crate::spacetime::{LightSpeed, Ray};
 use crate::trace::{NoTrace, RayKind, Step, Trace};
 use glam::DVec3;
 

@@ -4,9 +4,11 @@
 
 mod boost;
 mod event;
+mod ray;
 
 pub use boost::Boost;
 pub use event::{Event, FourVector, Worldline};
+pub use ray::{LightSpeed, Ray};
 
 use glam::DVec3;
 

@@ -292,6 +292,19 @@ fn bad_spectra_name_the_field() {
         e.contains("material.emission") && e.contains("samples.nm[1]"),
         "{e}"
     );
+    assert!(
+        e.contains("450 nm does not exceed samples.nm[0] = 500 nm"),
+        "{e}"
+    );
+    let e = error_of(&flange_with(|v| {
+        let i = flange_index(v);
+        v["objects"][i]["material"]["emission"] =
+            serde_json::json!({ "samples": { "nm": [400, 500], "values": [1] } });
+    }));
+    assert!(
+        e.contains("samples.values: 1 values for 2 wavelengths in samples.nm"),
+        "{e}"
+    );
     let e = error_of(&flange_with(|v| {
         v["light"]["spectrum"] = serde_json::json!({ "blackbody": { "kelvin": -5 } });
     }));

@@ -96,8 +96,9 @@ fn the_pinhole_sees_as_the_renderers_camera_does() {
             let d = disagreement(&pair, &mut rng);
             assert!(d < 1e-12, "{model:?}: {d}");
             let (c, p) = (&pair.camera, &pair.pinhole);
-            assert!((c.forward - p.forward).length() < 1e-15);
-            assert!((c.up - p.up).length() < 1e-15 && (c.right - p.right).length() < 1e-15);
+            assert_abs_diff_eq!((c.forward - p.forward).length(), 0.0, epsilon = 1e-15);
+            assert_abs_diff_eq!((c.up - p.up).length(), 0.0, epsilon = 1e-15);
+            assert_abs_diff_eq!((c.right - p.right).length(), 0.0, epsilon = 1e-15);
         }
     }
 }
@@ -131,8 +132,8 @@ fn yaw_and_pitch_match_the_renderer() {
         )
         .unwrap();
         let p = Pinhole::yaw_pitch(DVec3::ZERO, (yaw, pitch), 50.0, (64, 48)).unwrap();
-        assert!((c.forward - p.forward).length() < 1e-15);
-        assert!((c.up - p.up).length() < 1e-15);
+        assert_abs_diff_eq!((c.forward - p.forward).length(), 0.0, epsilon = 1e-15);
+        assert_abs_diff_eq!((c.up - p.up).length(), 0.0, epsilon = 1e-15);
     }
 }
 
@@ -175,7 +176,8 @@ fn the_colorimetry_is_the_renderers() {
         assert!(close(ours, renderer_blackbody_xyz(kelvin, scale, d)));
         let c = Chromaticity::of(ours).unwrap();
         let (x, y) = spectrum::chromaticity(ours).unwrap();
-        assert!((c.x - x).abs() < 1e-15 && (c.y - y).abs() < 1e-15);
+        assert_abs_diff_eq!(c.x, x, epsilon = 1e-15);
+        assert_abs_diff_eq!(c.y, y, epsilon = 1e-15);
     }
 }
 
@@ -202,7 +204,8 @@ fn the_oracles_boost_is_the_renderers() {
         let (dt, dx) = (rng.next(-10.0, 10.0), rng.vec(10.0));
         let (t, x) = to_frame_of(dt, dx, u).unwrap();
         let theirs = Boost::new(u).unwrap().to_rest(FourVector::new(dt, dx));
-        assert!((t - theirs.t).abs() < 1e-12 && (x - theirs.x).length() < 1e-12);
+        assert_abs_diff_eq!(t, theirs.t, epsilon = 1e-12);
+        assert_abs_diff_eq!((x - theirs.x).length(), 0.0, epsilon = 1e-12);
         // Negative control: the boost by +u is another frame.
         let wrong = Boost::new(u).unwrap().to_lab(FourVector::new(dt, dx));
         assert!((wrong.x - x).length() > 1e-9 || u.dot(dx).abs() + dt.abs() < 1e-6);

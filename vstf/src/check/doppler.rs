@@ -18,7 +18,7 @@ use super::{fixture_model, Effort, Findings, Quantity, Reading, Setup, Unit};
 use crate::fixture::Fixture;
 use crate::measure::colorimetry::{xyz_of_rgb, Blackbody, Chromaticity};
 use crate::measure::{self, Pinhole};
-use crate::oracle::{body_point, gamma_of_squared, retarded};
+use crate::oracle::{body_point, doppler_factor, retarded};
 use glam::DVec3;
 use image::RgbImage;
 use renderer::Spectrum;
@@ -151,9 +151,7 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
             Some(Spectrum::Blackbody { kelvin, scale }) => Blackbody { kelvin, scale },
             _ => return Err(format!("{NAME}: {name} must glow as a blackbody")),
         };
-        let (start, u) = obj
-            .motion
-            .uniform()
+        let (start, u) = super::uniform(&obj.motion)
             .ok_or_else(|| format!("{NAME}: {name} must move uniformly"))?;
         let middle = body_point(start.t, start.x, u, DVec3::ZERO, model.lorentz);
         if let Some(r) = retarded(&middle, tc, f.spec.camera.position) {
@@ -161,8 +159,7 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
         }
         let (pixels, dir) = panel_pixels(f, &variants, name, effort)?;
         let [plain, rgb_lit, shifted, shifted_lit] = [pixels[0], pixels[1], pixels[2], pixels[3]];
-        let gamma = gamma_of_squared(u.length_squared());
-        let expected = 1.0 / (gamma * (1.0 - u.dot(-dir)));
+        let expected = doppler_factor(u, -dir);
         let from_colour = |rgb: DVec3| factor_from_colour(&source, rgb);
         let factor = |what: &str, measured: Reading| Quantity {
             name: format!("{name}: D from {what}"),

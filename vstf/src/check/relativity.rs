@@ -47,9 +47,7 @@ fn object_moving(f: &Fixture, model: Model) -> Result<Fixture, String> {
         .iter_mut()
         .find(|o| o.name == CUBE)
         .ok_or("relativity: no cube")?;
-    let centre = cube
-        .motion
-        .uniform()
+    let centre = super::uniform(&cube.motion)
         .ok_or("relativity: the cube must move uniformly")?
         .0
         .x;
@@ -159,7 +157,7 @@ fn expected_camera_moving(a: &Setup) -> Result<(f64, f64), String> {
         .objects
         .iter()
         .find(|o| o.name == CUBE)
-        .and_then(|o| o.motion.uniform())
+        .and_then(|o| super::uniform(&o.motion))
     {
         Some((start, _)) => start.x,
         None => return Err("relativity: no uniformly moving cube".into()),
@@ -187,10 +185,8 @@ fn expected_cube_moving(b: &Setup) -> Result<(f64, f64), String> {
         .iter()
         .find(|o| o.name == CUBE)
         .ok_or("no cube")?;
-    let (start, u) = cube
-        .motion
-        .uniform()
-        .ok_or("relativity: the cube must move uniformly")?;
+    let (start, u) =
+        super::uniform(&cube.motion).ok_or("relativity: the cube must move uniformly")?;
     let seen = |r: DVec3| {
         let p = body_point(start.t, start.x, u, r, b.model.lorentz);
         retarded(&p, c.t, c.position).map_or(f64::NAN, |s| azimuth(b, s.direction))

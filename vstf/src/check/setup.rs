@@ -13,7 +13,7 @@ use crate::fixture::{Fixture, Overrides, View};
 use crate::measure::{self, Kinematics, Pinhole};
 use glam::DVec3;
 use image::RgbImage;
-use renderer::{Event, LightSpeed, Model, Traversal};
+use renderer::{Event, LightSpeed, Model, Motion, Traversal};
 
 /// Width of the full views: the report's images and the golden images,
 /// the same at every effort so that `cargo test` and `vstf check` compare
@@ -250,7 +250,7 @@ pub fn motion_of(fixture: &Fixture, name: &str, model: Model) -> Result<UniformM
         .find(|o| o.name == name)
         .ok_or_else(|| format!("{}: no object {name:?}", fixture.file.display()))?;
     let contracted = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
-    let (start, velocity) = obj.motion.uniform().ok_or_else(|| {
+    let (start, velocity) = uniform(&obj.motion).ok_or_else(|| {
         format!(
             "{}: object {name:?} does not move uniformly",
             fixture.file.display()
@@ -266,4 +266,17 @@ pub fn motion_of(fixture: &Fixture, name: &str, model: Model) -> Result<UniformM
 /// The background colour of probes, as stored in 8 bits.
 pub fn background(fixture: &Fixture) -> DVec3 {
     (fixture.scene.background.clamp(DVec3::ZERO, DVec3::ONE) * 255.0).round() / 255.0
+}
+
+/// The start event and lab velocity of a uniform motion, read from the
+/// scene's description (the velocity of an extrusion is dx / dt); `None`
+/// for keyframed or accelerated motion.
+pub fn uniform(motion: &Motion) -> Option<(Event, DVec3)> {
+    match motion {
+        Motion::Extrusion { start, extrusion } => Some((*start, extrusion.x / extrusion.t)),
+        Motion::Velocity {
+            start, velocity, ..
+        } => Some((*start, *velocity)),
+        Motion::Keyframes(_) | Motion::Hyperbolic(_) => None,
+    }
 }

@@ -236,10 +236,7 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
         .shape
         .sphere_radius()
         .ok_or("the sphere must be analytic")?;
-    let (start, u) = obj
-        .motion
-        .uniform()
-        .ok_or("the sphere must move uniformly")?;
+    let (start, u) = super::uniform(&obj.motion).ok_or("the sphere must move uniformly")?;
     let contracted = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
     let setup = Setup {
         fixture: f,

@@ -181,12 +181,13 @@ impl Chromaticity {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
 
     #[test]
     fn wien_x_solves_its_equation_and_c2_is_h_c_over_k() {
-        assert!((WIEN_X - 5.0 * (1.0 - (-WIEN_X).exp())).abs() < 1e-14);
+        assert_abs_diff_eq!(WIEN_X, 5.0 * (1.0 - (-WIEN_X).exp()), epsilon = 1e-14);
         let (h, c, k) = (6.626_070_15e-34, 299_792_458.0, 1.380_649e-23);
-        assert!((h * c / k * 1e9 / C2_NM_K - 1.0).abs() < 1e-15);
+        assert_abs_diff_eq!(h * c / k * 1e9 / C2_NM_K, 1.0, epsilon = 1e-15);
     }
 
     #[test]
@@ -195,7 +196,7 @@ mod tests {
         let xyz = (0..BAND_LEN).fold(DVec3::ZERO, |acc, i| {
             acc + t.weights[i] * white(wavelength_nm(i))
         });
-        assert!((xyz.y - 1.0).abs() < 1e-12);
+        assert_abs_diff_eq!(xyz.y, 1.0, epsilon = 1e-12);
         let rgb = t.xyz_from_rgb.inverse() * xyz;
         assert!((rgb - DVec3::ONE).abs().max_element() < 1e-12, "{rgb}");
     }

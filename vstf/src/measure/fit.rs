@@ -95,6 +95,7 @@ impl PolyFit {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
 
     #[test]
     fn fits_recover_a_parabola_and_its_error_grows_off_the_data() {
@@ -108,7 +109,7 @@ mod tests {
             })
             .collect();
         let f = PolyFit::fit(&pts, 2).unwrap();
-        assert!((f.eval(2.0) - (1.0 + 1.0 - 0.8)).abs() < 2e-3);
+        assert_abs_diff_eq!(f.eval(2.0), 1.0 + 1.0 - 0.8, epsilon = 2e-3);
         assert!(f.stderr(-2.0) > f.stderr(2.0));
     }
 }

@@ -314,6 +314,7 @@ fn boost(t: f64, x: DVec3, v: DVec3) -> (f64, DVec3) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
 
     fn camera() -> Pinhole {
         Pinhole::looking_at(
@@ -350,7 +351,7 @@ mod tests {
             let rest = c.rest_direction(px, py).angle_between(c.forward);
             let lab = c.direction(px, py).angle_between(c.forward);
             let want = ((1.0 - b) / (1.0 + b)).sqrt() * (lab / 2.0).tan();
-            assert!(((rest / 2.0).tan() - want).abs() < 1e-12);
+            assert_abs_diff_eq!((rest / 2.0).tan(), want, epsilon = 1e-12);
         }
     }
 
@@ -358,8 +359,12 @@ mod tests {
     fn a_plane_is_met_where_the_line_of_sight_says() {
         let c = camera();
         let p = c.on_plane(20.0, 30.0, Plane::y(0.0)).unwrap();
-        assert!(p.y.abs() < 1e-12);
-        assert!(((p - c.position).normalize() - c.direction(20.0, 30.0)).length() < 1e-12);
+        assert_abs_diff_eq!(p.y, 0.0, epsilon = 1e-12);
+        assert_abs_diff_eq!(
+            ((p - c.position).normalize() - c.direction(20.0, 30.0)).length(),
+            0.0,
+            epsilon = 1e-12
+        );
         // A plane behind the camera (it looks towards -z from z = 3) is never met.
         assert!(c.on_plane(32.0, 24.0, Plane::z(10.0)).is_none());
     }

@@ -70,6 +70,13 @@ pub fn aberrate_galilean(n: DVec3, v: DVec3) -> DVec3 {
     (n + v).normalize()
 }
 
+/// The relativistic Doppler factor D = nu_seen / nu_emitted of light
+/// leaving a source that moves with lab velocity `u` along the unit vector
+/// `k`, seen by an observer at rest in the lab: D = 1 / (gamma (1 - u.k)).
+pub fn doppler_factor(u: DVec3, k: DVec3) -> f64 {
+    1.0 / (gamma_of_squared(u.length_squared()) * (1.0 - u.dot(k)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -86,5 +93,18 @@ mod tests {
             let want = 2.0 * (((1.0 - b) / (1.0 + b)).sqrt() * (a / 2.0).tan()).atan();
             assert_relative_eq!(got.y.atan2(got.x), want, max_relative = 1e-12);
         }
+    }
+
+    #[test]
+    fn doppler_factor_head_on_receding_and_transverse() {
+        let b = 0.6;
+        let u = DVec3::new(b, 0.0, 0.0);
+        // Head-on: sqrt((1 + b) / (1 - b)) = 2; receding: 1/2; transverse
+        // (k perpendicular to u in the lab): 1/gamma = 0.8.
+        assert_relative_eq!(doppler_factor(u, DVec3::X), 2.0, max_relative = 1e-12);
+        assert_relative_eq!(doppler_factor(u, -DVec3::X), 0.5, max_relative = 1e-12);
+        assert_relative_eq!(doppler_factor(u, DVec3::Y), 0.8, max_relative = 1e-12);
+        // A wrong sign of u.k would swap head-on and receding.
+        assert!((doppler_factor(-u, DVec3::X) - 2.0).abs() > 1.0);
     }
 }

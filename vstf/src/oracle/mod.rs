@@ -14,7 +14,8 @@ pub mod seen;
 
 pub use extremes::extremes_on_polygon;
 pub use kinematics::{
-    aberrate_galilean, aberrate_lorentz, contract, gamma, gamma_of_squared, to_frame_of,
+    aberrate_galilean, aberrate_lorentz, contract, doppler_factor, gamma, gamma_of_squared,
+    to_frame_of,
 };
 pub use quadratic::quadratic_roots;
 pub use seen::{

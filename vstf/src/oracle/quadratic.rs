@@ -24,13 +24,15 @@ pub fn quadratic_roots(a: f64, b: f64, c: f64, linear_below: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
 
     #[test]
     fn the_small_root_survives_cancellation() {
         // x^2 - 1e8 x + 1: roots 1e8 and 1e-8; (-b - sqrt(b^2 - 4ac)) / 2a loses the small one.
         let mut r = quadratic_roots(1.0, -1e8, 1.0, 1e-15);
         r.sort_by(f64::total_cmp);
-        assert!((r[0] / 1e-8 - 1.0).abs() < 1e-15 && (r[1] / 1e8 - 1.0).abs() < 1e-15);
+        assert_abs_diff_eq!(r[0] / 1e-8, 1.0, epsilon = 1e-15);
+        assert_abs_diff_eq!(r[1] / 1e8, 1.0, epsilon = 1e-15);
         assert_eq!(quadratic_roots(0.0, 2.0, -4.0, 1e-15), vec![2.0]);
         assert!(quadratic_roots(1.0, 0.0, 1.0, 1e-15).is_empty());
     }

@@ -165,6 +165,7 @@ pub fn retarded_hyperbolic(p: &PointHyperbola, tc: f64, camera: DVec3) -> Option
 #[cfg(test)]
 mod tests {
     use super::*;
+    use approx::assert_abs_diff_eq;
     use approx::assert_relative_eq;
 
     #[test]
@@ -214,6 +215,7 @@ mod tests {
         }
         // The start: at t0 the point is at x0 moving at v0.
         let v = (p.at(2.0 + 1e-6).x - p.at(2.0 - 1e-6).x) / 2e-6;
-        assert!((p.at(2.0).x + 3.0).abs() < 1e-12 && (v + 0.4).abs() < 1e-8);
+        assert_abs_diff_eq!(p.at(2.0).x, -3.0, epsilon = 1e-12);
+        assert_abs_diff_eq!(v, -0.4, epsilon = 1e-8);
     }
 }

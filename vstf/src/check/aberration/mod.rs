@@ -72,9 +72,7 @@ fn moving(control: &Fixture, u: DVec3, model: Model) -> Result<(Fixture, DVec3),
         .iter_mut()
         .find(|o| o.name == CUBE)
         .ok_or("aberration: no cube")?;
-    let rest_centre = cube
-        .motion
-        .uniform()
+    let rest_centre = super::uniform(&cube.motion)
         .ok_or("aberration: the cube must move uniformly")?
         .0
         .x;
@@ -120,7 +118,7 @@ fn rest_centre(control: &Fixture) -> Result<DVec3, String> {
         .objects
         .iter()
         .find(|o| o.name == CUBE)
-        .and_then(|o| o.motion.uniform())
+        .and_then(|o| super::uniform(&o.motion))
     {
         Some((start, _)) => Ok(start.x),
         None => Err(format!("{NAME}: no uniformly moving cube")),
