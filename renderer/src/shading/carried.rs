@@ -15,22 +15,22 @@ use glam::DVec3;
 pub(super) trait Carried: Sized {
     /// What the colour is evaluated at: nothing for RGB, the lab
     /// wavelengths for a spectrum.
-    type Band: ?Sized;
+    type At: ?Sized;
     /// The colour where a ray meets nothing.
-    fn background(shader: &Shader<'_>, band: &Self::Band) -> Self;
+    fn background(shader: &Shader<'_>, band: &Self::At) -> Self;
     /// The colour leaving `hit` towards the ray's origin.
     fn shade<T: Trace>(
         shader: &Shader<'_>,
         ray: &Ray,
         hit: &Hit,
         depth: u32,
-        band: &Self::Band,
+        band: &Self::At,
         trace: &mut T,
     ) -> Self;
 }
 
 impl Carried for DVec3 {
-    type Band = ();
+    type At = ();
     fn background(shader: &Shader<'_>, _: &()) -> DVec3 {
         shader.background
     }
@@ -47,7 +47,7 @@ impl Carried for DVec3 {
 }
 
 impl Carried for Band {
-    type Band = Band;
+    type At = Band;
     fn background(shader: &Shader<'_>, nm: &Band) -> Band {
         sample(&Spectrum::Rgb(shader.background), nm)
     }

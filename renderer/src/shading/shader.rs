@@ -101,7 +101,7 @@ impl Shader<'_> {
         ray: &Ray,
         depth: u32,
         kind: RayKind,
-        band: &C::Band,
+        band: &C::At,
         trace: &mut T,
     ) -> C {
         let margin = if depth == 0 {

@@ -22,28 +22,21 @@ pub fn difference(a: &Reading, b: &Reading) -> Reading {
 }
 
 /// The unit of a checked quantity, serialised as the check table prints it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Unit {
     /// Lengths in the scene: light-units (the distance light goes in a t.unit).
-    #[serde(rename = "l.units")]
     LUnits,
     /// Times in the lab frame, t.units.
-    #[serde(rename = "t.units")]
     TUnits,
     /// Velocities as a fraction of light speed, l.units per t.unit.
-    #[serde(rename = "l.units/t.unit")]
     LUnitsPerTUnit,
     /// Angles on the observer's sky, degrees.
-    #[serde(rename = "deg")]
     Degrees,
     /// Positions on the paper's grid 10 l.units ahead, in grid marks.
-    #[serde(rename = "grid marks")]
     GridMarks,
     /// A dimensionless ratio of two lengths.
-    #[serde(rename = "ratio")]
     Ratio,
     /// A dimensionless factor (the Doppler factor D).
-    #[serde(rename = "factor")]
     Factor,
 }
 
@@ -59,6 +52,12 @@ impl Unit {
             Unit::Ratio => "ratio",
             Unit::Factor => "factor",
         }
+    }
+}
+
+impl Serialize for Unit {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.as_str())
     }
 }
 
