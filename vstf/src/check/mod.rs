@@ -26,12 +26,12 @@ pub mod stage;
 pub mod teaser;
 pub mod terrell;
 
-pub use edge::{trace_rows, Edge, EdgeTrace};
+pub use edge::{trace_rows, Edge, EdgeTrace, OnPlane, Probed, Sweep};
 pub use row::{difference, Quantity, Reading, Row, Unit};
 pub use runner::{run, Check, Findings, FixtureReport, ViewReport};
 pub use setup::{
-    background, fixture_model, is_background, motion_of, uniform, Effort, Setup, UniformMotion,
-    VIEW_WIDTH,
+    background, fixture_model, is_background, motion_of, uniform, Effort, Probe, Setup,
+    UniformMotion, VIEW_WIDTH,
 };
 
 /// Every check, by fixture name, in report order.
