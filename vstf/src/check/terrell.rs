@@ -155,7 +155,6 @@ fn quantities(
     edges: &Edges,
     points: &SeenPoints,
 ) -> Vec<Quantity> {
-    let (tc, cam) = (setup.camera_t, setup.camera_x());
     let Edges {
         trailing,
         leading,
@@ -168,20 +167,7 @@ fn quantities(
         far_top,
         lead_mid,
     } = points;
-    let lab_width = if m.contracted {
-        WIDTH / gamma(m.velocity.length())
-    } else {
-        WIDTH
-    };
     let (m_lead, m_trail) = (leading.at(HEIGHT / 2.0), trailing.at(HEIGHT / 2.0));
-    let m_length = delay_removed_length(
-        &m_lead,
-        &m_trail,
-        DVec3::new(0.0, m.start.x.y + HEIGHT / 2.0, m.start.x.z + DEPTH),
-        m.velocity.x,
-        tc,
-        cam,
-    );
     let length = |name: &str, measured: Reading, expected: f64, paper: Option<f64>| Quantity {
         name: name.into(),
         measured,
@@ -226,17 +212,38 @@ fn quantities(
             lead_mid.x - mid.x,
             None,
         ),
-        Quantity {
-            name: "front length with light delay removed / proper length".into(),
-            measured: Reading {
-                value: m_length.value / WIDTH,
-                tolerance: m_length.tolerance / WIDTH,
-            },
-            expected: lab_width / WIDTH,
-            paper: m.contracted.then_some(0.5),
-            unit: Unit::Ratio,
-        },
+        contraction(setup, m, &m_lead, &m_trail),
     ]
+}
+
+/// The front's length with the light delay removed, over its proper
+/// length, from the leading and trailing edges read at mid-height: the
+/// Lorentz contraction 1/gamma for a V_obj, 1 for an H_obj.
+fn contraction(setup: &Setup, m: &UniformMotion, lead: &Reading, trail: &Reading) -> Quantity {
+    let (tc, cam) = (setup.camera_t, setup.camera_x());
+    let lab_width = if m.contracted {
+        WIDTH / gamma(m.velocity.length())
+    } else {
+        WIDTH
+    };
+    let m_length = delay_removed_length(
+        lead,
+        trail,
+        DVec3::new(0.0, m.start.x.y + HEIGHT / 2.0, m.start.x.z + DEPTH),
+        m.velocity.x,
+        tc,
+        cam,
+    );
+    Quantity {
+        name: "front length with light delay removed / proper length".into(),
+        measured: Reading {
+            value: m_length.value / WIDTH,
+            tolerance: m_length.tolerance / WIDTH,
+        },
+        expected: lab_width / WIDTH,
+        paper: m.contracted.then_some(0.5),
+        unit: Unit::Ratio,
+    }
 }
 
 /// The lab length between the leading and trailing edges at one lab time,
