@@ -3,7 +3,8 @@
 //!
 //! - [`setup`]: how a check looks at its fixture (probe renders aimed at the
 //!   measured objects, full views for the report);
-//! - [`edge`]: edges traced to sub-pixel precision and fitted;
+//! - [`edge`]: edges traced to sub-pixel precision on a probe render and
+//!   fitted ([`Probed`]: aim, render, sweep the rows, fit on a plane);
 //! - [`row`]: readings, quantities and the judged rows of the check table;
 //! - [`runner`]: loading each fixture, running the checks concurrently,
 //!   comparing views with the golden images;
