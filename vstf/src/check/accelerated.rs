@@ -9,12 +9,9 @@
 //! xi about the same centre. The tolerance adds the keyframes' stated error
 //! bound, as it moves the seen point, to the measurement's.
 
-use super::{
-    background, fixture_model, is_background, trace_rows, Edge, Effort, Findings, Quantity,
-    Reading, Setup, Unit,
-};
+use super::{fixture_model, Effort, Findings, OnPlane, Probed, Quantity, Reading, Setup, Unit};
 use crate::fixture::Fixture;
-use crate::measure::{edge, Plane};
+use crate::measure::Plane;
 use crate::oracle::{retarded_hyperbolic, PointHyperbola, Retarded};
 use glam::DVec3;
 use renderer::{Hyperbolic, Motion, ObjectKind};
@@ -112,26 +109,21 @@ fn plate_edges(
     effort: &Effort,
 ) -> Result<Vec<Quantity>, String> {
     let (tc, cam) = (setup.camera_t, setup.camera_x());
-    let bg = background(setup.fixture);
-    let (look, vfov) = setup.aim(&[name], 0.15)?;
-    let (img, camera) = setup.probe(&[name], look, vfov, effort.probe, effort.probe, effort.spp)?;
-    let w = i64::from(img.width());
+    let probe = Probed::aimed(setup, &[name], 0.15, effort)?;
     let mid = y0 + HEIGHT / 2.0;
-    let range = (y0 + 0.05 * HEIGHT, y0 + 0.95 * HEIGHT);
+    let plate = OnPlane {
+        plane: Plane::z(h.start.x.z),
+        coords: |p: DVec3| (p.y, p.x),
+        range: (y0 + 0.05 * HEIGHT, y0 + 0.95 * HEIGHT),
+        degree: 2,
+    };
     let mut quantities = Vec::new();
-    for (side, x, from, step) in [
-        ("left", -HALF_WIDTH, 0, 1),
-        ("right", HALF_WIDTH, w - 1, -1),
+    for (side, x, sweep) in [
+        ("left", -HALF_WIDTH, probe.from_left()),
+        ("right", HALF_WIDTH, probe.from_right()),
     ] {
-        let trace = trace_rows(
-            &img,
-            &camera,
-            Plane::z(h.start.x.z),
-            |scan| edge(&img, scan, from, step, |c| is_background(c, bg)),
-            |p| (p.y, p.x),
-            range,
-        );
-        let reading = Edge::fit(&trace, 2, effort)
+        let reading = probe
+            .fit(&plate, sweep, probe.background(), effort)
             .map_err(|e| format!("{NAME} {name} {side} at t_c = {tc}: {e}"))?
             .at(mid);
         let edge_point = point(h, DVec3::new(x, mid, 0.0), born);

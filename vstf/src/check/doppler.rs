@@ -14,7 +14,7 @@
 //! Tolerances follow from the 8-bit quantisation of the measured pixels
 //! (half a step on each channel).
 
-use super::{fixture_model, Effort, Findings, Quantity, Reading, Setup, Unit};
+use super::{fixture_model, Effort, Findings, Probe, Quantity, Reading, Setup, Unit};
 use crate::fixture::Fixture;
 use crate::measure::colorimetry::{xyz_of_rgb, Blackbody, Chromaticity};
 use crate::measure::{self, Pinhole};
@@ -124,7 +124,13 @@ fn panel_pixels(
             model,
             camera_t: tc,
         };
-        let (img, camera) = s.probe(&[name], look, vfov, effort.probe / 4, effort.probe / 4, 1)?;
+        let (img, camera) = s.probe(&Probe {
+            keep: &[name],
+            look_at: look,
+            hfov_deg: vfov,
+            size: (effort.probe / 4, effort.probe / 4),
+            spp: 1,
+        })?;
         seen.push(centre(&img, &camera));
     }
     Ok((seen.iter().map(|s| s.0).collect(), seen[0].1))

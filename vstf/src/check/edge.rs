@@ -4,7 +4,7 @@
 //! the fit carry the fit's prediction error.
 
 use super::row::Reading;
-use super::setup::Effort;
+use super::setup::{background, is_background, Effort, Probe, Setup};
 use crate::measure::{self, Pinhole, PolyFit, Scan};
 use glam::DVec3;
 use image::RgbImage;
@@ -54,6 +54,121 @@ pub fn trace_rows(
         fp.iter().sum::<f64>() / fp.len() as f64
     };
     EdgeTrace { points, footprint }
+}
+
+/// A probe render ready for tracing edges: the image, the measurements'
+/// own model of its camera, and the fixture's background colour.
+pub struct Probed {
+    /// The probe image.
+    pub img: RgbImage,
+    /// The measurements' model of the probe camera.
+    pub camera: Pinhole,
+    bg: DVec3,
+}
+
+/// Where an edge lies and how it is fitted: the plane its points are
+/// mapped onto, the (height, position) coordinates read off that plane,
+/// the heights kept, and the degree of the polynomial fitted.
+pub struct OnPlane<C> {
+    /// The plane the edge lies on.
+    pub plane: measure::Plane,
+    /// (height, position) of a point on the plane.
+    pub coords: C,
+    /// The heights kept, (low, high).
+    pub range: (f64, f64),
+    /// Degree of the fitted polynomial.
+    pub degree: usize,
+}
+
+/// Where a row scan starts (a column) and which way it steps (+1 rightwards,
+/// -1 leftwards).
+#[derive(Clone, Copy, Debug)]
+pub struct Sweep {
+    /// The first column looked at.
+    pub from: i64,
+    /// The step between columns.
+    pub step: i64,
+}
+
+impl Probed {
+    /// Renders the probe `p` of `setup`.
+    pub fn render(setup: &Setup, p: &Probe) -> Result<Probed, String> {
+        let (img, camera) = setup.probe(p)?;
+        Ok(Probed {
+            img,
+            camera,
+            bg: background(setup.fixture),
+        })
+    }
+
+    /// A square probe at `effort` aimed at the objects `keep`, covering
+    /// them with `margin` (fraction) to spare ([`Setup::aim`]).
+    pub fn aimed(
+        setup: &Setup,
+        keep: &[&str],
+        margin: f64,
+        effort: &Effort,
+    ) -> Result<Probed, String> {
+        let (look_at, hfov_deg) = setup.aim(keep, margin)?;
+        Probed::render(
+            setup,
+            &Probe {
+                keep,
+                look_at,
+                hfov_deg,
+                size: (effort.probe, effort.probe),
+                spp: effort.spp,
+            },
+        )
+    }
+
+    /// Rows scanned rightwards from the left border.
+    pub fn from_left(&self) -> Sweep {
+        Sweep { from: 0, step: 1 }
+    }
+
+    /// Rows scanned leftwards from the right border.
+    pub fn from_right(&self) -> Sweep {
+        Sweep {
+            from: i64::from(self.img.width()) - 1,
+            step: -1,
+        }
+    }
+
+    /// Whether a colour is this probe's background.
+    pub fn background(&self) -> impl Fn(DVec3) -> bool {
+        let bg = self.bg;
+        move |c| is_background(c, bg)
+    }
+
+    /// Traces an edge down the rows: each row scanned along `sweep` up to
+    /// where `inside` stops holding, onto the plane of `on`.
+    pub fn trace(
+        &self,
+        on: &OnPlane<impl Fn(DVec3) -> (f64, f64)>,
+        sweep: Sweep,
+        inside: impl Fn(DVec3) -> bool,
+    ) -> EdgeTrace {
+        trace_rows(
+            &self.img,
+            &self.camera,
+            on.plane,
+            |s| measure::edge(&self.img, s, sweep.from, sweep.step, &inside),
+            &on.coords,
+            on.range,
+        )
+    }
+
+    /// Traces an edge (see [`Probed::trace`]) and fits it.
+    pub fn fit(
+        &self,
+        on: &OnPlane<impl Fn(DVec3) -> (f64, f64)>,
+        sweep: Sweep,
+        inside: impl Fn(DVec3) -> bool,
+        effort: &Effort,
+    ) -> Result<Edge, String> {
+        Edge::fit(&self.trace(on, sweep, inside), on.degree, effort)
+    }
 }
 
 /// A fitted edge, able to read values and combinations of values off it

@@ -3,7 +3,8 @@
 //!
 //! - [`setup`]: how a check looks at its fixture (probe renders aimed at the
 //!   measured objects, full views for the report);
-//! - [`edge`]: edges traced to sub-pixel precision and fitted;
+//! - [`edge`]: edges traced to sub-pixel precision on a probe render and
+//!   fitted ([`Probed`]: aim, render, sweep the rows, fit on a plane);
 //! - [`row`]: readings, quantities and the judged rows of the check table;
 //! - [`runner`]: loading each fixture, running the checks concurrently,
 //!   comparing views with the golden images;
@@ -26,12 +27,12 @@ pub mod stage;
 pub mod teaser;
 pub mod terrell;
 
-pub use edge::{trace_rows, Edge, EdgeTrace};
+pub use edge::{trace_rows, Edge, EdgeTrace, OnPlane, Probed, Sweep};
 pub use row::{difference, Quantity, Reading, Row, Unit};
 pub use runner::{run, Check, Findings, FixtureReport, ViewReport};
 pub use setup::{
-    background, fixture_model, is_background, motion_of, uniform, Effort, Setup, UniformMotion,
-    VIEW_WIDTH,
+    background, fixture_model, is_background, motion_of, uniform, Effort, Probe, Setup,
+    UniformMotion, VIEW_WIDTH,
 };
 
 /// Every check, by fixture name, in report order.

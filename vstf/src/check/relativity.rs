@@ -9,8 +9,8 @@
 //! cube's retarded directions for the camera at rest.
 
 use super::{
-    background, difference, is_background, Edge, EdgeTrace, Effort, Findings, Quantity, Reading,
-    Setup, Unit,
+    background, difference, is_background, Edge, EdgeTrace, Effort, Findings, Probe, Quantity,
+    Reading, Setup, Unit,
 };
 use crate::fixture::Fixture;
 use crate::measure::edge;
@@ -77,14 +77,13 @@ fn object_moving(f: &Fixture, model: Model) -> Result<Fixture, String> {
 fn measure(setup: &Setup, effort: &Effort) -> Result<(Reading, Reading), String> {
     let c = &setup.fixture.spec.camera;
     let look = c.look_at.unwrap_or(c.position + DVec3::NEG_Z);
-    let (img, camera) = setup.probe(
-        &[CUBE],
-        look,
-        40.0,
-        effort.probe,
-        effort.probe / 4,
-        effort.spp,
-    )?;
+    let (img, camera) = setup.probe(&Probe {
+        keep: &[CUBE],
+        look_at: look,
+        hfov_deg: 40.0,
+        size: (effort.probe, effort.probe / 4),
+        spp: effort.spp,
+    })?;
     let bg = background(setup.fixture);
     let w = i64::from(img.width());
     // Rows as (row offset from the horizon, pixels; azimuth of the edge).

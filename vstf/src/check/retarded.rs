@@ -5,11 +5,10 @@
 //! apparent velocity between them.
 
 use super::{
-    background, fixture_model, is_background, motion_of, trace_rows, Edge, Effort, Findings,
-    Quantity, Reading, Setup, Unit,
+    fixture_model, motion_of, Effort, Findings, OnPlane, Probed, Quantity, Reading, Setup, Unit,
 };
 use crate::fixture::Fixture;
-use crate::measure::{edge, Plane};
+use crate::measure::Plane;
 use crate::oracle::{body_point, retarded};
 use glam::DVec3;
 use renderer::Model;
@@ -34,26 +33,15 @@ pub fn measure_foot(
         model,
         camera_t: tc,
     };
-    let bg = background(f);
-    let (look, vfov) = setup.aim(&["flange"], 0.15)?;
-    let (img, camera) = setup.probe(
-        &["flange"],
-        look,
-        vfov,
-        effort.probe,
-        effort.probe,
-        effort.spp,
-    )?;
-    let w = i64::from(img.width());
-    let trace = trace_rows(
-        &img,
-        &camera,
-        Plane::z(start.x.z + DEPTH),
-        |scan| edge(&img, scan, w - 1, -1, |c| is_background(c, bg)),
-        |p| (p.y - start.x.y, p.x),
-        (0.05 * HEIGHT, 0.95 * HEIGHT),
-    );
-    Ok(Edge::fit(&trace, 2, effort)
+    let probe = Probed::aimed(&setup, &["flange"], 0.15, effort)?;
+    let front = OnPlane {
+        plane: Plane::z(start.x.z + DEPTH),
+        coords: |p: DVec3| (p.y - start.x.y, p.x),
+        range: (0.05 * HEIGHT, 0.95 * HEIGHT),
+        degree: 2,
+    };
+    Ok(probe
+        .fit(&front, probe.from_right(), probe.background(), effort)
         .map_err(|e| format!("{NAME} at t_c = {tc}: {e}"))?
         .at(0.0))
 }

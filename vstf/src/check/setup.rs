@@ -47,6 +47,23 @@ pub fn fixture_model(fixture: &Fixture) -> Model {
     fixture.model(&Overrides::default())
 }
 
+/// A probe render's parameters: which objects it keeps, where it looks
+/// (a point seen from the camera's position, in the camera's frame), its
+/// horizontal field of view, image size and samples per pixel.
+#[derive(Clone, Copy, Debug)]
+pub struct Probe<'k> {
+    /// The names of the objects rendered; every other object is removed.
+    pub keep: &'k [&'k str],
+    /// The point looked at.
+    pub look_at: DVec3,
+    /// Horizontal field of view, degrees.
+    pub hfov_deg: f64,
+    /// Image size (width, height), pixels.
+    pub size: (u32, u32),
+    /// Samples per pixel.
+    pub spp: u32,
+}
+
 /// A fixture with a model and camera time chosen.
 pub struct Setup<'a> {
     /// The fixture looked at (possibly a modified copy of the loaded one).
@@ -130,27 +147,18 @@ impl Setup<'_> {
         })
     }
 
-    /// Renders only the objects named in `keep`, looking towards
-    /// `look_at` (a direction in the camera's frame, from its position) with
-    /// horizontal field of view `hfov_deg`, at `width` x `height`. The probe
-    /// camera moves as the fixture's does. Returns the image and the
+    /// Renders the probe `p`: only its kept objects, looking its way. The
+    /// probe camera moves as the fixture's does. Returns the image and the
     /// measurements' own model of the probe camera, built from the same
     /// parameters.
-    pub fn probe(
-        &self,
-        keep: &[&str],
-        look_at: DVec3,
-        hfov_deg: f64,
-        width: u32,
-        height: u32,
-        spp: u32,
-    ) -> Result<(RgbImage, Pinhole), String> {
+    pub fn probe(&self, p: &Probe) -> Result<(RgbImage, Pinhole), String> {
+        let (look_at, hfov_deg, (width, height)) = (p.look_at, p.hfov_deg, p.size);
         let aspect = f64::from(width) / f64::from(height);
         let vfov_deg = 2.0
             * ((hfov_deg.to_radians() / 2.0).tan() / aspect)
                 .atan()
                 .to_degrees();
-        let mut probe = self.fixture.only(keep).map_err(|e| e.to_string())?;
+        let mut probe = self.fixture.only(p.keep).map_err(|e| e.to_string())?;
         let (camera, image) = (&mut probe.spec.camera, &mut probe.spec.image);
         (camera.t, camera.position) = (self.camera_t, self.camera_x());
         (camera.look_at, camera.up, camera.vfov_deg) = (Some(look_at), DVec3::Y, vfov_deg);
@@ -163,7 +171,7 @@ impl Setup<'_> {
                 model: Some(self.model),
                 width: Some(width),
                 height: Some(height),
-                spp: Some(spp),
+                spp: Some(p.spp),
                 ..Overrides::default()
             },
         )?;
@@ -192,7 +200,13 @@ impl Setup<'_> {
             .camera
             .look_at
             .unwrap_or(self.camera_x() + DVec3::NEG_Z);
-        let (img, cam) = self.probe(keep, look, wide, 240, 240, 1)?;
+        let (img, cam) = self.probe(&Probe {
+            keep,
+            look_at: look,
+            hfov_deg: wide,
+            size: (240, 240),
+            spp: 1,
+        })?;
         let bg = measure::color(&img, 0, 0);
         let (mut x0, mut y0, mut x1, mut y1) = (u32::MAX, u32::MAX, 0, 0);
         for (x, y, _) in img.enumerate_pixels() {

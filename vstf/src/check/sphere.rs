@@ -15,9 +15,7 @@
 //! outline direction is one whose ray is tangent to it, found by bisection
 //! along each direction from the centre.
 
-use super::{
-    background, fixture_model, is_background, Effort, Findings, Quantity, Reading, Setup, Unit,
-};
+use super::{fixture_model, Effort, Findings, Probed, Quantity, Reading, Setup, Unit};
 use crate::fixture::Fixture;
 use crate::measure::{edge, Scan};
 use crate::oracle::{aberrate_lorentz, to_frame_of};
@@ -93,17 +91,9 @@ fn measured_outline(
     setup: &Setup,
     effort: &Effort,
 ) -> Result<(Vec<DVec3>, Vec<DVec3>, f64), String> {
-    let (look, hfov) = setup.aim(&[SPHERE], 0.15)?;
-    let (img, camera) = setup.probe(
-        &[SPHERE],
-        look,
-        hfov,
-        effort.probe,
-        effort.probe,
-        effort.spp,
-    )?;
-    let bg = background(setup.fixture);
-    let outside = |c: DVec3| is_background(c, bg);
+    let probe = Probed::aimed(setup, &[SPHERE], 0.15, effort)?;
+    let (img, camera) = (&probe.img, &probe.camera);
+    let outside = probe.background();
     let (w, h) = (i64::from(img.width()), i64::from(img.height()));
     let (mut rows, mut cols) = (Vec::new(), Vec::new());
     for horizontal in [true, false] {
@@ -116,7 +106,7 @@ fn measured_outline(
         for at in 0..n {
             let scan = Scan { horizontal, at };
             for (from, step) in [(0, 1), (len - 1, -1)] {
-                if let Some(u) = edge(&img, scan, from, step, outside) {
+                if let Some(u) = edge(img, scan, from, step, &outside) {
                     let (px, py) = scan.point(u);
                     dirs.push(camera.direction(px, py));
                 }
@@ -221,23 +211,54 @@ fn elevation(v: &DVec3) -> f64 {
     v.y.atan2(v.x.hypot(v.z)).to_degrees()
 }
 
+/// The sphere as the fixture gives it: radius and uniform motion, and
+/// whether it is Lorentz-contracted under the model.
+struct Sphere {
+    radius: f64,
+    start: Event,
+    velocity: DVec3,
+    contracted: bool,
+}
+
+impl Sphere {
+    fn of(f: &Fixture, model: renderer::Model) -> Result<Sphere, String> {
+        let obj = f
+            .scene
+            .objects
+            .iter()
+            .find(|o| o.name == SPHERE)
+            .ok_or("no sphere")?;
+        let radius = obj
+            .shape
+            .sphere_radius()
+            .ok_or("the sphere must be analytic")?;
+        let (start, velocity) =
+            super::uniform(&obj.motion).ok_or("the sphere must move uniformly")?;
+        Ok(Sphere {
+            radius,
+            start,
+            velocity,
+            contracted: model.lorentz && obj.kind == renderer::ObjectKind::VObj,
+        })
+    }
+
+    /// The outline first principles give, seen from the camera event `cam`.
+    fn expected_outline(&self, cam: Event) -> Result<Vec<DVec3>, String> {
+        let (start, u, radius) = (self.start, self.velocity, self.radius);
+        Ok(if self.contracted {
+            expected_relativistic(start, u, radius, cam)?
+        } else {
+            expected_classical(start.x, start.t, u, radius, cam)
+        })
+    }
+}
+
 /// The sphere's outline on the sky, measured and expected: its extent
 /// along and across the motion, and (contracted, where it is a circle) the
 /// fitted circle's radius and the outline's RMS deviation from a circle.
 pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
     let model = fixture_model(f);
-    let obj = f
-        .scene
-        .objects
-        .iter()
-        .find(|o| o.name == SPHERE)
-        .ok_or("no sphere")?;
-    let radius = obj
-        .shape
-        .sphere_radius()
-        .ok_or("the sphere must be analytic")?;
-    let (start, u) = super::uniform(&obj.motion).ok_or("the sphere must move uniformly")?;
-    let contracted = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
+    let sphere = Sphere::of(f, model)?;
     let setup = Setup {
         fixture: f,
         model,
@@ -247,48 +268,66 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
     let (row_dirs, col_dirs, px) = measured_outline(&setup, effort)?;
     let dirs: Vec<DVec3> = row_dirs.iter().chain(&col_dirs).copied().collect();
     let measured = fit_sky_circle(&dirs).ok_or("cannot fit the measured outline")?;
-    let expected_dirs = if contracted {
-        expected_relativistic(start, u, radius, cam)?
-    } else {
-        expected_classical(start.x, start.t, u, radius, cam)
-    };
+    let expected_dirs = sphere.expected_outline(cam)?;
     let expected = fit_sky_circle(&expected_dirs).ok_or("cannot fit the expected outline")?;
     // Each edge point is known to the area method's resolution (1/n pixel,
     // uniform: / sqrt 12); the radius is a mean over N points, the RMS a
     // spread of them.
     let sigma = px / effort.strata() / 12f64.sqrt();
     let n = dirs.len() as f64;
-    // The outline's extent: width along the motion (azimuth) and height
-    // across it (elevation), from its extreme points, which do not depend
-    // on how the outline is sampled. Each extreme is one edge point, taken
-    // from scans that cross the outline squarely there: rows for the width,
-    // columns for the height.
+    let mut quantities = extents(&row_dirs, &col_dirs, &expected_dirs, sigma);
+    if sphere.contracted {
+        quantities.extend(circle(&measured, &expected, sigma, n));
+    }
+    let marks: Vec<DVec3> = expected_dirs.iter().step_by(45).copied().collect();
+    Ok(Findings {
+        views: vec![setup.full_view("view", &marks)?],
+        quantities,
+    })
+}
+
+/// The outline's extent: width along the motion (azimuth) and height
+/// across it (elevation), from its extreme points, which do not depend on
+/// how the outline is sampled. Each extreme is one edge point (known to
+/// `sigma`, degrees), taken from scans that cross the outline squarely
+/// there: rows for the width, columns for the height.
+fn extents(
+    row_dirs: &[DVec3],
+    col_dirs: &[DVec3],
+    expected_dirs: &[DVec3],
+    sigma: f64,
+) -> Vec<Quantity> {
     let tol_extent = 3.0 * sigma * 2f64.sqrt();
-    let mut quantities = vec![
+    vec![
         Quantity {
             name: "angular width of the outline along the motion".into(),
             measured: Reading {
-                value: span(&row_dirs, azimuth),
+                value: span(row_dirs, azimuth),
                 tolerance: tol_extent,
             },
-            expected: span(&expected_dirs, azimuth),
+            expected: span(expected_dirs, azimuth),
             paper: None,
             unit: Unit::Degrees,
         },
         Quantity {
             name: "angular height of the outline across the motion".into(),
             measured: Reading {
-                value: span(&col_dirs, elevation),
+                value: span(col_dirs, elevation),
                 tolerance: tol_extent,
             },
-            expected: span(&expected_dirs, elevation),
+            expected: span(expected_dirs, elevation),
             paper: None,
             unit: Unit::Degrees,
         },
-    ];
-    if contracted {
-        // A circle: the fitted circle does not depend on the sampling.
-        quantities.push(Quantity {
+    ]
+}
+
+/// The contracted sphere's outline is a circle: the fitted circle's radius
+/// (a mean over `n` edge points, each known to `sigma`) and the outline's
+/// RMS deviation from it, neither depending on the sampling.
+fn circle(measured: &SkyCircle, expected: &SkyCircle, sigma: f64, n: f64) -> [Quantity; 2] {
+    [
+        Quantity {
             name: "angular radius of the outline (fitted circle)".into(),
             measured: Reading {
                 value: measured.radius_deg,
@@ -297,8 +336,8 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
             expected: expected.radius_deg,
             paper: None,
             unit: Unit::Degrees,
-        });
-        quantities.push(Quantity {
+        },
+        Quantity {
             name: "RMS deviation of the outline from a circle".into(),
             measured: Reading {
                 value: measured.rms_deg,
@@ -307,11 +346,6 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
             expected: expected.rms_deg,
             paper: None,
             unit: Unit::Degrees,
-        });
-    }
-    let marks: Vec<DVec3> = expected_dirs.iter().step_by(45).copied().collect();
-    Ok(Findings {
-        views: vec![setup.full_view("view", &marks)?],
-        quantities,
-    })
+        },
+    ]
 }

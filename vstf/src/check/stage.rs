@@ -8,15 +8,13 @@
 //! camera is at x = 0), so both edges of its top face are measured; of the
 //! bars at x = 1 and 2 only the right edges (the left side faces are in view).
 
-use super::EdgeTrace;
 use super::{
-    background, difference, fixture_model, is_background, trace_rows, Edge, Effort, Findings,
-    Quantity, Reading, Setup, Unit,
+    difference, fixture_model, Effort, Findings, OnPlane, Probe, Probed, Quantity, Reading, Setup,
+    Sweep, Unit,
 };
 use crate::fixture::{Fixture, MeshSpec};
-use crate::measure::{edge, Pinhole, Plane, Scan};
+use crate::measure::Plane;
 use glam::DVec3;
-use image::RgbImage;
 
 const NAME: &str = "stage";
 const AXES: &str = "x and z axis bars";
@@ -113,47 +111,49 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
 }
 
 /// Edges on the stage's top plane y = `top`, as (depth, x), within 0.35
-/// of depth [`Z`].
-fn trace_on_stage(
-    img: &RgbImage,
-    camera: &Pinhole,
-    top: f64,
-    find: impl Fn(Scan) -> Option<f64>,
-) -> EdgeTrace {
-    trace_rows(
-        img,
-        camera,
-        Plane::y(top),
-        find,
-        |p: DVec3| (p.z, p.x),
-        (Z - 0.35, Z + 0.35),
+/// of depth [`Z`], fitted by straight lines.
+fn on_stage(top: f64) -> OnPlane<impl Fn(DVec3) -> (f64, f64)> {
+    OnPlane {
+        plane: Plane::y(top),
+        coords: |p: DVec3| (p.z, p.x),
+        range: (Z - 0.35, Z + 0.35),
+        degree: 1,
+    }
+}
+
+/// A 2:1 strip probe of the objects `keep`, looking at `look_at` with
+/// horizontal field of view `hfov_deg`.
+fn strip(
+    setup: &Setup,
+    keep: &[&str],
+    look_at: DVec3,
+    hfov_deg: f64,
+    effort: &Effort,
+) -> Result<Probed, String> {
+    Probed::render(
+        setup,
+        &Probe {
+            keep,
+            look_at,
+            hfov_deg,
+            size: (effort.probe, effort.probe / 2),
+            spp: effort.spp,
+        },
     )
 }
 
 /// Both edges of the top face of the z axis bar, alone in a narrow probe,
 /// at depth [`Z`].
 fn axis_bar_edges(setup: &Setup, top: f64, effort: &Effort) -> Result<(Reading, Reading), String> {
-    let bg = background(setup.fixture);
     let fail = |what: &str, e: String| format!("{NAME}: {what}: {e}");
-    let (img, camera) = setup.probe(
-        &[AXES],
-        DVec3::new(0.0, top, Z),
-        4.0,
-        effort.probe,
-        effort.probe / 2,
-        effort.spp,
-    )?;
-    let w = i64::from(img.width());
-    let left = trace_on_stage(&img, &camera, top, |s| {
-        edge(&img, s, 0, 1, |c| is_background(c, bg))
-    });
-    let right = trace_on_stage(&img, &camera, top, |s| {
-        edge(&img, s, w - 1, -1, |c| is_background(c, bg))
-    });
-    let left = Edge::fit(&left, 1, effort)
+    let probe = strip(setup, &[AXES], DVec3::new(0.0, top, Z), 4.0, effort)?;
+    let stage = on_stage(top);
+    let left = probe
+        .fit(&stage, probe.from_left(), probe.background(), effort)
         .map_err(|e| fail("axis bar left edge", e))?
         .at(Z);
-    let right = Edge::fit(&right, 1, effort)
+    let right = probe
+        .fit(&stage, probe.from_right(), probe.background(), effort)
         .map_err(|e| fail("axis bar right edge", e))?
         .at(Z);
     Ok((left, right))
@@ -162,27 +162,19 @@ fn axis_bar_edges(setup: &Setup, top: f64, effort: &Effort) -> Result<(Reading, 
 /// The right edges of the grid bars x = 1 and 2 at depth [`Z`], each
 /// scanned leftwards from midway to the next bar.
 fn grid_bar_right_edges(setup: &Setup, top: f64, effort: &Effort) -> Result<[Reading; 2], String> {
-    let bg = background(setup.fixture);
     let cam = setup.camera_x();
-    let (img, camera) = setup.probe(
-        &[GRID],
-        DVec3::new(1.5, top, Z),
-        5.0,
-        effort.probe,
-        effort.probe / 2,
-        effort.spp,
-    )?;
+    let probe = strip(setup, &[GRID], DVec3::new(1.5, top, Z), 5.0, effort)?;
+    let stage = on_stage(top);
     let right_edge = |k: f64| -> Result<Reading, String> {
-        let from = (camera
+        let from = (probe
+            .camera
             .pixel_of(DVec3::new(k + 0.5, top, Z) - cam)
             .ok_or("bar out of view")?
             .0
             .floor() as i64)
-            .clamp(0, i64::from(img.width()) - 1);
-        let trace = trace_on_stage(&img, &camera, top, |s| {
-            edge(&img, s, from, -1, |c| is_background(c, bg))
-        });
-        Ok(Edge::fit(&trace, 1, effort)
+            .clamp(0, i64::from(probe.img.width()) - 1);
+        Ok(probe
+            .fit(&stage, Sweep { from, step: -1 }, probe.background(), effort)
             .map_err(|e| format!("{NAME}: bar x = {k}: {e}"))?
             .at(Z))
     };

@@ -9,11 +9,11 @@
 //! the feet of those edges.
 
 use super::{
-    background, difference, fixture_model, is_background, motion_of, trace_rows, Edge, Effort,
-    Findings, Quantity, Reading, Setup, Unit,
+    difference, fixture_model, motion_of, Effort, Findings, OnPlane, Probed, Quantity, Reading,
+    Setup, Unit,
 };
 use crate::fixture::Fixture;
-use crate::measure::{edge, Plane};
+use crate::measure::Plane;
 use crate::oracle::{body_point, instantaneous, retarded};
 use glam::DVec3;
 use renderer::{LightSpeed, Model};
@@ -134,42 +134,28 @@ struct Feet {
 /// computes where first principles put them.
 fn flange_feet(setup: &Setup, band: &str, fl: &Flange, effort: &Effort) -> Result<Feet, String> {
     let (model, tc, cam) = (setup.model, setup.camera_t, setup.camera_x());
-    let bg = background(setup.fixture);
     let m = motion_of(setup.fixture, fl.front, model)?;
     let (start, v) = (m.start, m.velocity);
-    let keep = [fl.front, fl.side];
-    let (look, vfov) = setup.aim(&keep, 0.1)?;
-    let (img, camera) = setup.probe(&keep, look, vfov, effort.probe, effort.probe, effort.spp)?;
-    let plane = Plane::z(start.x.z + DEPTH);
-    let local = |p: DVec3| (p.y - start.x.y, p.x);
-    let heights = (0.05 * HEIGHT, 0.95 * HEIGHT);
-    // The leading edge faces the direction of motion: scan in from that side.
-    let (from, step) = if v.x > 0.0 {
-        (i64::from(img.width()) - 1, -1)
-    } else {
-        (0, 1)
+    let probe = Probed::aimed(setup, &[fl.front, fl.side], 0.1, effort)?;
+    let front = OnPlane {
+        plane: Plane::z(start.x.z + DEPTH),
+        coords: |p: DVec3| (p.y - start.x.y, p.x),
+        range: (0.05 * HEIGHT, 0.95 * HEIGHT),
+        degree: 3,
     };
-    let lead = trace_rows(
-        &img,
-        &camera,
-        plane,
-        |s| edge(&img, s, from, step, |c| is_background(c, bg)),
-        local,
-        heights,
-    );
-    let trail = trace_rows(
-        &img,
-        &camera,
-        plane,
-        |s| edge(&img, s, from, step, fl.is_front),
-        local,
-        heights,
-    );
+    // The leading edge faces the direction of motion: scan in from that side.
+    let sweep = if v.x > 0.0 {
+        probe.from_right()
+    } else {
+        probe.from_left()
+    };
     let fail = |what: &str, e: String| format!("{NAME} {band} flange {}: {what}: {e}", fl.tag);
-    let lead = Edge::fit(&lead, 3, effort)
+    let lead = probe
+        .fit(&front, sweep, probe.background(), effort)
         .map_err(|e| fail("leading edge", e))?
         .at(0.0);
-    let trail = Edge::fit(&trail, 3, effort)
+    let trail = probe
+        .fit(&front, sweep, fl.is_front, effort)
         .map_err(|e| fail("trailing edge", e))?
         .at(0.0);
     let seen = |x: f64| -> Result<DVec3, String> {

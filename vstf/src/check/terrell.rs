@@ -10,11 +10,11 @@
 //! removed (the contraction, which Terrell rotation masks).
 
 use super::{
-    background, difference, fixture_model, is_background, motion_of, trace_rows, Edge, Effort,
-    Findings, Quantity, Reading, Setup, UniformMotion, Unit,
+    difference, fixture_model, motion_of, Edge, Effort, Findings, OnPlane, Probed, Quantity,
+    Reading, Setup, UniformMotion, Unit,
 };
 use crate::fixture::Fixture;
-use crate::measure::{edge, Plane};
+use crate::measure::Plane;
 use crate::oracle::{body_point, gamma, retarded};
 use glam::DVec3;
 
@@ -51,44 +51,26 @@ struct Edges {
 /// Traces and fits the flange's edges on a probe aimed at its front and side.
 fn measure_edges(setup: &Setup, m: &UniformMotion, effort: &Effort) -> Result<Edges, String> {
     let name = &setup.fixture.name;
-    let keep = [FRONT, SIDE];
-    let (look, vfov) = setup.aim(&keep, 0.1)?;
-    let (img, camera) = setup.probe(&keep, look, vfov, effort.probe, effort.probe, effort.spp)?;
-    let bg = background(setup.fixture);
-    let w = i64::from(img.width());
+    let probe = Probed::aimed(setup, &[FRONT, SIDE], 0.1, effort)?;
     let start = m.start;
-    let (front_plane, far_plane) = (Plane::z(start.x.z + DEPTH), Plane::z(start.x.z));
-    let heights = (0.05 * HEIGHT, 0.95 * HEIGHT);
-    let local = |p: DVec3| (p.y - start.x.y, p.x);
+    let face = |z: f64| OnPlane {
+        plane: Plane::z(z),
+        coords: move |p: DVec3| (p.y - start.x.y, p.x),
+        range: (0.05 * HEIGHT, 0.95 * HEIGHT),
+        degree: 3,
+    };
+    let (front, back) = (face(start.x.z + DEPTH), face(start.x.z));
     let fail = |what: &str, e: String| format!("{name}: {what}: {e}");
-    let trailing = trace_rows(
-        &img,
-        &camera,
-        front_plane,
-        |s| edge(&img, s, w - 1, -1, is_front),
-        local,
-        heights,
-    );
-    let leading = trace_rows(
-        &img,
-        &camera,
-        front_plane,
-        |s| edge(&img, s, w - 1, -1, |c| is_background(c, bg)),
-        local,
-        heights,
-    );
-    let far = trace_rows(
-        &img,
-        &camera,
-        far_plane,
-        |s| edge(&img, s, 0, 1, |c| is_background(c, bg)),
-        local,
-        heights,
-    );
     Ok(Edges {
-        trailing: Edge::fit(&trailing, 3, effort).map_err(|e| fail("trailing edge", e))?,
-        leading: Edge::fit(&leading, 3, effort).map_err(|e| fail("leading edge", e))?,
-        far: Edge::fit(&far, 3, effort).map_err(|e| fail("far edge", e))?,
+        trailing: probe
+            .fit(&front, probe.from_right(), is_front, effort)
+            .map_err(|e| fail("trailing edge", e))?,
+        leading: probe
+            .fit(&front, probe.from_right(), probe.background(), effort)
+            .map_err(|e| fail("leading edge", e))?,
+        far: probe
+            .fit(&back, probe.from_left(), probe.background(), effort)
+            .map_err(|e| fail("far edge", e))?,
     })
 }
 
@@ -126,32 +108,66 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
         model,
         camera_t: f.spec.camera.t,
     };
-    let (tc, cam) = (setup.camera_t, setup.camera_x());
+    let edges = measure_edges(&setup, &m, effort)?;
+    let points = SeenPoints::of(&setup, &m)?;
+    let quantities = quantities(&setup, &m, &edges, &points);
+    let cam = setup.camera_x();
+    let marks: Vec<DVec3> = CORNERS
+        .iter()
+        .filter_map(|&(x, y, z)| seen(&setup, &m, x, y, z).ok())
+        .map(|p| (p - cam).normalize())
+        .collect();
+    Ok(Findings {
+        views: vec![setup.full_view("view", &marks)?],
+        quantities,
+    })
+}
+
+/// Where first principles put the points of the flange that are measured:
+/// the trailing edge's top, foot and middle, the far face's top trailing
+/// corner and the leading edge's middle (front face).
+struct SeenPoints {
+    upper: DVec3,
+    lower: DVec3,
+    mid: DVec3,
+    far_top: DVec3,
+    lead_mid: DVec3,
+}
+
+impl SeenPoints {
+    fn of(setup: &Setup, m: &UniformMotion) -> Result<SeenPoints, String> {
+        let seen = |x: f64, y: f64, z: f64| seen(setup, m, x, y, z);
+        Ok(SeenPoints {
+            upper: seen(0.0, HEIGHT, DEPTH)?,
+            lower: seen(0.0, 0.0, DEPTH)?,
+            mid: seen(0.0, HEIGHT / 2.0, DEPTH)?,
+            far_top: seen(0.0, HEIGHT, 0.0)?,
+            lead_mid: seen(WIDTH, HEIGHT / 2.0, DEPTH)?,
+        })
+    }
+}
+
+/// The table: each quantity read off the fitted edges against the seen
+/// points, with the paper's figure (Figures 17-18).
+fn quantities(
+    setup: &Setup,
+    m: &UniformMotion,
+    edges: &Edges,
+    points: &SeenPoints,
+) -> Vec<Quantity> {
     let Edges {
         trailing,
         leading,
         far,
-    } = measure_edges(&setup, &m, effort)?;
-    let seen = |x: f64, y: f64, z: f64| seen(&setup, &m, x, y, z);
-    let upper = seen(0.0, HEIGHT, DEPTH)?;
-    let lower = seen(0.0, 0.0, DEPTH)?;
-    let mid = seen(0.0, HEIGHT / 2.0, DEPTH)?;
-    let far_top = seen(0.0, HEIGHT, 0.0)?;
-    let lead_mid = seen(WIDTH, HEIGHT / 2.0, DEPTH)?;
-    let lab_width = if m.contracted {
-        WIDTH / gamma(m.velocity.length())
-    } else {
-        WIDTH
-    };
+    } = edges;
+    let SeenPoints {
+        upper,
+        lower,
+        mid,
+        far_top,
+        lead_mid,
+    } = points;
     let (m_lead, m_trail) = (leading.at(HEIGHT / 2.0), trailing.at(HEIGHT / 2.0));
-    let m_length = delay_removed_length(
-        &m_lead,
-        &m_trail,
-        DVec3::new(0.0, m.start.x.y + HEIGHT / 2.0, m.start.x.z + DEPTH),
-        m.velocity.x,
-        tc,
-        cam,
-    );
     let length = |name: &str, measured: Reading, expected: f64, paper: Option<f64>| Quantity {
         name: name.into(),
         measured,
@@ -159,7 +175,7 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
         paper,
         unit: Unit::LUnits,
     };
-    let quantities = vec![
+    vec![
         length(
             "trailing upper corner (x)",
             trailing.at(HEIGHT),
@@ -196,26 +212,38 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
             lead_mid.x - mid.x,
             None,
         ),
-        Quantity {
-            name: "front length with light delay removed / proper length".into(),
-            measured: Reading {
-                value: m_length.value / WIDTH,
-                tolerance: m_length.tolerance / WIDTH,
-            },
-            expected: lab_width / WIDTH,
-            paper: m.contracted.then_some(0.5),
-            unit: Unit::Ratio,
+        contraction(setup, m, &m_lead, &m_trail),
+    ]
+}
+
+/// The front's length with the light delay removed, over its proper
+/// length, from the leading and trailing edges read at mid-height: the
+/// Lorentz contraction 1/gamma for a V_obj, 1 for an H_obj.
+fn contraction(setup: &Setup, m: &UniformMotion, lead: &Reading, trail: &Reading) -> Quantity {
+    let (tc, cam) = (setup.camera_t, setup.camera_x());
+    let lab_width = if m.contracted {
+        WIDTH / gamma(m.velocity.length())
+    } else {
+        WIDTH
+    };
+    let m_length = delay_removed_length(
+        lead,
+        trail,
+        DVec3::new(0.0, m.start.x.y + HEIGHT / 2.0, m.start.x.z + DEPTH),
+        m.velocity.x,
+        tc,
+        cam,
+    );
+    Quantity {
+        name: "front length with light delay removed / proper length".into(),
+        measured: Reading {
+            value: m_length.value / WIDTH,
+            tolerance: m_length.tolerance / WIDTH,
         },
-    ];
-    let marks: Vec<DVec3> = CORNERS
-        .iter()
-        .filter_map(|&(x, y, z)| seen(x, y, z).ok())
-        .map(|p| (p - cam).normalize())
-        .collect();
-    Ok(Findings {
-        views: vec![setup.full_view("view", &marks)?],
-        quantities,
-    })
+        expected: lab_width / WIDTH,
+        paper: m.contracted.then_some(0.5),
+        unit: Unit::Ratio,
+    }
 }
 
 /// The lab length between the leading and trailing edges at one lab time,

@@ -4,8 +4,10 @@
 //! frame), and the fit is read at elevation 0.
 
 use super::{azimuth_deg, CUBE, NAME};
-use crate::check::{background, is_background, trace_rows, Edge, Effort, Reading, Setup};
-use crate::measure::{edge, Pinhole, Plane};
+use crate::check::{
+    background, is_background, Edge, EdgeTrace, Effort, OnPlane, Probe, Probed, Reading, Setup,
+};
+use crate::measure::{Pinhole, Plane};
 use glam::DVec3;
 
 /// Measures the silhouette edge on the horizon near azimuth `near_deg`:
@@ -21,35 +23,37 @@ fn measure_edge(
     let look = DVec3::new(a.sin(), 0.0, -a.cos());
     // A strip 3 degrees wide and 0.6 tall across the horizon, half the
     // probe's width: the angle targets (0.05 deg) are met ~100x over.
-    let (img, camera) = setup.probe(
-        &[CUBE],
-        look,
-        3.0,
-        effort.probe / 2,
-        effort.probe / 10,
-        effort.spp,
+    let mut probe = Probed::render(
+        setup,
+        &Probe {
+            keep: &[CUBE],
+            look_at: look,
+            hfov_deg: 3.0,
+            size: (effort.probe / 2, effort.probe / 10),
+            spp: effort.spp,
+        },
     )?;
-    let bg = background(setup.fixture);
-    let w = i64::from(img.width());
-    let (from, step) = if right { (w - 1, -1) } else { (0, 1) };
+    let sweep = if right {
+        probe.from_right()
+    } else {
+        probe.from_left()
+    };
     // Angles are the observer's: lines of sight in the camera's own frame
     // (the same as the lab's when the camera is at rest).
-    let camera = camera.still();
+    probe.camera = probe.camera.still();
     // On the unit sphere of directions: elevation (deg) against azimuth (deg).
-    let sphere = Plane::z(-1.0);
-    let trace = trace_rows(
-        &img,
-        &camera,
-        sphere,
-        |s| edge(&img, s, from, step, |c| is_background(c, bg)),
-        |p| (p.y.atan2(p.x.hypot(p.z)).to_degrees(), azimuth_deg(p)),
-        (-0.25, 0.25),
-    );
-    let trace = crate::check::EdgeTrace {
-        footprint: measure_angular(&camera),
+    let sphere = OnPlane {
+        plane: Plane::z(-1.0),
+        coords: |p: DVec3| (p.y.atan2(p.x.hypot(p.z)).to_degrees(), azimuth_deg(p)),
+        range: (-0.25, 0.25),
+        degree: 2,
+    };
+    let trace = probe.trace(&sphere, sweep, probe.background());
+    let trace = EdgeTrace {
+        footprint: measure_angular(&probe.camera),
         ..trace
     };
-    Ok(Edge::fit(&trace, 2, effort)
+    Ok(Edge::fit(&trace, sphere.degree, effort)
         .map_err(|e| format!("{NAME}: edge near {near_deg:.2} deg: {e}"))?
         .at(0.0))
 }
@@ -94,14 +98,13 @@ fn coarse_strip(
     hfov_deg: f64,
 ) -> Result<(CoarseEdge, CoarseEdge), String> {
     let a = centre_deg.to_radians();
-    let (img, camera) = setup.probe(
-        &[CUBE],
-        DVec3::new(a.sin(), 0.0, -a.cos()),
+    let (img, camera) = setup.probe(&Probe {
+        keep: &[CUBE],
+        look_at: DVec3::new(a.sin(), 0.0, -a.cos()),
         hfov_deg,
-        1441,
-        3,
-        1,
-    )?;
+        size: (1441, 3),
+        spp: 1,
+    })?;
     let bg = background(setup.fixture);
     let row = img.height() / 2;
     let xs: Vec<u32> = (0..img.width())
