@@ -4,7 +4,7 @@
 //! the light a surface receives left the light source, or the reflected
 //! object, earlier.
 
-use super::carried::Carried;
+use super::carried::{Carried, Shaded};
 use super::doppler::{self, Effects, Leg};
 use crate::camera::{Camera, Kinematics};
 use crate::color::{self, Spectrum, BAND_LEN};
@@ -24,7 +24,7 @@ pub(super) fn sample(s: &Spectrum, nm: &Band) -> Band {
     std::array::from_fn(|i| s.at(nm[i]))
 }
 
-fn scaled(nm: &Band, f: f64) -> Band {
+pub(super) fn scaled(nm: &Band, f: f64) -> Band {
     nm.map(|x| x * f)
 }
 
@@ -55,24 +55,24 @@ pub struct Shader<'a> {
 
 /// What shading at a hit needs beyond the hit: the geometry of the light and
 /// view, the shadow test, and the surface's motion for the colour effects.
-struct Lit {
-    object: u32,
-    tau: f64,
-    n: DVec3,
-    l: DVec3,
-    light_distance: f64,
-    lambert: f64,
-    shadowed: bool,
+pub(super) struct Lit {
+    pub(super) object: u32,
+    pub(super) tau: f64,
+    pub(super) n: DVec3,
+    pub(super) l: DVec3,
+    pub(super) light_distance: f64,
+    pub(super) lambert: f64,
+    pub(super) shadowed: bool,
     /// m.specular (r.v)^shininess, 0 in shadow.
-    specular: f64,
+    pub(super) specular: f64,
     /// Lab velocity of the surface and the gamma of its clock (1 when
     /// Lorentz-decoupled: classical Doppler).
-    velocity: DVec3,
-    gamma: f64,
+    pub(super) velocity: DVec3,
+    pub(super) gamma: f64,
     /// nu_surface / nu_lab for the light's leg, and nu_lab / nu_surface for
     /// the leg from the surface towards the ray's origin (1 when off).
-    from_light: f64,
-    out: f64,
+    pub(super) from_light: f64,
+    pub(super) out: f64,
 }
 
 impl Shader<'_> {
@@ -127,7 +127,7 @@ impl Shader<'_> {
                 if T::ENABLED {
                     trace.record(self.hit_step(kind, ray, &hit));
                 }
-                C::shade(self, ray, &hit, depth, band, trace)
+                self.shade_hit(ray, &hit, depth, band, trace)
             }
         }
     }
@@ -246,85 +246,61 @@ impl Shader<'_> {
 
     /// Lambert plus Phong at `hit`, plus the mirror term.
     pub fn shade(&self, ray: &Ray, hit: &Hit, depth: u32) -> DVec3 {
-        self.shade_traced(ray, hit, depth, &mut NoTrace)
+        self.shade_hit(ray, hit, depth, &(), &mut NoTrace)
     }
 
-    /// RGB shading. With the searchlight on (and wavelengths unshifted) each
-    /// leg scales the frequency-integrated intensity: the light's
-    /// irradiance by (nu_s/nu_lab)^2, mirrored radiance by ^4, the radiance
-    /// leaving towards the ray's origin by (nu_lab/nu_s)^4.
-    pub(super) fn shade_traced<T: Trace>(
+    /// The colour `C` leaving `hit` towards the ray's origin. The surface
+    /// forms its local term in its own frame, mirrors what reaches it along
+    /// its mirror ray, and the light leaves towards the ray's origin. Where
+    /// the colour carries the surface's frequency factors (paper 6), the
+    /// mirrored radiance scales by (nu_s/nu_lab)^4 and the radiance leaving
+    /// by (nu_lab/nu_s)^4 with the searchlight (frequency-integrated; a
+    /// spectrum also shifts its wavelengths, see [`Leg`]).
+    pub(super) fn shade_hit<C: Carried, T: Trace>(
         &self,
         ray: &Ray,
         hit: &Hit,
         depth: u32,
+        band: &C::At,
         trace: &mut T,
-    ) -> DVec3 {
+    ) -> C {
         let lit = self.lit(ray, hit, trace);
         let m = &self.db.objects()[lit.object as usize].material;
-        if self.effects.searchlight && (lit.out <= 0.0 || lit.from_light <= 0.0) {
+        let factors = C::carries_factors(self.effects);
+        if factors && (lit.out <= 0.0 || lit.from_light <= 0.0) {
             // A superluminal decoupled surface running into its own light:
             // no Doppler factor exists.
-            return DVec3::ZERO;
+            return C::ZERO;
         }
-        let albedo = m.color_at(lit.tau);
-        let ambient = albedo * self.light.ambient;
-        let (mut diffuse, mut specular) = (DVec3::ZERO, 0.0);
-        if lit.lambert > 0.0 && !lit.shadowed {
-            specular = lit.specular;
-            diffuse = albedo * (m.diffuse * lit.lambert);
-        }
-        let fx = self.effects;
-        let mut local = if fx.searchlight {
-            ambient
-                + self.light.color
-                    * (diffuse + DVec3::splat(specular))
-                    * fx.intensity(lit.from_light, Leg::PointSource)
-        } else {
-            ambient + self.light.color * (diffuse + DVec3::splat(specular))
-        };
-        if let Some(e) = &m.emission {
-            local += color::to_rgb(&e.sample_scaled(1.0));
-        }
-        let mut color = local;
-        let mut mirror_factor = None;
+        let gain = |f: f64, leg: Leg| factors.then(|| self.effects.intensity(f, leg));
+        let (local, detail) = C::local(self, m, &lit, band, gain(lit.from_light, Leg::PointSource));
+        let mut mixed = local;
+        let mut from_mirror = None;
         if m.mirror > 0.0 && depth < self.max_depth {
             let (reflected, f) = self.mirror_ray(ray, hit, &lit);
-            mirror_factor = Some(f);
-            let seen = self.radiance_traced(&reflected, depth + 1, RayKind::Reflection, trace);
-            let seen = if fx.searchlight {
-                seen * fx.intensity(f, Leg::Radiance)
-            } else {
-                seen
-            };
-            color = local * (1.0 - m.mirror) + seen * m.mirror;
+            from_mirror = Some(f);
+            let at = C::mirror_band(&detail, f);
+            let seen: C = self.carry(&reflected, depth + 1, RayKind::Reflection, &at, trace);
+            mixed = local.mix(seen.with_gain(gain(f, Leg::Radiance)), m.mirror);
         }
-        if fx.searchlight {
-            color *= fx.intensity(lit.out, Leg::Radiance);
-        }
+        let color = mixed.with_gain(gain(lit.out, Leg::Radiance));
         if T::ENABLED {
-            trace.record(Step::Shading {
+            let shaded = Shaded {
                 depth,
-                albedo,
-                ambient,
-                light_vector: lit.l,
-                light_distance: lit.light_distance,
-                lambert: lit.lambert,
-                in_shadow: lit.shadowed,
-                diffuse,
-                specular,
+                lit: &lit,
                 mirror: m.mirror,
+                from_mirror,
                 local,
+                detail: &detail,
+                mixed,
                 color,
-            });
-            if fx.any() {
-                trace.record(self.doppler_step(depth, &lit, mirror_factor, None));
-            }
+            };
+            C::record(self, &shaded, trace);
         }
         color
     }
 
-    fn doppler_step(
+    pub(super) fn doppler_step(
         &self,
         depth: u32,
         lit: &Lit,
@@ -355,71 +331,6 @@ impl Shader<'_> {
         trace: &mut T,
     ) -> Band {
         self.carry(ray, depth, kind, nm, trace)
-    }
-
-    /// Spectral shading. In the surface's frame the lab wavelengths `nm`
-    /// are nm * (nu_lab / nu_s); there the surface reflects the light (its
-    /// spectrum evaluated at the wavelengths that left the lamp, times
-    /// (nu_s/nu_lab)^3 with the searchlight), mirrors what reaches it, and
-    /// emits; back in the lab the radiance scales by (nu_lab/nu_s)^5.
-    pub(super) fn shade_spectral<T: Trace>(
-        &self,
-        ray: &Ray,
-        hit: &Hit,
-        depth: u32,
-        nm: &Band,
-        trace: &mut T,
-    ) -> Band {
-        let lit = self.lit(ray, hit, trace);
-        let m = &self.db.objects()[lit.object as usize].material;
-        if lit.out <= 0.0 || lit.from_light <= 0.0 {
-            // A superluminal decoupled surface running into its own light.
-            return [0.0; BAND_LEN];
-        }
-        let fx = self.effects;
-        let surface_nm = scaled(nm, lit.out);
-        let reflectance = sample(&m.reflectance_at(lit.tau), &surface_nm);
-        let white = sample(&Spectrum::Rgb(DVec3::ONE), &surface_nm);
-        let lamp = sample(&self.light.spectrum(), &scaled(&surface_nm, lit.from_light));
-        let lamp_gain = fx.intensity(lit.from_light, Leg::PointSource);
-        let direct = if lit.lambert > 0.0 && !lit.shadowed {
-            (m.diffuse * lit.lambert, lit.specular)
-        } else {
-            (0.0, 0.0)
-        };
-        let emission = m.emission.as_ref().map(|e| sample(e, &surface_nm));
-        let mut local: Band = std::array::from_fn(|i| {
-            let lamp = lamp[i] * lamp_gain;
-            reflectance[i] * (self.light.ambient * white[i] + direct.0 * lamp)
-                + direct.1 * lamp
-                + emission.map_or(0.0, |e| e[i])
-        });
-        let mut mirror_factor = None;
-        if m.mirror > 0.0 && depth < self.max_depth {
-            let (reflected, f) = self.mirror_ray(ray, hit, &lit);
-            mirror_factor = Some(f);
-            let seen = self.spectral_traced(
-                &reflected,
-                depth + 1,
-                RayKind::Reflection,
-                &scaled(&surface_nm, f),
-                trace,
-            );
-            let gain = fx.intensity(f, Leg::Radiance);
-            for (l, s) in local.iter_mut().zip(seen) {
-                *l = *l * (1.0 - m.mirror) + s * gain * m.mirror;
-            }
-        }
-        if T::ENABLED {
-            trace.record(self.doppler_step(
-                depth,
-                &lit,
-                mirror_factor,
-                Some((&surface_nm, &local)),
-            ));
-        }
-        let gain = fx.intensity(lit.out, Leg::Radiance);
-        local.map(|l| l * gain)
     }
 
     /// The colour the camera records along `ray` (one of its rays, in the
