@@ -9,7 +9,7 @@ use super::{
 };
 use crate::fixture::Fixture;
 use crate::measure::Plane;
-use crate::oracle::{body_point, retarded};
+use crate::oracle::retarded;
 use glam::DVec3;
 use renderer::Model;
 
@@ -50,13 +50,7 @@ pub fn measure_foot(
 /// `tc`: its worldline against the camera's past light cone.
 pub fn expected_foot(f: &Fixture, model: Model, tc: f64) -> Result<DVec3, String> {
     let m = motion_of(f, "flange", model)?;
-    let foot = body_point(
-        m.start.t,
-        m.start.x,
-        m.velocity,
-        DVec3::new(WIDTH, 0.0, DEPTH),
-        m.contracted,
-    );
+    let foot = m.point(DVec3::new(WIDTH, 0.0, DEPTH));
     retarded(&foot, tc, f.spec.camera.position)
         .map(|r| r.x)
         .ok_or_else(|| "the right edge is never seen".into())
@@ -123,14 +117,11 @@ fn corner_marks(setup: &Setup) -> Result<Vec<DVec3>, String> {
     Ok(corners
         .iter()
         .filter_map(|&(x, y, z)| {
-            let p = body_point(
-                m.start.t,
-                m.start.x,
-                m.velocity,
-                DVec3::new(x, y, z),
-                m.contracted,
-            );
-            retarded(&p, setup.camera_t, setup.camera_x())
+            retarded(
+                &m.point(DVec3::new(x, y, z)),
+                setup.camera_t,
+                setup.camera_x(),
+            )
         })
         .map(|r| r.direction)
         .collect())

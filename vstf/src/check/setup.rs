@@ -11,6 +11,7 @@
 use super::runner::ViewReport;
 use crate::fixture::{Fixture, Overrides, View};
 use crate::measure::{self, Kinematics, Pinhole};
+use crate::oracle::{body_point, PointWorldline};
 use glam::DVec3;
 use image::RgbImage;
 use renderer::{Event, LightSpeed, Model, Motion, Traversal};
@@ -252,6 +253,20 @@ pub struct UniformMotion {
     /// Whether it is Lorentz-contracted under the model (a V_obj under the
     /// Lorentz transform).
     pub contracted: bool,
+}
+
+impl UniformMotion {
+    /// The worldline of the body point at `r` (object coordinates; rest
+    /// frame for a contracted object).
+    pub fn point(&self, r: DVec3) -> PointWorldline {
+        body_point(
+            self.start.t,
+            self.start.x,
+            self.velocity,
+            r,
+            self.contracted,
+        )
+    }
 }
 
 /// The uniform motion under `model` of the object named `name`, read from

@@ -14,7 +14,7 @@ use super::{
 };
 use crate::fixture::Fixture;
 use crate::measure::Plane;
-use crate::oracle::{body_point, instantaneous, retarded};
+use crate::oracle::{instantaneous, retarded};
 use glam::DVec3;
 use renderer::{LightSpeed, Model};
 
@@ -159,7 +159,7 @@ fn flange_feet(setup: &Setup, band: &str, fl: &Flange, effort: &Effort) -> Resul
         .map_err(|e| fail("trailing edge", e))?
         .at(0.0);
     let seen = |x: f64| -> Result<DVec3, String> {
-        let p = body_point(start.t, start.x, v, DVec3::new(x, 0.0, DEPTH), m.contracted);
+        let p = m.point(DVec3::new(x, 0.0, DEPTH));
         match model.light_speed {
             LightSpeed::Infinite => Ok(instantaneous(&p, tc, cam).x),
             LightSpeed::Finite => retarded(&p, tc, cam)

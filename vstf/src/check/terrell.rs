@@ -15,7 +15,7 @@ use super::{
 };
 use crate::fixture::Fixture;
 use crate::measure::Plane;
-use crate::oracle::{body_point, gamma, retarded};
+use crate::oracle::{gamma, retarded};
 use glam::DVec3;
 
 const HEIGHT: f64 = 4.0;
@@ -78,21 +78,18 @@ fn measure_edges(setup: &Setup, m: &UniformMotion, effort: &Effort) -> Result<Ed
 /// the camera event: its straight worldline against the camera's past
 /// light cone.
 fn seen(setup: &Setup, m: &UniformMotion, x: f64, y: f64, z: f64) -> Result<DVec3, String> {
-    let p = body_point(
-        m.start.t,
-        m.start.x,
-        m.velocity,
-        DVec3::new(x, y, z),
-        m.contracted,
-    );
-    retarded(&p, setup.camera_t, setup.camera_x())
-        .map(|r| r.x)
-        .ok_or_else(|| {
-            format!(
-                "{}: point ({x}, {y}, {z}) is never seen",
-                setup.fixture.name
-            )
-        })
+    retarded(
+        &m.point(DVec3::new(x, y, z)),
+        setup.camera_t,
+        setup.camera_x(),
+    )
+    .map(|r| r.x)
+    .ok_or_else(|| {
+        format!(
+            "{}: point ({x}, {y}, {z}) is never seen",
+            setup.fixture.name
+        )
+    })
 }
 
 /// The Terrell-Penrose-Boas quantities of one flange fixture (H_obj or
