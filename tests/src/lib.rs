@@ -76,3 +76,14 @@ pub fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> Scene
         material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
     }
 }
+
+/// This repository as a vstf project: its `fixtures/` and `golden/`.
+pub fn repo() -> vstf::Project {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    vstf::Project::at(&root).expect("the repository is a project")
+}
+
+/// One of this repository's fixtures, by name.
+pub fn fixture(name: &str) -> vstf::Fixture {
+    repo().load(name).unwrap_or_else(|e| panic!("{e}"))
+}

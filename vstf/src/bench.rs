@@ -3,6 +3,7 @@
 //! machine; what is quoted elsewhere are ratios between them.
 
 use crate::fixture::{Fixture, Overrides, View};
+use crate::project::Project;
 use glam::DVec3;
 use renderer::SplitMix64;
 use renderer::{
@@ -23,8 +24,14 @@ fn best_of(runs: usize, mut work: impl FnMut()) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-fn fixture_view(name: &str, w: u32, h: u32, model: Model) -> Result<(Fixture, View), String> {
-    let f = Fixture::load(name).map_err(|e| e.to_string())?;
+/// The fixture `name` of the benchmark's project at `w` x `h`, 1 sample per pixel.
+fn fixture_view(
+    plan: &Plan,
+    name: &str,
+    (w, h): (u32, u32),
+    model: Model,
+) -> Result<(Fixture, View), String> {
+    let f = plan.project.load(name).map_err(|e| e.to_string())?;
     let view = crate::run::view(
         &f,
         &Overrides {
@@ -194,17 +201,20 @@ struct Plan {
     h: u32,
     /// Timed repetitions; the best is kept.
     runs: usize,
+    /// The project whose `flange` and `teaser` fixtures are timed.
+    project: Project,
 }
 
 /// Runs the benchmark and returns the report. `quick` uses smaller images
 /// and scenes (for a smoke test); the README quotes a full run.
-pub fn run(quick: bool) -> Result<String, String> {
+pub fn run(project: &Project, quick: bool) -> Result<String, String> {
     let (w, h) = if quick { (160, 90) } else { (640, 360) };
     let plan = Plan {
         quick,
         w,
         h,
         runs: if quick { 1 } else { 3 },
+        project: project.clone(),
     };
     let mut out = String::new();
     let threads = rayon::current_num_threads();
@@ -251,7 +261,7 @@ fn rays_per_second(plan: &Plan, out: &mut String) -> Result<(), String> {
     );
     let mut ratios = Vec::new();
     for name in ["flange", "teaser"] {
-        let (f, view) = fixture_view(name, w, h, Model::RELATIVISTIC)?;
+        let (f, view) = fixture_view(plan, name, (w, h), Model::RELATIVISTIC)?;
         let db = crate::run::database(&f, true, Traversal::Bvh)?;
         let mut primary = view;
         primary.settings.shadows = false;
@@ -265,7 +275,7 @@ fn rays_per_second(plan: &Plan, out: &mut String) -> Result<(), String> {
             rays / t_primary,
             rays / t_full
         );
-        let (fi, vi) = fixture_view(name, w, h, Model::INFINITE)?;
+        let (fi, vi) = fixture_view(plan, name, (w, h), Model::INFINITE)?;
         let dbi = crate::run::database(&fi, false, Traversal::Bvh)?;
         let t_inf = best_of(runs, || drop(crate::run::render_with(&dbi, &fi, &vi)));
         ratios.push((name, t_full / t_inf));
@@ -355,7 +365,7 @@ fn growth(plan: &Plan, out: &mut String) -> Result<(), String> {
 /// 6. The main job's frame goal.
 fn teaser_frame(plan: &Plan, out: &mut String) -> Result<(), String> {
     let (fw, fh) = if plan.quick { (480, 270) } else { (1920, 1080) };
-    let (f, view) = fixture_view("teaser", fw, fh, Model::RELATIVISTIC)?;
+    let (f, view) = fixture_view(plan, "teaser", (fw, fh), Model::RELATIVISTIC)?;
     let t = Instant::now();
     let db = crate::run::database(&f, true, Traversal::Bvh)?;
     let build = t.elapsed().as_secs_f64();

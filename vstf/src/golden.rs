@@ -133,17 +133,6 @@ pub struct Store {
 }
 
 impl Store {
-    /// `golden/` and `target/vstf/` of this workspace.
-    pub fn workspace() -> Store {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .parent()
-            .expect("vstf lives in the workspace");
-        Store {
-            golden: root.join("golden"),
-            pending: root.join("target").join("vstf"),
-        }
-    }
-
     /// The approved image of a view.
     pub fn golden_path(&self, fixture: &str, view: &str) -> PathBuf {
         self.golden

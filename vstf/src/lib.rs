@@ -18,9 +18,11 @@ pub mod golden;
 pub mod measure;
 pub mod oracle;
 pub mod output;
+pub mod project;
 pub mod report;
 pub mod run;
 
 pub use check::{Effort, FixtureReport, Row, Unit};
 pub use fixture::{FieldError, Fixture, FixtureError, Overrides, View};
 pub use golden::{Comparison, Fuzzy, Store};
+pub use project::Project;

@@ -7,15 +7,17 @@ use cli::args::{Cli, Command};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let result = match Cli::parse().command {
-        Command::Render(args) => cli::render::run(args),
-        Command::Check(args) => cli::check::run(args),
-        Command::Approve(args) => cli::approve::run(args),
-        Command::Debug(args) => cli::debug::run(args),
+    let Cli { root, command } = Cli::parse();
+    let root = root.as_deref();
+    let result = match command {
+        Command::Render(args) => cli::render::run(root, args),
+        Command::Check(args) => cli::check::run(root, args),
+        Command::Approve(args) => cli::approve::run(root, args),
+        Command::Debug(args) => cli::debug::run(root, args),
         Command::DebugDiff(args) => cli::debug::diff(args),
-        Command::Animate(args) => cli::animate::run(args),
-        Command::Bench { quick } => cli::bench::run(quick),
-        Command::List => cli::list::run(),
+        Command::Animate(args) => cli::animate::run(root, args),
+        Command::Bench { quick } => cli::bench::run(root, quick),
+        Command::List => cli::list::run(root),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -2,8 +2,12 @@
 
 use std::process::Command;
 
+/// The built binary, run from this repository's root (the project of the
+/// paper's fixtures).
 fn vstf() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_vstf"))
+    let mut c = Command::new(env!("CARGO_BIN_EXE_vstf"));
+    c.current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
+    c
 }
 
 #[test]
@@ -361,5 +365,138 @@ fn doppler_and_searchlight_flags_change_moving_colours() {
     let a = render("stage", &["--searchlight"], "stage.png");
     let b = render("stage", &[], "stage-plain.png");
     assert_eq!(a, b, "the searchlight of static surfaces is 1");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The repository's root, where the paper's fixtures and goldens live.
+fn repo_root() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .canonicalize()
+        .unwrap()
+}
+
+/// A fresh, empty scratch folder for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("vstf-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Copies the files of `from` into `to`, recursively.
+fn copy_tree(from: &std::path::Path, to: &std::path::Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        let target = to.join(e.file_name());
+        if e.file_type().unwrap().is_dir() {
+            copy_tree(&e.path(), &target);
+        } else {
+            std::fs::copy(e.path(), &target).unwrap();
+        }
+    }
+}
+
+/// Flips one bit of one pixel of a PNG in place.
+fn tamper(png: &std::path::Path) {
+    let mut img = image::open(png).unwrap().to_rgb8();
+    let p = img.get_pixel(10, 10).0;
+    img.put_pixel(10, 10, image::Rgb([p[0] ^ 0x01, p[1], p[2]]));
+    img.save(png).unwrap();
+}
+
+/// The binary built from this repository, run in a copy of it with one
+/// golden tampered, compares against the copy's goldens (and so catches the
+/// tamper), writes its pending images into the copy, and leaves the
+/// repository's own golden/ and target/vstf/ alone.
+#[test]
+fn a_tampered_golden_in_a_copy_of_the_repository_is_caught() {
+    let copy = scratch("copy");
+    for dir in ["fixtures", "golden"] {
+        copy_tree(&repo_root().join(dir), &copy.join(dir));
+    }
+    tamper(&copy.join("golden/flange/frame-920.png"));
+    let ours = repo_root().join("golden/flange/frame-920.png");
+    let before = std::fs::read(&ours).unwrap();
+    let out = vstf()
+        .current_dir(copy.join("fixtures"))
+        .args(["check", "flange", "--quick"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(!out.status.success(), "the tamper passed:\n{text}");
+    assert!(
+        text.contains("golden FAIL fixture=flange view=frame-920 max_diff=1 differing=1"),
+        "{text}"
+    );
+    assert!(
+        text.contains("golden pass fixture=flange view=frame-1151"),
+        "{text}"
+    );
+    assert!(copy
+        .join("target/vstf/flange/frame-920/actual.png")
+        .is_file());
+    assert_eq!(std::fs::read(&ours).unwrap(), before);
+    // The untampered repository, checked through --root from elsewhere, passes.
+    let out = vstf()
+        .current_dir(&copy)
+        .arg("--root")
+        .arg(repo_root())
+        .args(["check", "flange", "--quick"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    std::fs::remove_dir_all(&copy).ok();
+}
+
+/// Outside any project, commands that need one say how to get one; a
+/// fixture given as a file still renders.
+#[test]
+fn outside_a_project_check_says_how_to_make_one() {
+    let dir = scratch("noproject");
+    let out = vstf()
+        .current_dir(&dir)
+        .args(["check", "--quick"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    // Only meaningful where no folder above the temporary one is a project.
+    if !dir
+        .ancestors()
+        .skip(1)
+        .any(|d| d.join("fixtures").is_dir() || d.join("vstf.toml").is_file())
+    {
+        assert!(!out.status.success());
+        assert!(
+            err.contains("no vstf project") && err.contains("vstf init"),
+            "{err}"
+        );
+    }
+    std::fs::copy(
+        repo_root().join("fixtures/stage.json"),
+        dir.join("scene.json"),
+    )
+    .unwrap();
+    let status = vstf()
+        .current_dir(&dir)
+        .args([
+            "render",
+            "scene.json",
+            "--out",
+            "scene.png",
+            "--width",
+            "32",
+            "--height",
+            "24",
+        ])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    assert!(dir.join("scene.png").is_file());
     std::fs::remove_dir_all(&dir).ok();
 }

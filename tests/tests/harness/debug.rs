@@ -7,7 +7,7 @@ use vstf::debug::{diff_logs, trace_pixel};
 use vstf::fixture::{Fixture, Overrides, View};
 
 fn setup(name: &str, w: u32, h: u32) -> (Fixture, View) {
-    let f = Fixture::load(name).unwrap();
+    let f = workspace_tests::fixture(name);
     let view = vstf::run::view(
         &f,
         &Overrides {
@@ -117,7 +117,7 @@ fn the_log_holds_the_variables_along_the_ray() {
 
 #[test]
 fn infinite_light_speed_rays_stay_in_the_slice() {
-    let f = Fixture::load("flange").unwrap();
+    let f = workspace_tests::fixture("flange");
     let view = vstf::run::view(
         &f,
         &Overrides {
@@ -144,7 +144,7 @@ fn infinite_light_speed_rays_stay_in_the_slice() {
 /// A 16x9 teaser log at one sample per pixel (a brute-force log holds every
 /// tetrahedron of the scene for every ray, so it is kept small).
 fn region_log(traversal: Traversal) -> String {
-    let f = Fixture::load("teaser").unwrap();
+    let f = workspace_tests::fixture("teaser");
     let view = vstf::run::view(
         &f,
         &Overrides {

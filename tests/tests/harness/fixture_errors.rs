@@ -6,7 +6,8 @@ use vstf::fixture::Fixture;
 
 /// The flange fixture with `edit` applied to its JSON.
 fn flange_with(edit: impl FnOnce(&mut serde_json::Value)) -> String {
-    let text = std::fs::read_to_string(vstf::fixture::fixtures_dir().join("flange.json")).unwrap();
+    let text = std::fs::read_to_string(workspace_tests::repo().fixtures_dir().join("flange.json"))
+        .unwrap();
     let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
     edit(&mut v);
     serde_json::to_string_pretty(&v).unwrap()
@@ -146,10 +147,10 @@ fn obj_meshes_load_relative_to_the_fixture_and_report_bad_lines() {
 
 #[test]
 fn every_shipped_fixture_loads() {
-    let names = vstf::fixture::all_names();
+    let names = workspace_tests::repo().fixture_names();
     assert!(names.contains(&"flange".to_string()));
     for name in names {
-        Fixture::load(&name).unwrap_or_else(|e| panic!("{e}"));
+        workspace_tests::fixture(&name);
     }
 }
 
@@ -346,7 +347,7 @@ fn validation_without_the_acceleration_structure_agrees_with_building() {
 
 #[test]
 fn keeping_only_some_objects_names_a_missing_one() {
-    let f = Fixture::load("flange").unwrap();
+    let f = workspace_tests::fixture("flange");
     let only = f.only(&["flange"]).unwrap();
     assert_eq!(only.scene.objects.len(), 1);
     assert_eq!(only.spec.objects.len(), 1);

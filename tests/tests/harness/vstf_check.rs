@@ -4,14 +4,15 @@
 
 use std::sync::OnceLock;
 use vstf::check::{Effort, FixtureReport, Row};
-use vstf::fixture::{Fixture, Overrides};
+use vstf::fixture::Overrides;
 use vstf::golden::Store;
 
 /// The quick run of every check, shared by the tests of this file.
 fn reports() -> &'static Vec<FixtureReport> {
     static R: OnceLock<Vec<FixtureReport>> = OnceLock::new();
     R.get_or_init(|| {
-        vstf::check::run(&[], &Effort::QUICK, &Store::workspace()).unwrap_or_else(|e| panic!("{e}"))
+        vstf::check::run(&workspace_tests::repo(), &[], &Effort::QUICK)
+            .unwrap_or_else(|e| panic!("{e}"))
     })
 }
 
@@ -72,7 +73,7 @@ fn assert_targets(rows: &[Row]) {
 
 #[test]
 fn tolerances_meet_the_targets_at_the_default_check_resolution() {
-    let full = vstf::check::run(&[], &Effort::FULL, &Store::workspace()).unwrap();
+    let full = vstf::check::run(&workspace_tests::repo(), &[], &Effort::FULL).unwrap();
     let rows: Vec<Row> = full.iter().flat_map(|r| r.rows.clone()).collect();
     assert!(
         rows.iter().all(|r| r.pass),
@@ -171,7 +172,7 @@ fn the_report_shows_images_markers_and_rows() {
 
 #[test]
 fn a_flange_shifted_by_a_hundredth_is_caught() {
-    let f = Fixture::load("flange").unwrap();
+    let f = workspace_tests::fixture("flange");
     let model = f.model(&Overrides::default());
     let mut shifted = f.clone();
     let obj = shifted
@@ -219,7 +220,7 @@ fn every_view_matches_its_golden_image() {
 fn a_one_pixel_change_in_a_real_render_is_caught_without_touching_golden() {
     let r = reports().iter().find(|r| r.fixture == "flange").unwrap();
     let view = &r.views[0];
-    let real = Store::workspace();
+    let real = workspace_tests::repo().store();
     let golden_path = real.golden_path(&r.fixture, &view.name);
     let before = std::fs::read(&golden_path).unwrap();
     let scratch = std::env::temp_dir().join(format!("vstf-pending-{}", std::process::id()));

@@ -8,7 +8,7 @@ use renderer::{Attitude, LightSpeed, Ray};
 use renderer::{
     Camera, Database, Event, Image, Mesh, Model, Motion, ObjectKind, RenderSettings, Traversal,
 };
-use vstf::fixture::{Fixture, Overrides};
+use vstf::fixture::Overrides;
 use vstf::oracle::{retarded, PointWorldline};
 use workspace_tests::{object, scene, unit};
 
@@ -30,7 +30,7 @@ fn bits(img: &Image) -> Vec<[u64; 3]> {
 
 #[test]
 fn a_static_scene_renders_the_same_in_all_three_models() {
-    let f = Fixture::load("stage").unwrap();
+    let f = workspace_tests::fixture("stage");
     let images: Vec<Image> = [Model::INFINITE, Model::CLASSICAL, Model::RELATIVISTIC]
         .iter()
         .map(|m| {
@@ -61,7 +61,7 @@ fn a_static_scene_renders_the_same_in_all_three_models() {
 fn a_moving_scene_differs_between_models() {
     // The converse, so that the test above can fail: the flange at 0.00866c
     // is seen retarded, so its edge pixels differ between models.
-    let f = Fixture::load("flange").unwrap();
+    let f = workspace_tests::fixture("flange");
     let render = |m| {
         let view = vstf::run::view(&f, &small(Some(m))).unwrap();
         vstf::run::render(&f, &view, Traversal::Bvh)
@@ -73,7 +73,7 @@ fn a_moving_scene_differs_between_models() {
 
 #[test]
 fn images_do_not_depend_on_thread_count() {
-    let f = Fixture::load("flange").unwrap();
+    let f = workspace_tests::fixture("flange");
     let mut view = vstf::run::view(&f, &small(None)).unwrap();
     view.settings.spp = 5;
     view.settings.shutter = 30.0;
@@ -91,8 +91,8 @@ fn images_do_not_depend_on_thread_count() {
 
 #[test]
 fn bvh_and_brute_force_give_identical_images() {
-    for name in vstf::fixture::all_names() {
-        let f = Fixture::load(&name).unwrap();
+    for name in workspace_tests::repo().fixture_names() {
+        let f = workspace_tests::fixture(&name);
         for m in [Model::INFINITE, Model::CLASSICAL, Model::RELATIVISTIC] {
             let view = vstf::run::view(
                 &f,

@@ -7,6 +7,7 @@ use super::setup::Effort;
 use super::CHECKS;
 use crate::fixture::Fixture;
 use crate::golden::{Comparison, Store};
+use crate::project::Project;
 use image::RgbImage;
 use rayon::prelude::*;
 
@@ -72,12 +73,13 @@ impl FixtureReport {
 /// Loads the fixture `name`, runs `check` on it and compares every view
 /// with its golden image in `store`.
 fn run_one(
+    project: &Project,
     name: &str,
     check: Check,
     effort: &Effort,
     store: &Store,
 ) -> Result<FixtureReport, String> {
-    let fixture = Fixture::load(name).map_err(|e| e.to_string())?;
+    let fixture = project.load(name).map_err(|e| e.to_string())?;
     let mut report = FixtureReport::new(name, &fixture, check(&fixture, effort)?);
     for v in &report.views {
         report
@@ -89,7 +91,12 @@ fn run_one(
 
 /// Runs the checks of the named fixtures (all when empty), comparing
 /// every view with its golden image in `store`.
-pub fn run(names: &[String], effort: &Effort, store: &Store) -> Result<Vec<FixtureReport>, String> {
+pub fn run(
+    project: &Project,
+    names: &[String],
+    effort: &Effort,
+) -> Result<Vec<FixtureReport>, String> {
+    let store = &project.store();
     for n in names {
         if !CHECKS.iter().any(|(c, _)| c == n) {
             let known: Vec<&str> = CHECKS.iter().map(|(c, _)| *c).collect();
@@ -107,6 +114,6 @@ pub fn run(names: &[String], effort: &Effort, store: &Store) -> Result<Vec<Fixtu
     // serial parts overlap); results come back in the table's order.
     chosen
         .par_iter()
-        .map(|(name, check)| run_one(name, *check, effort, store))
+        .map(|(name, check)| run_one(project, name, *check, effort, store))
         .collect()
 }

@@ -3,14 +3,15 @@
 
 use super::args::AnimateArgs;
 use renderer::Traversal;
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
-use vstf::fixture::{Fixture, Overrides};
+use vstf::fixture::Overrides;
 
 /// Renders the frames, assembles the GIF or APNG asked for and reports the
 /// timings; an interruption leaves the finished frames and fails.
-pub fn run(args: AnimateArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
     let AnimateArgs {
         fixture,
         frames,
@@ -23,7 +24,7 @@ pub fn run(args: AnimateArgs) -> Result<(), String> {
         return Err("animate takes its camera times from --frames, not --camera-t".into());
     }
     let times = vstf::animate::frame_times(frames.0, frames.1, step)?;
-    let fixture = Fixture::load(&fixture).map_err(|e| e.to_string())?;
+    let fixture = vstf::project::load_fixture(root, &fixture)?;
     let overrides = Overrides {
         camera_t: Some(times[0]),
         ..view.overrides(&fixture)?

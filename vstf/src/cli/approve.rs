@@ -1,17 +1,19 @@
 //! `vstf approve`: pending images become golden images, or are listed.
 
 use super::args::ApproveArgs;
+use std::path::Path;
 use vstf::golden::Store;
+use vstf::project::Project;
 
 /// Lists the pending images, or approves those of the named fixtures (or
 /// all); approving is refused when CI is set.
-pub fn run(args: ApproveArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: ApproveArgs) -> Result<(), String> {
     let ApproveArgs {
         fixtures,
         all,
         list,
     } = args;
-    let store = Store::workspace();
+    let store = Project::locate(root)?.store();
     if list {
         list_pending(&store);
         return Ok(());

@@ -11,6 +11,10 @@ use std::path::PathBuf;
     about = "Visual Software Test Fixture for a spacetime ray tracer"
 )]
 pub struct Cli {
+    /// The project folder (default: the nearest ancestor of the current
+    /// directory holding vstf.toml or fixtures/).
+    #[arg(long, global = true, value_name = "DIR")]
+    pub root: Option<PathBuf>,
     #[command(subcommand)]
     pub command: Command,
 }

@@ -1,7 +1,10 @@
 //! `vstf bench`: rendering speed.
 
+use std::path::Path;
+
 /// Runs the benchmarks and prints their table.
-pub fn run(quick: bool) -> Result<(), String> {
-    print!("{}", vstf::bench::run(quick)?);
+pub fn run(root: Option<&Path>, quick: bool) -> Result<(), String> {
+    let project = vstf::project::Project::locate(root)?;
+    print!("{}", vstf::bench::run(&project, quick)?);
     Ok(())
 }

@@ -2,13 +2,15 @@
 //! first-principles physics and its golden images.
 
 use super::args::CheckArgs;
+use std::path::Path;
 use std::time::Instant;
 use vstf::check::{Effort, Row};
-use vstf::golden::{Comparison, Store};
+use vstf::golden::Comparison;
+use vstf::project::Project;
 
 /// Prints the table of rows and the golden comparisons, writes the JSON and
 /// HTML reports asked for, and fails if any row or image fails.
-pub fn run(args: CheckArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
     let CheckArgs {
         fixtures,
         json,
@@ -17,8 +19,9 @@ pub fn run(args: CheckArgs) -> Result<(), String> {
     } = args;
     let effort = if quick { Effort::QUICK } else { Effort::FULL };
     let started = Instant::now();
-    let store = Store::workspace();
-    let reports = vstf::check::run(&fixtures, &effort, &store)?;
+    let project = Project::locate(root)?;
+    let store = project.store();
+    let reports = vstf::check::run(&project, &fixtures, &effort)?;
     let rows: Vec<Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
     print!("{}", vstf::report::table(&rows));
     let goldens: Vec<&Comparison> = reports.iter().flat_map(|r| &r.goldens).collect();

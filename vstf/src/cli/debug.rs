@@ -7,7 +7,7 @@ use std::path::Path;
 
 /// Traces the pixel (printing every step) or the region, and writes one JSON
 /// line per pixel to the log if one is given.
-pub fn run(args: DebugArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: DebugArgs) -> Result<(), String> {
     let DebugArgs {
         fixture,
         pixel,
@@ -16,7 +16,7 @@ pub fn run(args: DebugArgs) -> Result<(), String> {
         view,
         brute_force,
     } = args;
-    let (fixture, view, db) = prepare(&fixture, &view, brute_force)?;
+    let (fixture, view, db) = prepare(root, &fixture, &view, brute_force)?;
     let (x0, y0, x1, y1) = match (pixel, region) {
         (Some((x, y)), _) => (x, y, x, y),
         (None, Some(r)) => r,

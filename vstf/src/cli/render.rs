@@ -3,10 +3,11 @@
 use super::args::RenderArgs;
 use super::view::prepare;
 use renderer::LightSpeed;
+use std::path::Path;
 use std::time::Instant;
 
 /// Renders the view and reports what was rendered and how long it took.
-pub fn run(args: RenderArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
     let RenderArgs {
         fixture,
         out,
@@ -14,7 +15,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         brute_force,
     } = args;
     let started = Instant::now();
-    let (fixture, view, db) = prepare(&fixture, &view, brute_force)?;
+    let (fixture, view, db) = prepare(root, &fixture, &view, brute_force)?;
     let image = vstf::run::render_with(&db, &fixture, &view);
     vstf::output::write_png(&out, &image.to_rgb8())?;
     eprintln!(

@@ -3,7 +3,9 @@
 
 use super::args::{ModelArg, ViewArgs};
 use renderer::{Database, Model, Traversal};
+use std::path::Path;
 use vstf::fixture::{Fixture, Overrides, View};
+use vstf::project::load_fixture;
 
 impl ViewArgs {
     /// The fixture overrides these flags ask for.
@@ -38,11 +40,12 @@ fn model_of(arg: Option<ModelArg>, lorentz: bool, fixture: &Fixture) -> Option<M
 
 /// Loads a fixture, applies the view flags and builds the database.
 pub fn prepare(
+    root: Option<&Path>,
     name: &str,
     args: &ViewArgs,
     brute_force: bool,
 ) -> Result<(Fixture, View, Database), String> {
-    let fixture = Fixture::load(name).map_err(|e| e.to_string())?;
+    let fixture = load_fixture(root, name)?;
     let view = vstf::run::view(&fixture, &args.overrides(&fixture)?)?;
     let traversal = if brute_force {
         Traversal::BruteForce

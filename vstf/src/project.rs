@@ -1,0 +1,189 @@
+//! The project `vstf` works on: a folder holding `fixtures/` (scene files),
+//! `golden/` (their approved images) and `target/vstf/` (pending images).
+//!
+//! A project is found at run time, never at compile time: it is the nearest
+//! ancestor of the current directory (the directory itself included) that
+//! holds a `vstf.toml` file or a `fixtures/` folder, or the folder given with
+//! `--root`. A binary installed with `cargo install` therefore checks the
+//! project it is run in, and a copy of a project is checked against its own
+//! goldens. `vstf.toml` only marks the root; its content is not read.
+
+use crate::fixture::{Fixture, FixtureError};
+use crate::golden::Store;
+use std::path::{Path, PathBuf};
+
+/// The file that marks a project's root.
+pub const MARKER: &str = "vstf.toml";
+
+/// A project folder (see the module docs).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Project {
+    root: PathBuf,
+}
+
+impl Project {
+    /// The project at `root`, which must be a folder.
+    pub fn at(root: &Path) -> Result<Project, String> {
+        if !root.is_dir() {
+            return Err(format!("--root {}: not a folder", root.display()));
+        }
+        let root = root
+            .canonicalize()
+            .map_err(|e| format!("--root {}: {e}", root.display()))?;
+        Ok(Project { root })
+    }
+
+    /// The nearest ancestor of `start` (itself included) that holds
+    /// `vstf.toml` or `fixtures/`.
+    pub fn discover(start: &Path) -> Result<Project, String> {
+        let start = start
+            .canonicalize()
+            .map_err(|e| format!("{}: {e}", start.display()))?;
+        start
+            .ancestors()
+            .find(|dir| is_root(dir))
+            .map(|root| Project {
+                root: root.to_path_buf(),
+            })
+            .ok_or_else(|| {
+                format!(
+                    "no vstf project in {} or above it: no {MARKER} or fixtures/ folder \
+                     (create one with `vstf init`, or name it with --root DIR)",
+                    start.display()
+                )
+            })
+    }
+
+    /// The project named by `--root`, or else the one the current directory lies in.
+    pub fn locate(root: Option<&Path>) -> Result<Project, String> {
+        match root {
+            Some(r) => Project::at(r),
+            None => {
+                let cwd = std::env::current_dir()
+                    .map_err(|e| format!("cannot read the current directory: {e}"))?;
+                Project::discover(&cwd)
+            }
+        }
+    }
+
+    /// The project's root folder.
+    pub fn root(&self) -> &Path {
+        &self.root
+    }
+
+    /// The project's scene files.
+    pub fn fixtures_dir(&self) -> PathBuf {
+        self.root.join("fixtures")
+    }
+
+    /// The project's approved and pending images.
+    pub fn store(&self) -> Store {
+        Store {
+            golden: self.root.join("golden"),
+            pending: self.root.join("target").join("vstf"),
+        }
+    }
+
+    /// A fixture file: `name_or_path` if it is a file, else
+    /// `fixtures/<name>.json` of this project.
+    pub fn resolve(&self, name_or_path: &str) -> Result<PathBuf, String> {
+        let p = Path::new(name_or_path);
+        if p.is_file() {
+            return Ok(p.to_path_buf());
+        }
+        let candidate = self.fixtures_dir().join(format!("{name_or_path}.json"));
+        if candidate.is_file() {
+            return Ok(candidate);
+        }
+        Err(format!(
+            "no fixture {name_or_path:?}: not a file, and no {} (`vstf list` shows the fixtures)",
+            candidate.display()
+        ))
+    }
+
+    /// Loads a fixture by path, or by name from this project's `fixtures/`.
+    pub fn load(&self, name_or_path: &str) -> Result<Fixture, FixtureError> {
+        let file = self.resolve(name_or_path).map_err(|message| FixtureError {
+            file: PathBuf::from(name_or_path),
+            path: String::new(),
+            message,
+        })?;
+        Fixture::load(&file)
+    }
+
+    /// Names of the fixtures in `fixtures/`, sorted.
+    pub fn fixture_names(&self) -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(self.fixtures_dir())
+            .into_iter()
+            .flatten()
+            .flatten()
+            .filter_map(|e| {
+                let p = e.path();
+                (p.extension()? == "json").then(|| p.file_stem()?.to_str().map(String::from))?
+            })
+            .collect();
+        names.sort();
+        names
+    }
+}
+
+/// Whether `dir` is a project's root.
+fn is_root(dir: &Path) -> bool {
+    dir.join(MARKER).is_file() || dir.join("fixtures").is_dir()
+}
+
+/// Loads a fixture for a command that needs no project when given a file:
+/// a path loads directly, a name is looked up in the project found by
+/// [`Project::locate`].
+pub fn load_fixture(root: Option<&Path>, name_or_path: &str) -> Result<Fixture, String> {
+    let p = Path::new(name_or_path);
+    if p.is_file() && root.is_none() {
+        return Fixture::load(p).map_err(|e| e.to_string());
+    }
+    Project::locate(root)?
+        .load(name_or_path)
+        .map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("vstf-project-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn the_nearest_marked_ancestor_is_the_project() {
+        let dir = scratch("nearest");
+        std::fs::create_dir_all(dir.join("outer/fixtures")).unwrap();
+        std::fs::create_dir_all(dir.join("outer/inner/deep")).unwrap();
+        std::fs::write(dir.join("outer/inner/vstf.toml"), "").unwrap();
+        let found = Project::discover(&dir.join("outer/inner/deep")).unwrap();
+        assert_eq!(
+            found.root(),
+            dir.join("outer/inner").canonicalize().unwrap()
+        );
+        let outer = Project::discover(&dir.join("outer")).unwrap();
+        assert_eq!(outer.root(), dir.join("outer").canonicalize().unwrap());
+        assert_eq!(outer.store().golden, outer.root().join("golden"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn no_project_is_an_error_naming_the_way_out() {
+        let dir = scratch("none");
+        // The temporary folder itself may lie inside a project on some
+        // machines; only a folder without one above it can be tested.
+        if dir.ancestors().skip(1).any(is_root) {
+            return;
+        }
+        let e = Project::discover(&dir).unwrap_err();
+        assert!(e.contains("vstf init") && e.contains("--root"), "{e}");
+        assert!(Project::at(&dir.join("missing")).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
