@@ -95,9 +95,15 @@ impl Project {
         if candidate.is_file() {
             return Ok(candidate);
         }
+        let known = self.fixture_names();
         Err(format!(
-            "no fixture {name_or_path:?}: not a file, and no {} (`vstf list` shows the fixtures)",
-            candidate.display()
+            "no fixture {name_or_path:?}: not a file, and no {}; fixtures here: {}",
+            candidate.display(),
+            if known.is_empty() {
+                "none".into()
+            } else {
+                known.join(", ")
+            }
         ))
     }
 

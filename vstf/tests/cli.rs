@@ -115,7 +115,7 @@ fn check_of_an_unknown_fixture_fails_clearly() {
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.contains("no check for fixture \"nosuch\"") && err.contains("stage"),
+        err.contains("no fixture \"nosuch\"") && err.contains("fixtures here: aberration,"),
         "{err}"
     );
 }

@@ -14,11 +14,6 @@ use glam::DVec3;
 use renderer::{Event, Model, Motion, Traversal};
 
 const NAME: &str = "blink";
-/// Camera times of the animation, and its step.
-const FROM: f64 = 60.0;
-const TO: f64 = 90.0;
-const STEP: f64 = 0.05;
-
 struct Plate {
     name: &'static str,
     /// Which half of the image the plate is seen in.
@@ -48,6 +43,14 @@ fn measured_switches(frames: &[(f64, Option<bool>)]) -> Vec<f64> {
         .collect()
 }
 
+/// The animation's camera times: `from` to `to` (inclusive) by `step`.
+#[derive(Clone, Copy, Debug)]
+struct Frames {
+    from: f64,
+    to: f64,
+    step: f64,
+}
+
 /// One plate through the animation: for each frame, the camera time and
 /// whether the plate is seen on (None: not seen).
 type Sightings = Vec<(f64, Option<bool>)>;
@@ -55,7 +58,8 @@ type Sightings = Vec<(f64, Option<bool>)>;
 /// Renders the animation and reports, for each plate (in [`PLATES`] order)
 /// and each frame, whether the plate is seen on (closer to its blink
 /// colour, white) or off; None when not seen.
-fn animate(f: &Fixture, model: Model) -> Result<Vec<Sightings>, String> {
+fn animate(f: &Fixture, model: Model, frames: &Frames) -> Result<Vec<Sightings>, String> {
+    let Frames { from, to, step } = *frames;
     let view = crate::run::view(
         f,
         &Overrides {
@@ -66,8 +70,8 @@ fn animate(f: &Fixture, model: Model) -> Result<Vec<Sightings>, String> {
         },
     )?;
     let db = crate::run::database(f, model.lorentz, Traversal::Bvh)?;
-    let times: Vec<f64> = (0..=((TO - FROM) / STEP).round() as usize)
-        .map(|i| FROM + STEP * i as f64)
+    let times: Vec<f64> = (0..=((to - from) / step).round() as usize)
+        .map(|i| from + step * i as f64)
         .collect();
     let mut seen: Vec<Sightings> = vec![Vec::new(), Vec::new()];
     for &t in &times {
@@ -132,7 +136,13 @@ impl Blinker {
 
 /// The blink period the camera at `cam` sees between the switches nearest
 /// the first and last of `switches`, and its uncertainty.
-fn expected_period(b: &Blinker, model: Model, cam: DVec3, switches: &[f64]) -> (f64, f64) {
+fn expected_period(
+    b: &Blinker,
+    model: Model,
+    cam: DVec3,
+    switches: &[f64],
+    step: f64,
+) -> (f64, f64) {
     let (start, v, period) = (b.start, b.velocity, b.period);
     let g = if model.lorentz {
         gamma(v.length())
@@ -182,17 +192,22 @@ fn expected_period(b: &Blinker, model: Model, cam: DVec3, switches: &[f64]) -> (
             .map(|&r| seen_at(m, r) - seen_at(m, DVec3::ZERO))
             .fold(0.0f64, |a, b| a.max(b.abs()))
     };
-    let tolerance = (STEP + (spread(m1) - spread(m0)).abs() + spread(m0).max(spread(m1))) / n;
+    let tolerance = (step + (spread(m1) - spread(m0)).abs() + spread(m0).max(spread(m1))) / n;
     (expected, tolerance)
 }
 
 /// The blink period each plate is seen with, measured from the animation
 /// against the dilated, light-delayed period. The animation is the same at
 /// every effort: its precision is set by the frame step.
-pub fn run(f: &Fixture, _effort: &Effort) -> Result<Findings, String> {
+pub fn run(
+    f: &Fixture,
+    (from, to, step): (f64, f64, f64),
+    _effort: &Effort,
+) -> Result<Findings, String> {
+    let frames = Frames { from, to, step };
     let model = fixture_model(f);
     let cam = f.spec.camera.position;
-    let seen = animate(f, model)?;
+    let seen = animate(f, model, &frames)?;
     let mut quantities = Vec::new();
     let mut marks = Vec::new();
     for (k, plate) in PLATES.iter().enumerate() {
@@ -207,7 +222,7 @@ pub fn run(f: &Fixture, _effort: &Effort) -> Result<Findings, String> {
         let n = (switches.len() - 1) as f64;
         let measured = (switches[switches.len() - 1] - switches[0]) / n;
         let b = Blinker::of(f, plate)?;
-        let (expected, tolerance) = expected_period(&b, model, cam, &switches);
+        let (expected, tolerance) = expected_period(&b, model, cam, &switches, step);
         quantities.push(Quantity {
             name: format!("{} plate: blink period seen by the camera", plate.name),
             measured: Reading {

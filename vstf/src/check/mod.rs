@@ -11,17 +11,18 @@
 //! - one module per scene, each a table of quantity, measurement,
 //!   expectation and the paper's figure.
 
+pub mod declared;
 pub mod edge;
+pub mod named;
+pub mod path;
 pub mod row;
 pub mod runner;
 pub mod setup;
 
 pub mod aberration;
-pub mod accelerated;
 pub mod blink;
 pub mod doppler;
 pub mod relativity;
-pub mod retarded;
 pub mod sphere;
 pub mod stage;
 pub mod teaser;
@@ -29,24 +30,8 @@ pub mod terrell;
 
 pub use edge::{trace_rows, Edge, EdgeTrace, OnPlane, Probed, Sweep};
 pub use row::{difference, Quantity, Reading, Row, Unit};
-pub use runner::{run, Check, Findings, FixtureReport, ViewReport};
+pub use runner::{run, Findings, FixtureReport, ViewReport};
 pub use setup::{
     background, fixture_model, is_background, motion_of, uniform, Effort, Probe, Setup,
     UniformMotion, VIEW_WIDTH,
 };
-
-/// Every check, by fixture name, in report order.
-pub const CHECKS: &[(&str, Check)] = &[
-    ("stage", stage::run),
-    ("flange", retarded::run),
-    ("terrell-decoupled", terrell::run),
-    ("terrell-contracted", terrell::run),
-    ("aberration", aberration::run),
-    ("teaser", teaser::run),
-    ("blink", blink::run),
-    ("relativity", relativity::run),
-    ("sphere-relativistic", sphere::run),
-    ("sphere-classical", sphere::run),
-    ("accelerated", accelerated::run),
-    ("doppler", doppler::run),
-];

@@ -38,6 +38,8 @@ pub enum Unit {
     Ratio,
     /// A dimensionless factor (the Doppler factor D).
     Factor,
+    /// Positions in an image, continuous pixels from its top left corner.
+    Pixels,
 }
 
 impl Unit {
@@ -51,6 +53,7 @@ impl Unit {
             Unit::GridMarks => "grid marks",
             Unit::Ratio => "ratio",
             Unit::Factor => "factor",
+            Unit::Pixels => "px",
         }
     }
 }

@@ -1,18 +1,14 @@
-//! Running the checks: each fixture is loaded once and handed to its check,
-//! the checks run concurrently, and every view is compared with its golden
+//! Running the checks: each fixture is loaded once and its declared checks
+//! run ([`super::declared`]), fixtures concurrently, and every view is compared with its golden
 //! image.
 
 use super::row::{Quantity, Row};
 use super::setup::Effort;
-use super::CHECKS;
 use crate::fixture::Fixture;
 use crate::golden::{Comparison, Store};
 use crate::project::Project;
 use image::RgbImage;
 use rayon::prelude::*;
-
-/// A check: renders, measures and compares one fixture.
-pub type Check = fn(&Fixture, &Effort) -> Result<Findings, String>;
 
 /// What a check finds: its views for the report and its table of quantities.
 pub struct Findings {
@@ -70,17 +66,17 @@ impl FixtureReport {
     }
 }
 
-/// Loads the fixture `name`, runs `check` on it and compares every view
-/// with its golden image in `store`.
+/// Loads the fixture `name` (or file), runs its declared checks and
+/// compares every view with its golden image in `store`.
 fn run_one(
     project: &Project,
     name: &str,
-    check: Check,
     effort: &Effort,
     store: &Store,
 ) -> Result<FixtureReport, String> {
     let fixture = project.load(name).map_err(|e| e.to_string())?;
-    let mut report = FixtureReport::new(name, &fixture, check(&fixture, effort)?);
+    let findings = super::declared::run(&fixture, effort)?;
+    let mut report = FixtureReport::new(&fixture.name, &fixture, findings);
     for v in &report.views {
         report
             .goldens
@@ -89,31 +85,30 @@ fn run_one(
     Ok(report)
 }
 
-/// Runs the checks of the named fixtures (all when empty), comparing
-/// every view with its golden image in `store`.
+/// Runs the declared checks of the named fixtures (names in the project's
+/// `fixtures/`, or files; all of the project's when empty), comparing every
+/// view with its golden image in the project's `golden/`.
 pub fn run(
     project: &Project,
     names: &[String],
     effort: &Effort,
 ) -> Result<Vec<FixtureReport>, String> {
     let store = &project.store();
-    for n in names {
-        if !CHECKS.iter().any(|(c, _)| c == n) {
-            let known: Vec<&str> = CHECKS.iter().map(|(c, _)| *c).collect();
-            return Err(format!(
-                "no check for fixture {n:?}; checked fixtures: {}",
-                known.join(", ")
-            ));
-        }
+    let chosen: Vec<String> = if names.is_empty() {
+        project.fixture_names()
+    } else {
+        names.to_vec()
+    };
+    if chosen.is_empty() {
+        return Err(format!(
+            "no fixtures in {}: write one (docs/checks.md), or start from `vstf init`",
+            project.fixtures_dir().display()
+        ));
     }
-    let chosen: Vec<&(&str, Check)> = CHECKS
-        .iter()
-        .filter(|(c, _)| names.is_empty() || names.iter().any(|n| n == c))
-        .collect();
-    // The checks run concurrently (each renders in parallel too, so their
-    // serial parts overlap); results come back in the table's order.
+    // The fixtures run concurrently (each renders in parallel too, so their
+    // serial parts overlap); results come back in the order asked.
     chosen
         .par_iter()
-        .map(|(name, check)| run_one(project, name, *check, effort, store))
+        .map(|name| run_one(project, name, effort, store))
         .collect()
 }

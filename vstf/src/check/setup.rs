@@ -189,6 +189,33 @@ impl Setup<'_> {
         Ok((img.to_rgb8(), pinhole))
     }
 
+    /// Renders only the objects `keep` through the fixture's own camera
+    /// at `size` and `spp` (the view's measuring image), with the
+    /// measurements' own model of that camera.
+    pub fn measuring_render(
+        &self,
+        keep: &[&str],
+        (width, height): (u32, u32),
+        spp: u32,
+    ) -> Result<(RgbImage, Pinhole), String> {
+        let mut probe = self.fixture.only(keep).map_err(|e| e.to_string())?;
+        let image = &mut probe.spec.image;
+        (image.shutter, image.seed, image.max_depth, image.shadows) = (0.0, 1, 0, false);
+        let view = crate::run::view(
+            &probe,
+            &Overrides {
+                model: Some(self.model),
+                camera_t: Some(self.camera_t),
+                width: Some(width),
+                height: Some(height),
+                spp: Some(spp),
+                ..Overrides::default()
+            },
+        )?;
+        let img = crate::run::render(&probe, &view, Traversal::Bvh)?;
+        Ok((img.to_rgb8(), self.pinhole((width, height))?))
+    }
+
     /// Aims a probe at the kept objects: a coarse wide render finds their
     /// bounding box in the image; returns the look-at point (one l.unit
     /// along the central line of sight) and a field of view covering the box

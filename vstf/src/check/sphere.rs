@@ -22,8 +22,6 @@ use crate::oracle::{aberrate_lorentz, to_frame_of};
 use glam::{DVec2, DVec3};
 use renderer::Event;
 
-const SPHERE: &str = "sphere";
-
 /// A circle fitted on the sky: its angular radius, and the RMS deviation of
 /// the points from it (both degrees).
 struct SkyCircle {
@@ -89,9 +87,10 @@ fn fit_sky_circle(dirs: &[DVec3]) -> Option<SkyCircle> {
 /// of a pixel.
 fn measured_outline(
     setup: &Setup,
+    object: &str,
     effort: &Effort,
 ) -> Result<(Vec<DVec3>, Vec<DVec3>, f64), String> {
-    let probe = Probed::aimed(setup, &[SPHERE], 0.15, effort)?;
+    let probe = Probed::aimed(setup, &[object], 0.15, effort)?;
     let (img, camera) = (&probe.img, &probe.camera);
     let outside = probe.background();
     let (w, h) = (i64::from(img.width()), i64::from(img.height()));
@@ -221,13 +220,13 @@ struct Sphere {
 }
 
 impl Sphere {
-    fn of(f: &Fixture, model: renderer::Model) -> Result<Sphere, String> {
+    fn of(f: &Fixture, object: &str, model: renderer::Model) -> Result<Sphere, String> {
         let obj = f
             .scene
             .objects
             .iter()
-            .find(|o| o.name == SPHERE)
-            .ok_or("no sphere")?;
+            .find(|o| o.name == object)
+            .ok_or_else(|| format!("no object {object:?}"))?;
         let radius = obj
             .shape
             .sphere_radius()
@@ -256,16 +255,16 @@ impl Sphere {
 /// The sphere's outline on the sky, measured and expected: its extent
 /// along and across the motion, and (contracted, where it is a circle) the
 /// fitted circle's radius and the outline's RMS deviation from a circle.
-pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+pub fn run(f: &Fixture, object: &str, effort: &Effort) -> Result<Findings, String> {
     let model = fixture_model(f);
-    let sphere = Sphere::of(f, model)?;
+    let sphere = Sphere::of(f, object, model)?;
     let setup = Setup {
         fixture: f,
         model,
         camera_t: f.spec.camera.t,
     };
     let cam = Event::new(f.spec.camera.t, f.spec.camera.position);
-    let (row_dirs, col_dirs, px) = measured_outline(&setup, effort)?;
+    let (row_dirs, col_dirs, px) = measured_outline(&setup, object, effort)?;
     let dirs: Vec<DVec3> = row_dirs.iter().chain(&col_dirs).copied().collect();
     let measured = fit_sky_circle(&dirs).ok_or("cannot fit the measured outline")?;
     let expected_dirs = sphere.expected_outline(cam)?;

@@ -17,11 +17,19 @@ use crate::measure::Plane;
 use glam::DVec3;
 
 const NAME: &str = "stage";
-const AXES: &str = "x and z axis bars";
-const GRID: &str = "grid bars";
-/// Depth on the stage around which edges are measured, between the bars z = 2 and z = 3.
+
+/// What the stage check measures, as the fixture declares it: the objects
+/// holding the axis bars and the grid bars, and the depth on the stage
+/// around which edges are measured (between two bars across, e.g. 2.5).
 /// Probes are 2:1 strips across it: only depths within 0.35 of it are used.
-const Z: f64 = 2.5;
+pub struct Bars<'a> {
+    /// The object holding the x and z axis bars.
+    pub axes: &'a str,
+    /// The object holding the grid bars.
+    pub grid: &'a str,
+    /// The depth measured at, l.units.
+    pub depth: f64,
+}
 
 /// The x extent and top height of the bar of `object` that runs along z
 /// across x = `x`, from the fixture's mesh.
@@ -49,16 +57,19 @@ fn bar_along_z(f: &Fixture, object: &str, x: f64) -> Result<(f64, f64, f64), Str
 /// The stage's measurements: the axis bar's centre and width, the right
 /// edges of the bars x = 1 and 2 and their spacing, against the fixture's
 /// mesh (the paper: bars 1/20 wide on 1 l.unit centres).
-pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+pub fn run(f: &Fixture, bars: &Bars, effort: &Effort) -> Result<Findings, String> {
     let setup = Setup {
         fixture: f,
         model: fixture_model(f),
         camera_t: f.spec.camera.t,
     };
-    let (ax0, ax1, top) = bar_along_z(f, AXES, 0.0)?;
-    let (left, right) = axis_bar_edges(&setup, top, effort)?;
-    let [one, two] = grid_bar_right_edges(&setup, top, effort)?;
-    let (one_x, two_x) = (bar_along_z(f, GRID, 1.0)?.1, bar_along_z(f, GRID, 2.0)?.1);
+    let (ax0, ax1, top) = bar_along_z(f, bars.axes, 0.0)?;
+    let (left, right) = axis_bar_edges(&setup, bars, top, effort)?;
+    let [one, two] = grid_bar_right_edges(&setup, bars, top, effort)?;
+    let (one_x, two_x) = (
+        bar_along_z(f, bars.grid, 1.0)?.1,
+        bar_along_z(f, bars.grid, 2.0)?.1,
+    );
     let quantities = vec![
         Quantity {
             name: "z axis bar centre (x)".into(),
@@ -111,12 +122,12 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
 }
 
 /// Edges on the stage's top plane y = `top`, as (depth, x), within 0.35
-/// of depth [`Z`], fitted by straight lines.
-fn on_stage(top: f64) -> OnPlane<impl Fn(DVec3) -> (f64, f64)> {
+/// of `depth`, fitted by straight lines.
+fn on_stage(top: f64, depth: f64) -> OnPlane<impl Fn(DVec3) -> (f64, f64)> {
     OnPlane {
         plane: Plane::y(top),
         coords: |p: DVec3| (p.z, p.x),
-        range: (Z - 0.35, Z + 0.35),
+        range: (depth - 0.35, depth + 0.35),
         degree: 1,
     }
 }
@@ -143,32 +154,44 @@ fn strip(
 }
 
 /// Both edges of the top face of the z axis bar, alone in a narrow probe,
-/// at depth [`Z`].
-fn axis_bar_edges(setup: &Setup, top: f64, effort: &Effort) -> Result<(Reading, Reading), String> {
+/// at the measured depth.
+fn axis_bar_edges(
+    setup: &Setup,
+    bars: &Bars,
+    top: f64,
+    effort: &Effort,
+) -> Result<(Reading, Reading), String> {
+    let z = bars.depth;
     let fail = |what: &str, e: String| format!("{NAME}: {what}: {e}");
-    let probe = strip(setup, &[AXES], DVec3::new(0.0, top, Z), 4.0, effort)?;
-    let stage = on_stage(top);
+    let probe = strip(setup, &[bars.axes], DVec3::new(0.0, top, z), 4.0, effort)?;
+    let stage = on_stage(top, z);
     let left = probe
         .fit(&stage, probe.from_left(), probe.background(), effort)
         .map_err(|e| fail("axis bar left edge", e))?
-        .at(Z);
+        .at(z);
     let right = probe
         .fit(&stage, probe.from_right(), probe.background(), effort)
         .map_err(|e| fail("axis bar right edge", e))?
-        .at(Z);
+        .at(z);
     Ok((left, right))
 }
 
-/// The right edges of the grid bars x = 1 and 2 at depth [`Z`], each
-/// scanned leftwards from midway to the next bar.
-fn grid_bar_right_edges(setup: &Setup, top: f64, effort: &Effort) -> Result<[Reading; 2], String> {
+/// The right edges of the grid bars x = 1 and 2 at the measured depth,
+/// each scanned leftwards from midway to the next bar.
+fn grid_bar_right_edges(
+    setup: &Setup,
+    bars: &Bars,
+    top: f64,
+    effort: &Effort,
+) -> Result<[Reading; 2], String> {
+    let z = bars.depth;
     let cam = setup.camera_x();
-    let probe = strip(setup, &[GRID], DVec3::new(1.5, top, Z), 5.0, effort)?;
-    let stage = on_stage(top);
+    let probe = strip(setup, &[bars.grid], DVec3::new(1.5, top, z), 5.0, effort)?;
+    let stage = on_stage(top, z);
     let right_edge = |k: f64| -> Result<Reading, String> {
         let from = (probe
             .camera
-            .pixel_of(DVec3::new(k + 0.5, top, Z) - cam)
+            .pixel_of(DVec3::new(k + 0.5, top, z) - cam)
             .ok_or("bar out of view")?
             .0
             .floor() as i64)
@@ -176,7 +199,7 @@ fn grid_bar_right_edges(setup: &Setup, top: f64, effort: &Effort) -> Result<[Rea
         Ok(probe
             .fit(&stage, Sweep { from, step: -1 }, probe.background(), effort)
             .map_err(|e| format!("{NAME}: bar x = {k}: {e}"))?
-            .at(Z))
+            .at(z))
     };
     Ok([right_edge(1.0)?, right_edge(2.0)?])
 }

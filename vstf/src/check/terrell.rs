@@ -21,7 +21,6 @@ use glam::DVec3;
 const HEIGHT: f64 = 4.0;
 const WIDTH: f64 = 2.0;
 const DEPTH: f64 = 2.0;
-const FRONT: &str = "flange front";
 /// The flange's corners marked in the report: the front face's four and
 /// the back face's trailing two (local coordinates).
 const CORNERS: [(f64, f64, f64); 6] = [
@@ -32,7 +31,15 @@ const CORNERS: [(f64, f64, f64); 6] = [
     (0.0, HEIGHT, 0.0),
     (0.0, 0.0, 0.0),
 ];
-const SIDE: &str = "flange side";
+
+/// The flange's two faces as the fixture declares them: the front (the
+/// plane z = DEPTH of its local coordinates) and the side (x = 0).
+pub struct Faces<'a> {
+    /// The front face's object.
+    pub front: &'a str,
+    /// The side face's object.
+    pub side: &'a str,
+}
 
 /// The front face's blue, whatever its shading.
 fn is_front(c: DVec3) -> bool {
@@ -49,9 +56,14 @@ struct Edges {
 }
 
 /// Traces and fits the flange's edges on a probe aimed at its front and side.
-fn measure_edges(setup: &Setup, m: &UniformMotion, effort: &Effort) -> Result<Edges, String> {
+fn measure_edges(
+    setup: &Setup,
+    faces: &Faces,
+    m: &UniformMotion,
+    effort: &Effort,
+) -> Result<Edges, String> {
     let name = &setup.fixture.name;
-    let probe = Probed::aimed(setup, &[FRONT, SIDE], 0.1, effort)?;
+    let probe = Probed::aimed(setup, &[faces.front, faces.side], 0.1, effort)?;
     let start = m.start;
     let face = |z: f64| OnPlane {
         plane: Plane::z(z),
@@ -97,15 +109,15 @@ fn seen(setup: &Setup, m: &UniformMotion, x: f64, y: f64, z: f64) -> Result<DVec
 /// apparent length and its length with the light delay removed, which is
 /// the Lorentz contraction 1/gamma (the paper: 0.5 at 0.866c) for the
 /// V_obj and 1 for the H_obj.
-pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+pub fn run(f: &Fixture, faces: &Faces, effort: &Effort) -> Result<Findings, String> {
     let model = fixture_model(f);
-    let m = motion_of(f, FRONT, model)?;
+    let m = motion_of(f, faces.front, model)?;
     let setup = Setup {
         fixture: f,
         model,
         camera_t: f.spec.camera.t,
     };
-    let edges = measure_edges(&setup, &m, effort)?;
+    let edges = measure_edges(&setup, faces, &m, effort)?;
     let points = SeenPoints::of(&setup, &m)?;
     let quantities = quantities(&setup, &m, &edges, &points);
     let cam = setup.camera_x();

@@ -1,17 +1,20 @@
 //! First-principles expectations, computed without the ray tracer: where
 //! points are seen on the camera's past light cone ([`seen`]), the
 //! kinematics of special relativity and of Galilean addition
-//! ([`kinematics`]), the quadratic solver both rest on ([`quadratic`]), and
-//! extremes over a body's outline ([`extremes`]).
+//! ([`kinematics`]), the quadratic solver both rest on ([`quadratic`]),
+//! extremes over a body's outline ([`extremes`]), and the point of an edge
+//! seen at a given place ([`crossing`]).
 //!
 //! Nothing here calls the ray tracer: each formula is written out so that
 //! an error in the tracer's own cannot cancel.
 
+pub mod crossing;
 pub mod extremes;
 pub mod kinematics;
 pub mod quadratic;
 pub mod seen;
 
+pub use crossing::first_root;
 pub use extremes::extremes_on_polygon;
 pub use kinematics::{
     aberrate_galilean, aberrate_lorentz, contract, doppler_factor, gamma, gamma_of_squared,
