@@ -28,6 +28,7 @@ mod rendering {
 /// and oracle's own models against the renderer's.
 mod harness {
     mod debug;
+    mod declared;
     mod fixture_errors;
     mod independent_models;
     mod vstf_check;

@@ -18,6 +18,7 @@ fn main() -> ExitCode {
         Command::Animate(args) => cli::animate::run(root, args),
         Command::Bench { quick } => cli::bench::run(root, quick),
         Command::List => cli::list::run(root),
+        Command::Init(args) => cli::init::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -500,3 +500,95 @@ fn outside_a_project_check_says_how_to_make_one() {
     assert!(dir.join("scene.png").is_file());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A user's project from `vstf init`, with a second fixture of its own: the
+/// first check fails on MISSING goldens only, approve writes into that
+/// project's golden/, the second check passes, a tampered golden there is
+/// caught, and this repository's golden/ is untouched throughout.
+#[test]
+fn a_project_from_init_checks_approves_and_catches_a_tamper() {
+    let dir = scratch("init");
+    let project = dir.join("my-scenes");
+    let repo_goldens = golden_listing(&repo_root().join("golden"));
+    let run = |args: &[&str]| {
+        vstf()
+            .current_dir(&project)
+            .env_remove("CI")
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let out = vstf()
+        .current_dir(&dir)
+        .args(["init", "my-scenes"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::write(project.join("fixtures/fast-ball.json"), FAST_BALL).unwrap();
+    let first = run(&["check", "--quick"]);
+    let text = String::from_utf8_lossy(&first.stdout);
+    assert!(!first.status.success());
+    assert!(text.contains("check: 15 passed, 0 failed"), "{text}");
+    assert_eq!(text.matches("golden MISSING").count(), 3, "{text}");
+    let approved = run(&["approve", "--all"]);
+    assert!(
+        approved.status.success(),
+        "{}",
+        String::from_utf8_lossy(&approved.stderr)
+    );
+    assert!(project.join("golden/moving-cube/t-10.png").is_file());
+    assert!(project.join("golden/fast-ball/view.png").is_file());
+    let second = run(&["check", "--quick"]);
+    let text = String::from_utf8_lossy(&second.stdout);
+    assert!(second.status.success(), "{text}");
+    assert!(text.contains("golden: 3 passed, 0 failed"), "{text}");
+    tamper(&project.join("golden/moving-cube/t-11.png"));
+    let third = run(&["check", "moving-cube", "--quick"]);
+    let text = String::from_utf8_lossy(&third.stdout);
+    assert!(!third.status.success());
+    assert!(
+        text.contains("golden FAIL fixture=moving-cube view=t-11"),
+        "{text}"
+    );
+    assert_eq!(golden_listing(&repo_root().join("golden")), repo_goldens);
+    let again = vstf()
+        .current_dir(&dir)
+        .args(["init", "my-scenes"])
+        .output()
+        .unwrap();
+    assert!(!again.status.success(), "init overwrote a project");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Every golden image under `dir` with its bytes.
+fn golden_listing(dir: &std::path::Path) -> Vec<(std::path::PathBuf, Vec<u8>)> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            out.extend(golden_listing(&p));
+        } else {
+            out.push((p.clone(), std::fs::read(&p).unwrap()));
+        }
+    }
+    out.sort();
+    out
+}
+
+/// A user's fixture with a named kind: an analytic sphere at 0.6c whose
+/// outline the `sphere` kind fits (four rows).
+const FAST_BALL: &str = r#"{
+  "description": "A ball of radius 0.5 crossing the view at 0.6c, 8 l.units away.",
+  "camera": {"position": [0.0, 0.0, 0.0], "t": 0.0, "look_at": [0.0, 0.0, -1.0], "vfov_deg": 30.0},
+  "light": {"position": [0.0, 20.0, 20.0], "color": [0.0, 0.0, 0.0], "ambient": 1.0},
+  "background": [0.0, 0.0, 0.0],
+  "image": {"width": 160, "height": 120},
+  "objects": [{"name": "ball", "kind": "V_obj", "mesh": {"analytic_sphere": {"radius": 0.5}},
+               "worldline": {"start": [-100.0, -55.2, 0.0, -8.0], "extrusion": [200.0, 120.0, 0.0, 0.0]},
+               "material": {"color": [0.9, 0.3, 0.3]}}],
+  "checks": [{"name": "outline", "measure": {"named": {"sphere": {"object": "ball"}}}}]
+}"#;

@@ -437,7 +437,7 @@ fn pixel_edge(
         .filter_map(|i| {
             let scan = Scan { horizontal, at: i };
             let u = measure::edge(&img, scan, sweep.from, sweep.step, |c| {
-                !super::setup::is_background(c, bg)
+                super::setup::is_background(c, bg)
             })?;
             Some((f64::from(i) + 0.5, u))
         })

@@ -88,6 +88,9 @@ pub enum Command {
     },
     /// List the fixtures in fixtures/.
     List,
+    /// Start a project in DIR (default: here): vstf.toml, a fixture with
+    /// declared checks, .gitignore and README; nothing existing is overwritten.
+    Init(InitArgs),
 }
 
 // The argument structs below carry `//`, not `///`: clap would take a doc
@@ -122,6 +125,13 @@ pub struct CheckArgs {
     /// Smaller probes and fewer samples (what `cargo test` uses).
     #[arg(long)]
     pub quick: bool,
+}
+
+// `vstf init`.
+#[derive(clap::Args)]
+pub struct InitArgs {
+    /// The project folder (created if needed; default: the current directory).
+    pub dir: Option<PathBuf>,
 }
 
 // `vstf approve`.

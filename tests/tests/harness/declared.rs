@@ -1,0 +1,200 @@
+//! Declared checks (docs/checks.md): declarations that refer to what the
+//! fixture does not have are refused at load with the file and JSON path;
+//! an edge the view does not show is an error, never a pass; a scene
+//! rendered elsewhere than its declaration says fails its rows.
+
+use std::path::Path;
+use vstf::check::{declared, Effort, Row};
+use vstf::fixture::Fixture;
+
+/// The example of `vstf init`: a cube at 0.8c with a check of every general kind.
+fn cube_text() -> String {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../vstf/src/cli/init-moving-cube.json");
+    std::fs::read_to_string(file).unwrap()
+}
+
+/// The cube fixture with `edit` applied to its JSON.
+fn cube_with(edit: impl FnOnce(&mut serde_json::Value)) -> String {
+    let mut v: serde_json::Value = serde_json::from_str(&cube_text()).unwrap();
+    edit(&mut v);
+    serde_json::to_string_pretty(&v).unwrap()
+}
+
+fn parse(text: &str) -> Result<Fixture, String> {
+    Fixture::parse(text, Path::new("fixtures/cube.json")).map_err(|e| e.to_string())
+}
+
+/// The rows of the declared checks of `described`, measured on `rendered`.
+fn rows(rendered: &Fixture, described: &Fixture) -> Vec<Row> {
+    declared::evaluate(rendered, described, &Effort::QUICK)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .quantities
+        .into_iter()
+        .map(|q| q.judge("cube"))
+        .collect()
+}
+
+/// A change to a fixture's JSON.
+type Edit = dyn FnOnce(&mut serde_json::Value);
+
+#[test]
+fn bad_declarations_name_the_file_and_json_path() {
+    let cases: Vec<(Box<Edit>, &str)> = vec![
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["object"] = "nope".into()),
+            "fixtures/cube.json: checks[0].measure.edge.object: no object named \"nope\"",
+        ),
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["view"] = "t = 99".into()),
+            "checks[0].measure.edge.view: no view named \"t = 99\"",
+        ),
+        (
+            Box::new(|v| {
+                v["checks"][2]["measure"]["edge"]["points"] =
+                    serde_json::json!([[-1.0, -1.0, -1.0], [-1.0, 0.0, 0.0]])
+            }),
+            "checks[2].measure.edge.points: not along an edge of \"trailing face\"'s mesh",
+        ),
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["vertices"] = serde_json::json!([0, 9])),
+            "checks[0].measure.edge.vertices[1]: the mesh has 4 vertices",
+        ),
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["at"] = serde_json::json!({"row": 240})),
+            "checks[0].measure.edge.at.row: row 240 is outside the 320x240 image of view \"t = 10\"",
+        ),
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["side"] = "top".into()),
+            "checks[0].measure.edge.side: rows and planes are scanned from the left or the right",
+        ),
+        (
+            Box::new(|v| {
+                v["checks"][0]["measure"]["edge"]["at"] = serde_json::json!({"plane": {"z": 1.0}})
+            }),
+            "checks[0].measure.edge.at: give plane, level and read together, or row, or column",
+        ),
+        (
+            Box::new(|v| v["checks"][4]["measure"]["difference"][1] = "later".into()),
+            "checks[4].measure.difference[1]: no earlier edge or difference check named \"later\"",
+        ),
+        (
+            Box::new(|v| v["checks"][0]["tolerance"] = serde_json::json!({"add": 0.5})),
+            "checks[0].tolerance.reason: loosening a derived tolerance (add) needs a stated reason",
+        ),
+        (
+            Box::new(|v| v["views"][1]["t"] = 10.0.into()),
+            "checks[10].measure.velocity: the two checks' views have the same camera time",
+        ),
+        (
+            Box::new(|v| v["views"][1]["name"] = "t = 10".into()),
+            "views[1].name: view name \"t = 10\" is empty or used twice",
+        ),
+        (
+            Box::new(|v| v["checks"][1]["name"] = v["checks"][0]["name"].clone()),
+            "checks[1].name: check name",
+        ),
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["colour"] = "red".into()),
+            "checks[0].measure.edge.colour: unknown field `colour`",
+        ),
+    ];
+    for (edit, expected) in cases {
+        let e = match parse(&cube_with(edit)) {
+            Ok(_) => panic!("accepted; expected {expected:?}"),
+            Err(e) => e,
+        };
+        assert!(e.contains(expected), "expected {expected:?} in:\n{e}");
+        assert!(e.starts_with("fixtures/cube.json: "), "{e}");
+    }
+}
+
+#[test]
+fn the_example_passes_every_row_and_a_wrong_side_fails_its_row() {
+    let cube = parse(&cube_text()).unwrap();
+    let honest = rows(&cube, &cube);
+    assert_eq!(honest.len(), 11);
+    assert!(
+        honest.iter().all(|r| r.pass),
+        "{}",
+        vstf::report::table(&honest)
+    );
+    // Negative control: the left edge declared as seen from the right is
+    // measured where the right edge is, and fails.
+    let wrong = parse(&cube_with(|v| {
+        v["checks"][0]["measure"]["edge"]["side"] = "right".into()
+    }))
+    .unwrap();
+    let r = &rows(&wrong, &wrong)[0];
+    assert!(!r.pass, "{r:?}");
+    assert_abs_diff_eq!(r.measured, honest[1].measured, epsilon = 1e-9);
+}
+
+/// Mutation: the cube rendered 0.01 l.units further along its motion than
+/// its declaration puts it. Every edge row fails; the combinations that
+/// cancel a common shift (widths, their ratio, the velocity) still pass.
+#[test]
+fn a_cube_rendered_a_hundredth_elsewhere_fails_its_edge_rows() {
+    let cube = parse(&cube_text()).unwrap();
+    let mut shifted = cube.clone();
+    for o in &mut shifted.scene.objects {
+        let renderer::Motion::Extrusion { start, .. } = &mut o.motion else {
+            panic!("the cube moves by extrusion");
+        };
+        start.x.x += 0.01;
+    }
+    let moved = rows(&shifted, &cube);
+    for r in &moved {
+        let is_edge = r.quantity.contains("edge") && !r.quantity.starts_with("apparent velocity");
+        let is_horizontal = !r.quantity.contains("top edge");
+        if is_edge && is_horizontal {
+            assert!(!r.pass, "a 0.01 shift went unnoticed: {r:?}");
+        } else {
+            assert!(r.pass, "{r:?}");
+        }
+    }
+}
+
+/// An edge the view does not show (the cube has long left the picture) is
+/// an error naming the check, not a pass.
+#[test]
+fn an_edge_out_of_view_is_an_error_not_a_pass() {
+    for check in [0, 8] {
+        let late = parse(&cube_with(|v| {
+            v["views"][0]["t"] = 60.0.into();
+            let keep = v["checks"][check].clone();
+            v["checks"] = serde_json::json!([keep]);
+        }))
+        .unwrap();
+        let e = match declared::run(&late, &Effort::QUICK) {
+            Ok(f) => panic!("an unseen edge gave rows: {:?}", f.quantities),
+            Err(e) => e,
+        };
+        assert!(e.contains("fixtures/cube.json: checks[0]"), "{e}");
+    }
+}
+
+/// A declaration may tighten a tolerance, and loosen it only with a reason;
+/// both show in the row.
+#[test]
+fn declared_tolerances_tighten_or_loosen_with_a_reason() {
+    let base = rows(&parse(&cube_text()).unwrap(), &parse(&cube_text()).unwrap())[0].tolerance;
+    let tight = parse(&cube_with(|v| {
+        v["checks"][0]["tolerance"] = serde_json::json!({"at_most": 1e-9})
+    }))
+    .unwrap();
+    let r = &rows(&tight, &tight)[0];
+    assert_eq!(r.tolerance, 1e-9);
+    assert!(
+        !r.pass,
+        "a tolerance below the measurement's resolution should fail: {r:?}"
+    );
+    let loose = parse(&cube_with(|v| {
+        v["checks"][0]["tolerance"] = serde_json::json!({"add": 0.5, "reason": "a test"})
+    }))
+    .unwrap();
+    assert_abs_diff_eq!(
+        rows(&loose, &loose)[0].tolerance,
+        base + 0.5,
+        epsilon = 1e-12
+    );
+}
