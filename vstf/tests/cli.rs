@@ -532,7 +532,7 @@ fn a_project_from_init_checks_approves_and_catches_a_tamper() {
     let first = run(&["check", "--quick"]);
     let text = String::from_utf8_lossy(&first.stdout);
     assert!(!first.status.success());
-    assert!(text.contains("check: 15 passed, 0 failed"), "{text}");
+    assert!(text.contains("check: 24 passed, 0 failed"), "{text}");
     assert_eq!(text.matches("golden MISSING").count(), 3, "{text}");
     let approved = run(&["approve", "--all"]);
     assert!(
@@ -541,7 +541,7 @@ fn a_project_from_init_checks_approves_and_catches_a_tamper() {
         String::from_utf8_lossy(&approved.stderr)
     );
     assert!(project.join("golden/moving-cube/t-10.png").is_file());
-    assert!(project.join("golden/fast-ball/view.png").is_file());
+    assert!(project.join("golden/fast-ball/now.png").is_file());
     let second = run(&["check", "--quick"]);
     let text = String::from_utf8_lossy(&second.stdout);
     assert!(second.status.success(), "{text}");
@@ -579,16 +579,39 @@ fn golden_listing(dir: &std::path::Path) -> Vec<(std::path::PathBuf, Vec<u8>)> {
     out
 }
 
-/// A user's fixture with a named kind: an analytic sphere at 0.6c whose
-/// outline the `sphere` kind fits (four rows).
+/// A user's second fixture: a ball at 0.6c whose outline is fitted, a plate
+/// approaching at 0.4c whose blink period is measured, and a glowing lamp
+/// at 0.3c whose Doppler factor is read three ways; with the cube of `vstf
+/// init`, every general kind is declared.
 const FAST_BALL: &str = r#"{
-  "description": "A ball of radius 0.5 crossing the view at 0.6c, 8 l.units away.",
+  "description": "A ball of radius 0.5 crossing the view at 0.6c, 8 l.units away; above it a plate approaching at 0.4c, blinking every 0.5 t.units of its proper time; below it a lamp glowing as a 5000 K blackbody at 0.3c.",
   "camera": {"position": [0.0, 0.0, 0.0], "t": 0.0, "look_at": [0.0, 0.0, -1.0], "vfov_deg": 30.0},
   "light": {"position": [0.0, 20.0, 20.0], "color": [0.0, 0.0, 0.0], "ambient": 1.0},
   "background": [0.0, 0.0, 0.0],
   "image": {"width": 160, "height": 120},
-  "objects": [{"name": "ball", "kind": "V_obj", "mesh": {"analytic_sphere": {"radius": 0.5}},
-               "worldline": {"start": [-100.0, -55.2, 0.0, -8.0], "extrusion": [200.0, 120.0, 0.0, 0.0]},
-               "material": {"color": [0.9, 0.3, 0.3]}}],
-  "checks": [{"name": "outline", "measure": {"named": {"sphere": {"object": "ball"}}}}]
+  "objects": [
+    {"name": "ball", "kind": "V_obj", "mesh": {"analytic_sphere": {"radius": 0.5}},
+     "worldline": {"start": [-100.0, -55.2, 0.0, -8.0], "extrusion": [200.0, 120.0, 0.0, 0.0]},
+     "material": {"color": [0.9, 0.3, 0.3]}},
+    {"name": "blinker", "kind": "V_obj", "mesh": {"quad": {"corner": [-0.3, -0.3, 0.0], "u": [0.6, 0.0, 0.0], "v": [0.0, 0.6, 0.0]}},
+     "worldline": {"start": [-20.0, 0.0, 1.2, -16.0], "velocity": [0.0, 0.0, 0.4], "proper_lifetime": 40.0},
+     "material": {"color": [0.1, 0.1, 0.6], "blink": {"period": 0.5, "color": [1.0, 1.0, 1.0]}}},
+    {"name": "lamp", "kind": "V_obj", "mesh": {"quad": {"corner": [-0.5, -0.5, 0.0], "u": [1.0, 0.0, 0.0], "v": [0.0, 1.0, 0.0]}},
+     "worldline": {"start": [-100.0, -26.34, -2.0, -12.0], "extrusion": [200.0, 60.0, 0.0, 0.0]},
+     "material": {"color": [0.0, 0.0, 0.0], "emission": {"blackbody": {"kelvin": 5000.0, "scale": 0.35}}}}
+  ],
+  "views": [{"name": "now"}],
+  "checks": [
+    {"name": "ball: width", "measure": {"outline": {"view": "now", "object": "ball", "read": "width"}}},
+    {"name": "ball: height", "measure": {"outline": {"view": "now", "object": "ball", "read": "height"}}},
+    {"name": "ball: axis ratio", "measure": {"outline": {"view": "now", "object": "ball", "read": "axis_ratio"}}},
+    {"name": "ball: radius", "measure": {"outline": {"view": "now", "object": "ball", "read": "radius"}}},
+    {"name": "ball: RMS from a circle", "measure": {"outline": {"view": "now", "object": "ball", "read": "rms"}}},
+    {"name": "ball: centre azimuth", "measure": {"outline": {"view": "now", "object": "ball", "read": "centre_azimuth"}}},
+    {"name": "ball: centre elevation", "measure": {"outline": {"view": "now", "object": "ball", "read": "centre_elevation"}}},
+    {"name": "blinker: blink period seen", "measure": {"period": {"view": "now", "object": "blinker", "from": -2.0, "to": 2.0, "step": 0.02}}},
+    {"name": "lamp: D from the colour", "measure": {"doppler": {"view": "now", "object": "lamp", "from": "colour"}}},
+    {"name": "lamp: D from the searchlight, shifted", "measure": {"doppler": {"view": "now", "object": "lamp", "from": "searchlight_shifted"}}},
+    {"name": "lamp: D from the searchlight, RGB", "measure": {"doppler": {"view": "now", "object": "lamp", "from": "searchlight_rgb"}}}
+  ]
 }"#;

@@ -75,7 +75,7 @@ fn bad_declarations_name_the_file_and_json_path() {
         ),
         (
             Box::new(|v| v["checks"][4]["measure"]["difference"][1] = "later".into()),
-            "checks[4].measure.difference[1]: no earlier edge or difference check named \"later\"",
+            "checks[4].measure.difference[1]: no earlier check named \"later\"",
         ),
         (
             Box::new(|v| v["checks"][0]["tolerance"] = serde_json::json!({"add": 0.5})),
@@ -83,7 +83,7 @@ fn bad_declarations_name_the_file_and_json_path() {
         ),
         (
             Box::new(|v| v["views"][1]["t"] = 10.0.into()),
-            "checks[10].measure.velocity: the two checks' views have the same camera time",
+            "checks[12].measure.velocity: the two checks' views have the same camera time",
         ),
         (
             Box::new(|v| v["views"][1]["name"] = "t = 10".into()),
@@ -92,6 +92,35 @@ fn bad_declarations_name_the_file_and_json_path() {
         (
             Box::new(|v| v["checks"][1]["name"] = v["checks"][0]["name"].clone()),
             "checks[1].name: check name",
+        ),
+        (
+            Box::new(|v| {
+                v["checks"][0]["measure"] = serde_json::json!({"outline":
+                    {"view": "t = 10", "object": "front face", "read": "radius"}})
+            }),
+            "checks[0].measure.outline.object: \"front face\" is a mesh: outlines are expected for analytic spheres",
+        ),
+        (
+            Box::new(|v| {
+                v["checks"][0]["measure"] = serde_json::json!({"doppler":
+                    {"view": "t = 10", "object": "front face", "from": "colour"}})
+            }),
+            "checks[0].measure.doppler.object: \"front face\" does not glow as a blackbody",
+        ),
+        (
+            Box::new(|v| {
+                v["checks"][0]["measure"] = serde_json::json!({"period":
+                    {"view": "t = 10", "object": "front face", "from": 0.0, "to": 1.0, "step": 0.1}})
+            }),
+            "checks[0].measure.period.object: \"front face\" does not blink",
+        ),
+        (
+            Box::new(|v| v["checks"][8]["measure"]["corner"]["columns"]["points"] = serde_json::json!([[1.0, 1.0, 1.0], [-1.0, 1.0, 1.0]])),
+            "checks[8].measure.corner.columns.points: both edges must start at the same corner",
+        ),
+        (
+            Box::new(|v| v["checks"][8]["measure"]["corner"]["columns"]["side"] = "left".into()),
+            "checks[8].measure.corner.columns.side: columns are scanned from the top or the bottom",
         ),
         (
             Box::new(|v| v["checks"][0]["measure"]["edge"]["colour"] = "red".into()),
@@ -112,7 +141,7 @@ fn bad_declarations_name_the_file_and_json_path() {
 fn the_example_passes_every_row_and_a_wrong_side_fails_its_row() {
     let cube = parse(&cube_text()).unwrap();
     let honest = rows(&cube, &cube);
-    assert_eq!(honest.len(), 11);
+    assert_eq!(honest.len(), 13);
     assert!(
         honest.iter().all(|r| r.pass),
         "{}",
@@ -130,8 +159,9 @@ fn the_example_passes_every_row_and_a_wrong_side_fails_its_row() {
 }
 
 /// Mutation: the cube rendered 0.01 l.units further along its motion than
-/// its declaration puts it. Every edge row fails; the combinations that
-/// cancel a common shift (widths, their ratio, the velocity) still pass.
+/// its declaration puts it. Every row of a position along the motion fails;
+/// positions across it (the top edge, the corner's y) and the combinations
+/// that cancel a common shift (widths, their ratio, the velocity) still pass.
 #[test]
 fn a_cube_rendered_a_hundredth_elsewhere_fails_its_edge_rows() {
     let cube = parse(&cube_text()).unwrap();
@@ -143,10 +173,14 @@ fn a_cube_rendered_a_hundredth_elsewhere_fails_its_edge_rows() {
         start.x.x += 0.01;
     }
     let moved = rows(&shifted, &cube);
+    let along = [
+        "left edge",
+        "right edge",
+        "corner (x",
+        "leading edge on the plane",
+    ];
     for r in &moved {
-        let is_edge = r.quantity.contains("edge") && !r.quantity.starts_with("apparent velocity");
-        let is_horizontal = !r.quantity.contains("top edge");
-        if is_edge && is_horizontal {
+        if along.iter().any(|a| r.quantity.contains(a)) {
             assert!(!r.pass, "a 0.01 shift went unnoticed: {r:?}");
         } else {
             assert!(r.pass, "{r:?}");

@@ -1,6 +1,6 @@
-//! Doppler shift and searchlight: self-luminous panels glowing as a blackbody
-//! at T, approaching head-on, receding, and crossing the line of sight.
-//! Measured at the centre pixel of each panel's probe:
+//! Doppler shift and searchlight: a self-luminous object glowing as a
+//! blackbody at T, moving uniformly. Measured at the centre pixel of a
+//! probe aimed at it, rendered with and without each colour effect:
 //! - the Doppler factor from the colour: a blackbody seen Doppler-shifted is
 //!   a blackbody at D T, so D is the temperature whose chromaticity matches
 //!   the pixel's, over T;
@@ -14,7 +14,8 @@
 //! Tolerances follow from the 8-bit quantisation of the measured pixels
 //! (half a step on each channel).
 
-use super::{fixture_model, Effort, Findings, Probe, Quantity, Reading, Setup, Unit};
+use super::{Effort, Probe, Reading, Setup};
+use crate::fixture::checks::DopplerFrom;
 use crate::fixture::Fixture;
 use crate::measure::colorimetry::{xyz_of_rgb, Blackbody, Chromaticity};
 use crate::measure::{self, Pinhole};
@@ -22,9 +23,6 @@ use crate::oracle::{body_point, doppler_factor, retarded};
 use glam::DVec3;
 use image::RgbImage;
 use renderer::Spectrum;
-
-const NAME: &str = "doppler";
-const PANELS: [&str; 3] = ["head-on", "receding", "transverse"];
 
 /// The fixture with the colour effects set.
 fn with_effects(f: &Fixture, doppler: bool, searchlight: bool) -> Fixture {
@@ -102,20 +100,16 @@ fn searchlight_factor(on: DVec3, off: DVec3, power: f64) -> Reading {
     }
 }
 
-/// The centre pixels of one panel's probes under each variant of the colour
-/// effects (in the order of `variants`), and the lab direction they look along.
+/// The centre pixels of one object's probes under each variant of the
+/// colour effects (in the order of `variants`), and the lab direction they
+/// look along.
 fn panel_pixels(
-    f: &Fixture,
+    setup: &Setup,
     variants: &[Fixture],
     name: &str,
     effort: &Effort,
 ) -> Result<(Vec<DVec3>, DVec3), String> {
-    let (model, tc) = (fixture_model(f), f.spec.camera.t);
-    let setup = Setup {
-        fixture: f,
-        model,
-        camera_t: tc,
-    };
+    let (model, tc) = (setup.model, setup.camera_t);
     let (look, vfov) = setup.aim(&[name], 0.3)?;
     let mut seen = Vec::new();
     for v in variants {
@@ -136,77 +130,68 @@ fn panel_pixels(
     Ok((seen.iter().map(|s| s.0).collect(), seen[0].1))
 }
 
-/// Each panel's Doppler factor from its colour (shifted blackbody) and from
-/// the searchlight ratios (D^5 shifted, D^4 in RGB), against
-/// D = 1 / (gamma (1 - u.k)) along the centre pixel's line of sight.
-pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
-    let model = fixture_model(f);
-    let tc = f.spec.camera.t;
-    let mut quantities = Vec::new();
-    let mut marks = Vec::new();
-    let variants = [(false, false), (false, true), (true, false), (true, true)]
-        .map(|(d, s)| with_effects(f, d, s));
-    for name in PANELS {
+/// One object's centre pixel under the four combinations of the colour
+/// effects, measured once and read by every Doppler check of it, with the
+/// factor D = 1 / (gamma (1 - u.k)) expected along its line of sight.
+pub struct Panel {
+    /// Without effects, searchlight in RGB, shifted, shifted with searchlight.
+    pixels: [DVec3; 4],
+    source: Blackbody,
+    expected: f64,
+    /// Where the object's reference point is seen, to mark in the report.
+    pub mark: Option<DVec3>,
+}
+
+impl Panel {
+    /// Measures the object `name` on probes of `measuring`; its emission
+    /// and motion are read from `described`.
+    pub fn measure(
+        measuring: &Setup,
+        described: &Setup,
+        name: &str,
+        effort: &Effort,
+    ) -> Result<Panel, String> {
+        let f = described.fixture;
         let obj = f
             .scene
             .objects
             .iter()
             .find(|o| o.name == name)
-            .ok_or_else(|| format!("{NAME}: no panel {name:?}"))?;
+            .ok_or_else(|| format!("no object {name:?}"))?;
         let source = match obj.material.emission {
             Some(Spectrum::Blackbody { kelvin, scale }) => Blackbody { kelvin, scale },
-            _ => return Err(format!("{NAME}: {name} must glow as a blackbody")),
+            _ => return Err(format!("{name} must glow as a blackbody")),
         };
-        let (start, u) = super::uniform(&obj.motion)
-            .ok_or_else(|| format!("{NAME}: {name} must move uniformly"))?;
-        let middle = body_point(start.t, start.x, u, DVec3::ZERO, model.lorentz);
-        if let Some(r) = retarded(&middle, tc, f.spec.camera.position) {
-            marks.push(r.direction);
-        }
-        let (pixels, dir) = panel_pixels(f, &variants, name, effort)?;
-        let [plain, rgb_lit, shifted, shifted_lit] = [pixels[0], pixels[1], pixels[2], pixels[3]];
-        let expected = doppler_factor(u, -dir);
-        let from_colour = |rgb: DVec3| factor_from_colour(&source, rgb);
-        let factor = |what: &str, measured: Reading| Quantity {
-            name: format!("{name}: D from {what}"),
-            measured,
-            expected,
-            paper: None,
-            unit: Unit::Factor,
-        };
-        quantities.extend([
-            factor(
-                "the colour (blackbody at D T)",
-                Reading {
-                    value: from_colour(shifted).unwrap_or(f64::NAN),
-                    tolerance: quantisation(shifted, from_colour),
-                },
-            ),
-            factor(
-                "the searchlight, shifted (D^5)",
-                searchlight_factor(shifted_lit, shifted, 5.0),
-            ),
-            factor(
-                "the searchlight, RGB (D^4)",
-                searchlight_factor(rgb_lit, plain, 4.0),
-            ),
-        ]);
+        let (start, u) =
+            super::uniform(&obj.motion).ok_or_else(|| format!("{name} must move uniformly"))?;
+        let lorentz = described.model.lorentz;
+        let middle = body_point(start.t, start.x, u, DVec3::ZERO, lorentz);
+        let mark =
+            retarded(&middle, described.camera_t, f.spec.camera.position).map(|r| r.direction);
+        let variants = [(false, false), (false, true), (true, false), (true, true)]
+            .map(|(d, s)| with_effects(measuring.fixture, d, s));
+        let (pixels, dir) = panel_pixels(measuring, &variants, name, effort)?;
+        Ok(Panel {
+            pixels: [pixels[0], pixels[1], pixels[2], pixels[3]],
+            source,
+            expected: doppler_factor(u, -dir),
+            mark,
+        })
     }
-    let setup = Setup {
-        fixture: f,
-        model,
-        camera_t: tc,
-    };
-    let lit = Setup {
-        fixture: &variants[3],
-        model,
-        camera_t: tc,
-    };
-    Ok(Findings {
-        views: vec![
-            setup.full_view("doppler", &marks)?,
-            lit.full_view("doppler and searchlight", &marks)?,
-        ],
-        quantities,
-    })
+
+    /// The factor D read `from` the colour or a searchlight ratio, and the
+    /// factor expected.
+    pub fn read(&self, from: DopplerFrom) -> (Reading, f64) {
+        let [plain, rgb_lit, shifted, shifted_lit] = self.pixels;
+        let from_colour = |rgb: DVec3| factor_from_colour(&self.source, rgb);
+        let reading = match from {
+            DopplerFrom::Colour => Reading {
+                value: from_colour(shifted).unwrap_or(f64::NAN),
+                tolerance: quantisation(shifted, from_colour),
+            },
+            DopplerFrom::SearchlightShifted => searchlight_factor(shifted_lit, shifted, 5.0),
+            DopplerFrom::SearchlightRgb => searchlight_factor(rgb_lit, plain, 4.0),
+        };
+        (reading, self.expected)
+    }
 }

@@ -20,10 +20,10 @@ pub mod runner;
 pub mod setup;
 
 pub mod aberration;
-pub mod blink;
 pub mod doppler;
+pub mod outline;
+pub mod period;
 pub mod relativity;
-pub mod sphere;
 pub mod stage;
 pub mod teaser;
 pub mod terrell;

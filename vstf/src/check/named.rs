@@ -4,7 +4,7 @@
 
 use super::runner::Findings;
 use super::setup::Effort;
-use super::{aberration, blink, doppler, relativity, sphere, stage, teaser, terrell};
+use super::{aberration, relativity, stage, teaser, terrell};
 use crate::fixture::checks::NamedSpec;
 use crate::fixture::Fixture;
 
@@ -24,9 +24,6 @@ pub fn run(f: &Fixture, n: &NamedSpec, effort: &Effort) -> Result<Findings, Stri
         }
         NamedSpec::Aberration {} => aberration::run(f, effort),
         NamedSpec::Teaser {} => teaser::run(f, effort),
-        NamedSpec::Blink { from, to, step } => blink::run(f, (*from, *to, *step), effort),
         NamedSpec::Relativity {} => relativity::run(f, effort),
-        NamedSpec::Sphere { object } => sphere::run(f, object, effort),
-        NamedSpec::Doppler {} => doppler::run(f, effort),
     }
 }

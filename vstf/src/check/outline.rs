@@ -1,11 +1,12 @@
-//! A fast sphere: an analytic sphere crossing the view at 0.9c.
-//! Lorentz-contracted, its outline on the sky stays a circle (Penrose 1959,
-//! Terrell 1959); Lorentz-decoupled, it does not.
+//! The outline of an analytic sphere on the sky. Lorentz-contracted, a
+//! fast sphere's outline stays a circle (Penrose 1959, Terrell 1959);
+//! Lorentz-decoupled, it does not.
 //!
 //! Measured, in angle space: the outline's edge points from the image as
-//! directions, projected stereographically about their mean (circles on the
-//! sky stay circles) and fitted by a circle. Reported: its angular radius,
-//! and the outline's RMS deviation from it.
+//! lab directions, projected stereographically about their mean (circles on
+//! the sky stay circles) and fitted by a circle. Read off: the outline's
+//! extents in azimuth and elevation and their ratio, the fitted circle's
+//! angular radius and centre, and the outline's RMS deviation from it.
 //!
 //! Expected. Contracted: in the sphere's rest frame the camera event sees a
 //! cone of half-angle asin(R / D') about the centre; aberration into the
@@ -15,7 +16,8 @@
 //! outline direction is one whose ray is tangent to it, found by bisection
 //! along each direction from the centre.
 
-use super::{fixture_model, Effort, Findings, Probed, Quantity, Reading, Setup, Unit};
+use super::{Effort, Probed, Reading, Setup, Unit};
+use crate::fixture::checks::OutlineRead;
 use crate::fixture::Fixture;
 use crate::measure::{edge, Scan};
 use crate::oracle::{aberrate_lorentz, to_frame_of};
@@ -27,6 +29,7 @@ use renderer::Event;
 struct SkyCircle {
     radius_deg: f64,
     rms_deg: f64,
+    centre: DVec3,
 }
 
 /// Stereographic projection about `m` (circles on the sphere stay circles).
@@ -79,6 +82,7 @@ fn fit_sky_circle(dirs: &[DVec3]) -> Option<SkyCircle> {
     Some(SkyCircle {
         radius_deg: radius.to_degrees(),
         rms_deg: rms.to_degrees(),
+        centre: unproject(c, m, e1, e2).normalize(),
     })
 }
 
@@ -252,99 +256,129 @@ impl Sphere {
     }
 }
 
-/// The sphere's outline on the sky, measured and expected: its extent
-/// along and across the motion, and (contracted, where it is a circle) the
-/// fitted circle's radius and the outline's RMS deviation from a circle.
-pub fn run(f: &Fixture, object: &str, effort: &Effort) -> Result<Findings, String> {
-    let model = fixture_model(f);
-    let sphere = Sphere::of(f, object, model)?;
-    let setup = Setup {
-        fixture: f,
-        model,
-        camera_t: f.spec.camera.t,
-    };
-    let cam = Event::new(f.spec.camera.t, f.spec.camera.position);
-    let (row_dirs, col_dirs, px) = measured_outline(&setup, object, effort)?;
-    let dirs: Vec<DVec3> = row_dirs.iter().chain(&col_dirs).copied().collect();
-    let measured = fit_sky_circle(&dirs).ok_or("cannot fit the measured outline")?;
-    let expected_dirs = sphere.expected_outline(cam)?;
-    let expected = fit_sky_circle(&expected_dirs).ok_or("cannot fit the expected outline")?;
-    // Each edge point is known to the area method's resolution (1/n pixel,
-    // uniform: / sqrt 12); the radius is a mean over N points, the RMS a
-    // spread of them.
-    let sigma = px / effort.strata() / 12f64.sqrt();
-    let n = dirs.len() as f64;
-    let mut quantities = extents(&row_dirs, &col_dirs, &expected_dirs, sigma);
-    if sphere.contracted {
-        quantities.extend(circle(&measured, &expected, sigma, n));
+/// An outline measured once and read by every check of it: each value
+/// read off the measured outline with its uncertainty, beside the same
+/// value read off the expected outline.
+pub struct Outline {
+    values: Vec<(OutlineRead, Reading, f64)>,
+    /// Expected outline directions to mark in the report.
+    pub marks: Vec<DVec3>,
+}
+
+impl Outline {
+    /// Measures the outline of the sphere `object` on a probe of
+    /// `measuring`, and expects it from `described`'s scene data.
+    pub fn measure(
+        measuring: &Setup,
+        described: &Setup,
+        object: &str,
+        effort: &Effort,
+    ) -> Result<Outline, String> {
+        let f = described.fixture;
+        let sphere = Sphere::of(f, object, described.model)?;
+        let cam = Event::new(described.camera_t, f.spec.camera.position);
+        let (row_dirs, col_dirs, px) = measured_outline(measuring, object, effort)?;
+        let dirs: Vec<DVec3> = row_dirs.iter().chain(&col_dirs).copied().collect();
+        let measured = fit_sky_circle(&dirs).ok_or("cannot fit the measured outline")?;
+        let expected_dirs = sphere.expected_outline(cam)?;
+        let expected = fit_sky_circle(&expected_dirs).ok_or("cannot fit the expected outline")?;
+        // Each edge point is known to the area method's resolution (1/n pixel,
+        // uniform: / sqrt 12); the radius is a mean over N points, the RMS a
+        // spread of them.
+        let sigma = px / effort.strata() / 12f64.sqrt();
+        let n = dirs.len() as f64;
+        let mut values = extents(&row_dirs, &col_dirs, &expected_dirs, sigma);
+        values.extend(circle(&measured, &expected, sigma, n));
+        Ok(Outline {
+            values,
+            marks: expected_dirs.iter().step_by(45).copied().collect(),
+        })
     }
-    let marks: Vec<DVec3> = expected_dirs.iter().step_by(45).copied().collect();
-    Ok(Findings {
-        views: vec![setup.full_view("view", &marks)?],
-        quantities,
-    })
+
+    /// The reading of `what`, its expectation and unit.
+    pub fn read(&self, what: OutlineRead) -> (Reading, f64, Unit) {
+        let (_, reading, expected) = self
+            .values
+            .iter()
+            .find(|(r, _, _)| *r == what)
+            .copied()
+            .expect("every read is measured");
+        let unit = if what == OutlineRead::AxisRatio {
+            Unit::Ratio
+        } else {
+            Unit::Degrees
+        };
+        (reading, expected, unit)
+    }
 }
 
 /// The outline's extent: width along the motion (azimuth) and height
 /// across it (elevation), from its extreme points, which do not depend on
-/// how the outline is sampled. Each extreme is one edge point (known to
-/// `sigma`, degrees), taken from scans that cross the outline squarely
-/// there: rows for the width, columns for the height.
+/// how the outline is sampled, and their ratio. Each extreme is one edge
+/// point (known to `sigma`, degrees), taken from scans that cross the
+/// outline squarely there: rows for the width, columns for the height.
 fn extents(
     row_dirs: &[DVec3],
     col_dirs: &[DVec3],
     expected_dirs: &[DVec3],
     sigma: f64,
-) -> Vec<Quantity> {
+) -> Vec<(OutlineRead, Reading, f64)> {
     let tol_extent = 3.0 * sigma * 2f64.sqrt();
+    let width = Reading {
+        value: span(row_dirs, azimuth),
+        tolerance: tol_extent,
+    };
+    let height = Reading {
+        value: span(col_dirs, elevation),
+        tolerance: tol_extent,
+    };
+    let ratio = height.value / width.value;
+    let (ew, eh) = (span(expected_dirs, azimuth), span(expected_dirs, elevation));
     vec![
-        Quantity {
-            name: "angular width of the outline along the motion".into(),
-            measured: Reading {
-                value: span(row_dirs, azimuth),
-                tolerance: tol_extent,
+        (OutlineRead::Width, width, ew),
+        (OutlineRead::Height, height, eh),
+        (
+            OutlineRead::AxisRatio,
+            Reading {
+                value: ratio,
+                tolerance: ratio * (tol_extent / width.value).hypot(tol_extent / height.value),
             },
-            expected: span(expected_dirs, azimuth),
-            paper: None,
-            unit: Unit::Degrees,
-        },
-        Quantity {
-            name: "angular height of the outline across the motion".into(),
-            measured: Reading {
-                value: span(col_dirs, elevation),
-                tolerance: tol_extent,
-            },
-            expected: span(expected_dirs, elevation),
-            paper: None,
-            unit: Unit::Degrees,
-        },
+            eh / ew,
+        ),
     ]
 }
 
-/// The contracted sphere's outline is a circle: the fitted circle's radius
-/// (a mean over `n` edge points, each known to `sigma`) and the outline's
-/// RMS deviation from it, neither depending on the sampling.
-fn circle(measured: &SkyCircle, expected: &SkyCircle, sigma: f64, n: f64) -> [Quantity; 2] {
+/// The fitted circle: its radius (a mean over `n` edge points, each known
+/// to `sigma`), its centre (known to sigma sqrt(2 / n) in each direction)
+/// and the outline's RMS deviation from it, none depending on the sampling.
+fn circle(
+    measured: &SkyCircle,
+    expected: &SkyCircle,
+    sigma: f64,
+    n: f64,
+) -> [(OutlineRead, Reading, f64); 4] {
+    let centre = 3.0 * sigma * (2.0 / n).sqrt();
+    let reading = |value, tolerance| Reading { value, tolerance };
     [
-        Quantity {
-            name: "angular radius of the outline (fitted circle)".into(),
-            measured: Reading {
-                value: measured.radius_deg,
-                tolerance: 3.0 * sigma / n.sqrt() * 2.0,
-            },
-            expected: expected.radius_deg,
-            paper: None,
-            unit: Unit::Degrees,
-        },
-        Quantity {
-            name: "RMS deviation of the outline from a circle".into(),
-            measured: Reading {
-                value: measured.rms_deg,
-                tolerance: 3.0 * sigma,
-            },
-            expected: expected.rms_deg,
-            paper: None,
-            unit: Unit::Degrees,
-        },
+        (
+            OutlineRead::Radius,
+            reading(measured.radius_deg, 3.0 * sigma / n.sqrt() * 2.0),
+            expected.radius_deg,
+        ),
+        (
+            OutlineRead::Rms,
+            reading(measured.rms_deg, 3.0 * sigma),
+            expected.rms_deg,
+        ),
+        (
+            OutlineRead::CentreAzimuth,
+            reading(azimuth(&measured.centre), centre),
+            azimuth(&expected.centre),
+        ),
+        (
+            OutlineRead::CentreElevation,
+            reading(elevation(&measured.centre), centre),
+            elevation(&expected.centre),
+        ),
     ]
 }

@@ -1,0 +1,367 @@
+//! The checks a fixture file declares (`views` and `checks`, see
+//! docs/checks.md), measured from probe renders and expected by the oracle
+//! from the scene's description.
+//!
+//! Each general check gives one row. Edges and corners (`edges.rs`) find the
+//! edge point whose seen image lands where it is read by a root search along
+//! the edge over the point's worldline against the camera's past light cone;
+//! the measurement traces the edge to sub-pixel precision and fits it, so
+//! that the tolerance is the fit's prediction error. Outlines, Doppler
+//! factors and blink periods are measured once per view and object
+//! ([`super::outline`], [`super::doppler`], [`super::period`]) and read by
+//! every check of them. Differences, ratios and velocities combine earlier
+//! rows, their uncertainties in quadrature. Named kinds ([`super::named`])
+//! give the rows of the paper's scenes.
+
+mod edges;
+
+use super::doppler::Panel;
+use super::outline::Outline;
+use super::row::{difference, Quantity, Reading, Unit};
+use super::runner::{Findings, ViewReport};
+use super::setup::{fixture_model, Effort, Setup};
+use crate::fixture::checks::{CheckSpec, MeasureSpec, ToleranceSpec, ViewSpec};
+use crate::fixture::Fixture;
+use glam::DVec3;
+
+/// A declared check's row, kept for the checks that combine it.
+struct Done {
+    name: String,
+    measured: Reading,
+    expected: f64,
+    unit: Unit,
+    /// The camera time of the view measured in (edges and corners).
+    camera_t: Option<f64>,
+}
+
+/// The declared checks of `f`, rendered from `f` and expected from `f`.
+pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+    evaluate(f, f, effort)
+}
+
+/// The declared checks of `described`, measured on renders of `rendered`
+/// (the same scene, or a deliberately altered copy of it) and expected from
+/// `described`'s scene data.
+pub fn evaluate(
+    rendered: &Fixture,
+    described: &Fixture,
+    effort: &Effort,
+) -> Result<Findings, String> {
+    let spec = &described.spec;
+    let mut run = Run {
+        rendered,
+        described,
+        effort,
+        done: Vec::new(),
+        marks: vec![Vec::new(); spec.views.len()],
+        outlines: Vec::new(),
+        panels: Vec::new(),
+    };
+    let mut findings = Findings {
+        views: Vec::new(),
+        quantities: Vec::new(),
+    };
+    let mut named_views = Vec::new();
+    for (i, c) in spec.checks.iter().enumerate() {
+        let fail = |e: String| {
+            format!(
+                "{}: checks[{i}] {:?}: {e}",
+                described.file.display(),
+                c.name
+            )
+        };
+        if let MeasureSpec::Named(n) = &c.measure {
+            let found = super::named::run(rendered, n, effort).map_err(fail)?;
+            named_views.extend(found.views);
+            findings.quantities.extend(found.quantities);
+            continue;
+        }
+        let done = run.check(c).map_err(fail)?;
+        findings.quantities.push(Quantity {
+            name: c.name.clone(),
+            measured: adjusted(done.measured, c.tolerance.as_ref()),
+            expected: done.expected,
+            paper: c.paper,
+            unit: done.unit,
+        });
+        run.done.push(done);
+    }
+    findings.views = run.full_views()?;
+    findings.views.extend(named_views);
+    Ok(findings)
+}
+
+/// The tolerance after a declaration's change: at most `at_most`, plus `add`.
+fn adjusted(r: Reading, t: Option<&ToleranceSpec>) -> Reading {
+    let Some(t) = t else { return r };
+    let tightened = t.at_most.map_or(r.tolerance, |m| r.tolerance.min(m));
+    Reading {
+        value: r.value,
+        tolerance: tightened + t.add.unwrap_or(0.0),
+    }
+}
+
+/// The setup of a declared view of `f`: its camera time and model.
+fn setup_of<'f>(f: &'f Fixture, v: &ViewSpec) -> Setup<'f> {
+    let mut model = match v.model {
+        Some(m) => m.model(),
+        None => fixture_model(f),
+    };
+    if let Some(l) = v.lorentz {
+        model.lorentz = l;
+    }
+    Setup {
+        fixture: f,
+        model,
+        camera_t: v.t.unwrap_or(f.spec.camera.t),
+    }
+}
+
+/// One evaluation of a fixture's declarations: what has been measured so
+/// far, the marks for each view, and the measurements shared by checks.
+struct Run<'a> {
+    rendered: &'a Fixture,
+    described: &'a Fixture,
+    effort: &'a Effort,
+    done: Vec<Done>,
+    marks: Vec<Vec<DVec3>>,
+    outlines: Vec<(usize, String, Outline)>,
+    panels: Vec<(usize, String, Panel)>,
+}
+
+/// A view: its index, declaration, and setups for measuring (on the
+/// rendered fixture) and for expectations (from the described one).
+struct ViewSetups<'a> {
+    index: usize,
+    spec: &'a ViewSpec,
+    measuring: Setup<'a>,
+    described: Setup<'a>,
+}
+
+impl<'a> Run<'a> {
+    fn view(&self, name: &str) -> Result<ViewSetups<'a>, String> {
+        let (index, spec) = self
+            .described
+            .spec
+            .views
+            .iter()
+            .enumerate()
+            .find(|(_, v)| v.name == name)
+            .ok_or_else(|| format!("no view named {name:?}"))?;
+        Ok(ViewSetups {
+            index,
+            spec,
+            measuring: setup_of(self.rendered, spec),
+            described: setup_of(self.described, spec),
+        })
+    }
+
+    fn earlier(&self, name: &str) -> Result<&Done, String> {
+        self.done
+            .iter()
+            .find(|d| d.name == name)
+            .ok_or_else(|| format!("no earlier check named {name:?}"))
+    }
+
+    fn mark(&mut self, view: usize, direction: Option<DVec3>) {
+        self.marks[view].extend(direction);
+    }
+
+    /// Measures one general check into its row.
+    fn check(&mut self, c: &CheckSpec) -> Result<Done, String> {
+        let row = |(measured, expected, unit): (Reading, f64, Unit)| Done {
+            name: c.name.clone(),
+            measured,
+            expected,
+            unit,
+            camera_t: None,
+        };
+        match &c.measure {
+            MeasureSpec::Edge(e) => {
+                let v = self.view(&e.view)?;
+                let (reading, mark) =
+                    edges::edge(&v.measuring, &v.described, v.spec, e, self.effort)?;
+                self.mark(v.index, Some(mark));
+                Ok(Done {
+                    camera_t: Some(v.measuring.camera_t),
+                    ..row(reading)
+                })
+            }
+            MeasureSpec::Corner(k) => {
+                let v = self.view(&k.view)?;
+                let (reading, mark) =
+                    edges::corner(&v.measuring, &v.described, v.spec, k, self.effort)?;
+                self.mark(v.index, Some(mark));
+                Ok(Done {
+                    camera_t: Some(v.measuring.camera_t),
+                    ..row(reading)
+                })
+            }
+            MeasureSpec::Outline(o) => {
+                let v = self.view(&o.view)?;
+                let at = self
+                    .outlines
+                    .iter()
+                    .position(|(i, n, _)| *i == v.index && *n == o.object);
+                let k = match at {
+                    Some(k) => k,
+                    None => {
+                        let outline =
+                            Outline::measure(&v.measuring, &v.described, &o.object, self.effort)?;
+                        self.marks[v.index].extend(outline.marks.iter().copied());
+                        self.outlines.push((v.index, o.object.clone(), outline));
+                        self.outlines.len() - 1
+                    }
+                };
+                Ok(row(self.outlines[k].2.read(o.read)))
+            }
+            MeasureSpec::Doppler(d) => {
+                let v = self.view(&d.view)?;
+                let at = self
+                    .panels
+                    .iter()
+                    .position(|(i, n, _)| *i == v.index && *n == d.object);
+                let k = match at {
+                    Some(k) => k,
+                    None => {
+                        let panel =
+                            Panel::measure(&v.measuring, &v.described, &d.object, self.effort)?;
+                        self.mark(v.index, panel.mark);
+                        self.panels.push((v.index, d.object.clone(), panel));
+                        self.panels.len() - 1
+                    }
+                };
+                let (reading, expected) = self.panels[k].2.read(d.from);
+                Ok(row((reading, expected, Unit::Factor)))
+            }
+            MeasureSpec::Period(p) => {
+                let v = self.view(&p.view)?;
+                let (reading, expected, mark) =
+                    super::period::measure(&v.measuring, &v.described, p)?;
+                self.mark(v.index, mark);
+                Ok(row((reading, expected, Unit::TUnits)))
+            }
+            MeasureSpec::Difference([a, b]) => {
+                let (a, b) = (self.earlier(a)?, self.earlier(b)?);
+                same_unit(a, b)?;
+                Ok(row((
+                    difference(&a.measured, &b.measured),
+                    a.expected - b.expected,
+                    a.unit,
+                )))
+            }
+            MeasureSpec::Ratio([a, b]) => {
+                let (a, b) = (self.earlier(a)?, self.earlier(b)?);
+                same_unit(a, b)?;
+                Ok(row((
+                    ratio(&a.measured, &b.measured),
+                    a.expected / b.expected,
+                    Unit::Ratio,
+                )))
+            }
+            MeasureSpec::Velocity([a, b]) => {
+                let (a, b) = (self.earlier(a)?, self.earlier(b)?);
+                Ok(row(velocity(a, b)?))
+            }
+            MeasureSpec::Named(_) => unreachable!("named kinds are run by the caller"),
+        }
+    }
+
+    /// The expected points to mark in view `k`: its checks', or where no
+    /// check measures in it, those of the views from the same camera event
+    /// under the same model (they see the same events).
+    fn marks_of(&self, k: usize) -> Vec<DVec3> {
+        if !self.marks[k].is_empty() {
+            return self.marks[k].clone();
+        }
+        let views = &self.described.spec.views;
+        let event = |v: &ViewSpec| {
+            let s = setup_of(self.described, v);
+            (s.camera_t, s.model)
+        };
+        views
+            .iter()
+            .zip(&self.marks)
+            .filter(|(v, _)| event(v) == event(&views[k]))
+            .flat_map(|(_, m)| m.iter().copied())
+            .collect()
+    }
+
+    /// Each declared view at the report's size, marked where the checks
+    /// expect their points; the fixture's own view when it declares
+    /// neither views nor checks.
+    fn full_views(&self) -> Result<Vec<ViewReport>, String> {
+        let spec = &self.described.spec;
+        let mut views = Vec::new();
+        for (k, v) in spec.views.iter().enumerate() {
+            let marks = self.marks_of(k);
+            let with_effects;
+            let f = if v.doppler.is_some() || v.searchlight.is_some() {
+                let mut f = self.rendered.clone();
+                f.spec.image.doppler = v.doppler.unwrap_or(f.spec.image.doppler);
+                f.spec.image.searchlight = v.searchlight.unwrap_or(f.spec.image.searchlight);
+                with_effects = f;
+                &with_effects
+            } else {
+                self.rendered
+            };
+            views.push(setup_of(f, v).full_view(&v.name, &marks)?);
+        }
+        if spec.views.is_empty() && spec.checks.is_empty() {
+            let own = Setup {
+                fixture: self.rendered,
+                model: fixture_model(self.rendered),
+                camera_t: spec.camera.t,
+            };
+            views.push(own.full_view("view", &[])?);
+        }
+        Ok(views)
+    }
+}
+
+fn same_unit(a: &Done, b: &Done) -> Result<(), String> {
+    if a.unit == b.unit {
+        Ok(())
+    } else {
+        Err(format!(
+            "{:?} is in {} and {:?} in {}",
+            a.name, a.unit, b.name, b.unit
+        ))
+    }
+}
+
+/// a / b of two independent readings (relative uncertainties in quadrature).
+fn ratio(a: &Reading, b: &Reading) -> Reading {
+    let value = a.value / b.value;
+    Reading {
+        value,
+        tolerance: value.abs() * (a.tolerance / a.value).hypot(b.tolerance / b.value),
+    }
+}
+
+/// (b - a) / (t_b - t_a) of two positions measured in views at camera times
+/// t_a and t_b: an apparent velocity.
+fn velocity(a: &Done, b: &Done) -> Result<(Reading, f64, Unit), String> {
+    same_unit(a, b)?;
+    if a.unit != Unit::LUnits {
+        return Err(format!(
+            "a velocity needs positions in l.units, not {}",
+            a.unit
+        ));
+    }
+    let dt = b
+        .camera_t
+        .zip(a.camera_t)
+        .map(|(tb, ta)| tb - ta)
+        .ok_or("a velocity needs two edge or corner checks")?;
+    let d = difference(&b.measured, &a.measured);
+    let measured = Reading {
+        value: d.value / dt,
+        tolerance: d.tolerance / dt.abs(),
+    };
+    Ok((
+        measured,
+        (b.expected - a.expected) / dt,
+        Unit::LUnitsPerTUnit,
+    ))
+}
