@@ -1,16 +1,22 @@
-//! Where a point of an object is seen from a camera event, for the
-//! worldlines the oracle has in closed form: straight (extrusion or
-//! velocity) and hyperbolic (constant proper acceleration, the H_obj on one
-//! hyperbola, the Born-rigid V_obj on one per point).
+//! Where a point of an object is seen from a camera event, for every kind
+//! of worldline: straight (extrusion or velocity), hyperbolic (constant
+//! proper acceleration, the H_obj on one hyperbola, the Born-rigid V_obj on
+//! one per point) and keyframed (each point straight between its keyframe
+//! positions; a V_obj's keyframes are its rest shape, contracted along the
+//! reference point's central-difference velocity, as docs/physics.md
+//! states).
 
-use super::setup::{motion_of, uniform, UniformMotion};
+use super::setup::{motion_of, UniformMotion};
 use crate::fixture::Fixture;
-use crate::oracle::{instantaneous, retarded, retarded_hyperbolic, PointHyperbola, Retarded};
+use crate::oracle::{
+    contract, instantaneous, retarded, retarded_hyperbolic, retarded_polyline, PointHyperbola,
+    PointPolyline, Retarded,
+};
 use glam::DVec3;
-use renderer::{Hyperbolic, LightSpeed, Model, Motion, ObjectKind};
+use renderer::{Hyperbolic, Keyframe, LightSpeed, Mesh, Model, Motion, ObjectKind, Shape};
 
 /// An object's path, read from the fixture's scene data.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub enum BodyPath {
     /// A straight worldline.
     Uniform(UniformMotion),
@@ -21,6 +27,102 @@ pub enum BodyPath {
         /// Each point on its own hyperbola (a V_obj under the Lorentz transform).
         born_rigid: bool,
     },
+    /// Keyframes: the mesh's vertices at each keyframe's lab time, in lab
+    /// coordinates, straight in between.
+    Keyframed(KeyframedMesh),
+}
+
+/// A keyframed mesh in the lab: its rest vertices and triangles, and at
+/// each keyframe the lab time and the lab positions of its vertices.
+#[derive(Clone, Debug)]
+pub struct KeyframedMesh {
+    rest: Mesh,
+    frames: Vec<(f64, Vec<DVec3>)>,
+}
+
+impl KeyframedMesh {
+    /// The lab vertices of `mesh` at each keyframe; contracted along the
+    /// reference point's velocity there (central differences, one-sided at
+    /// the ends) when `contracted`.
+    fn of(mesh: &Mesh, keyframes: &[Keyframe], contracted: bool) -> KeyframedMesh {
+        let n = keyframes.len();
+        let velocity = |k: usize| {
+            let (a, b) = (k.saturating_sub(1), (k + 1).min(n - 1));
+            let (ka, kb) = (&keyframes[a], &keyframes[b]);
+            (kb.position - ka.position) / (kb.t - ka.t)
+        };
+        let frames = keyframes
+            .iter()
+            .enumerate()
+            .map(|(k, kf)| {
+                let offsets = kf.offsets.as_ref().unwrap_or(&mesh.vertices);
+                let v = velocity(k);
+                let lab = offsets
+                    .iter()
+                    .map(|r| kf.position + if contracted { contract(*r, v) } else { *r })
+                    .collect();
+                (kf.t, lab)
+            })
+            .collect();
+        KeyframedMesh {
+            rest: mesh.clone(),
+            frames,
+        }
+    }
+
+    /// The triangle side (i, j) that the rest point `r` lies on, and its
+    /// parameter along it.
+    fn side_of(&self, r: DVec3) -> Option<(usize, usize, f64)> {
+        let m = &self.rest;
+        let scale = m
+            .vertices
+            .iter()
+            .map(|v| v.abs().max_element())
+            .fold(1e-300, f64::max);
+        m.triangles.iter().find_map(|t| {
+            (0..3).find_map(|k| {
+                let (i, j) = (t[k] as usize, t[(k + 1) % 3] as usize);
+                let (a, b) = (m.vertices[i], m.vertices[j]);
+                let s = (r - a).dot(b - a) / (b - a).length_squared();
+                let on = (-1e-9..=1.0 + 1e-9).contains(&s)
+                    && (a + (b - a) * s).distance(r) <= 1e-9 * scale;
+                on.then_some((i, j, s))
+            })
+        })
+    }
+
+    /// The worldline of the mesh point at rest position `r` (on a triangle side).
+    fn point(&self, r: DVec3) -> Option<PointPolyline> {
+        let (i, j, s) = self.side_of(r)?;
+        Some(PointPolyline {
+            events: self
+                .frames
+                .iter()
+                .map(|(t, v)| (*t, v[i] + (v[j] - v[i]) * s))
+                .collect(),
+        })
+    }
+
+    /// How far the renderer's flat tetrahedra may put the side through `r`
+    /// (a point inside it, so that the side is unambiguous)
+    /// from its straight interpolation at lab time `t`: 2 f (1 - f) times the
+    /// change of the side's vector over the interval, f the fraction of the
+    /// interval (docs/physics.md, a turning triangle bends).
+    fn bend(&self, r: DVec3, t: f64) -> f64 {
+        let Some((i, j, _)) = self.side_of(r) else {
+            return 0.0;
+        };
+        let k = self
+            .frames
+            .windows(2)
+            .position(|w| w[0].0 <= t && t <= w[1].0);
+        k.map_or(0.0, |k| {
+            let ((t0, a), (t1, b)) = (&self.frames[k], &self.frames[k + 1]);
+            let f = (t - t0) / (t1 - t0);
+            let change = (b[j] - b[i]) - (a[j] - a[i]);
+            2.0 * f * (1.0 - f) * change.length()
+        })
+    }
 }
 
 /// The hyperbola of the body point at offset `r` from the reference point
@@ -57,12 +159,18 @@ impl BodyPath {
                 motion: *h,
                 born_rigid: model.lorentz && obj.kind == ObjectKind::VObj,
             }),
-            m if uniform(m).is_some() => Ok(BodyPath::Uniform(motion_of(fixture, name, model)?)),
-            _ => Err(format!(
-                "{}: object {name:?} moves by keyframes, for which the oracle has no closed form; \
-                 checks measure straight and hyperbolic worldlines",
-                fixture.file.display()
-            )),
+            Motion::Keyframes(keyframes) => {
+                let Shape::Mesh(mesh) = &obj.shape else {
+                    return Err(format!(
+                        "{name:?}: a keyframed sphere has no edges to follow"
+                    ));
+                };
+                let contracted = model.lorentz && obj.kind == ObjectKind::VObj;
+                Ok(BodyPath::Keyframed(KeyframedMesh::of(
+                    mesh, keyframes, contracted,
+                )))
+            }
+            _ => Ok(BodyPath::Uniform(motion_of(fixture, name, model)?)),
         }
     }
 
@@ -86,21 +194,47 @@ impl BodyPath {
                     })
                 }
             }
+            BodyPath::Keyframed(k) => {
+                let p = k.point(r)?;
+                if finite {
+                    retarded_polyline(&p, tc, camera)
+                } else {
+                    let x = p.at(tc)?;
+                    Some(Retarded {
+                        t: tc,
+                        x,
+                        direction: (x - camera).normalize(),
+                    })
+                }
+            }
         }
     }
 
     /// How far the seen position of the point at `r` may lie from the
     /// exact one because the renderer follows the path through keyframes
-    /// within a stated bound: the light-cone intersection slides along the
-    /// worldline, so the seen point moves by delta / (1 - v.k), k the unit
-    /// vector from the emission towards the camera. Zero for a straight path.
-    pub fn keyframe_shift(&self, r: DVec3, seen: &Retarded, camera: DVec3) -> f64 {
+    /// within a stated bound delta (a hyperbola's generation tolerance, or
+    /// the bend of a turning side): the light-cone intersection slides along
+    /// the worldline, so the seen point moves by delta / (1 - v.k), k the
+    /// unit vector from the emission towards the camera. Zero for a straight
+    /// path.
+    ///
+    /// `ends` is the edge the point lies on, at parameter `s` along it (a
+    /// side's bend is a property of the whole side).
+    pub fn keyframe_shift(&self, ends: [DVec3; 2], s: f64, seen: &Retarded, camera: DVec3) -> f64 {
+        let r = ends[0] + (ends[1] - ends[0]) * s;
+        let k = (camera - seen.x).normalize();
         match self {
             BodyPath::Uniform(_) => 0.0,
             BodyPath::Hyperbolic { motion, born_rigid } => {
                 let p = hyperbola_of(motion, r, *born_rigid);
-                let k = (camera - seen.x).normalize();
                 motion.tolerance / (1.0 - p.velocity(seen.t).dot(k))
+            }
+            BodyPath::Keyframed(m) => {
+                let v = m
+                    .point(r)
+                    .and_then(|p| p.segment_at(seen.t))
+                    .map_or(DVec3::ZERO, |(_, w)| w.v);
+                m.bend((ends[0] + ends[1]) / 2.0, seen.t) / (1.0 - v.dot(k))
             }
         }
     }

@@ -22,6 +22,6 @@ pub use kinematics::{
 };
 pub use quadratic::quadratic_roots;
 pub use seen::{
-    body_point, instantaneous, retarded, retarded_hyperbolic, PointHyperbola, PointWorldline,
-    Retarded,
+    body_point, instantaneous, retarded, retarded_hyperbolic, retarded_polyline, PointHyperbola,
+    PointPolyline, PointWorldline, Retarded,
 };

@@ -6,8 +6,10 @@
 //! With a = x0 - v t0 - c this is the quadratic
 //! (v.v - 1) t^2 + 2 (a.v + tc) t + (a.a - tc^2) = 0. A point under
 //! constant proper acceleration (a hyperbola) meets the cone where another
-//! quadratic says ([`retarded_hyperbolic`]); one with infinitely fast light
-//! is seen where it is at the camera's time ([`instantaneous`]).
+//! quadratic says ([`retarded_hyperbolic`]); a point moving straight between
+//! keyframes meets it on one of its segments ([`retarded_polyline`]); one
+//! with infinitely fast light is seen where it is at the camera's time
+//! ([`instantaneous`]).
 
 use super::kinematics::{contract, gamma};
 use super::quadratic::quadratic_roots;
@@ -162,6 +164,58 @@ pub fn retarded_hyperbolic(p: &PointHyperbola, tc: f64, camera: DVec3) -> Option
     latest(times, tc, |t| p.at(t), camera)
 }
 
+/// A point moving straight between positions at increasing lab times
+/// (keyframes): its worldline is a polyline of events (t, x).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointPolyline {
+    /// The keyframes, in increasing lab time.
+    pub events: Vec<(f64, DVec3)>,
+}
+
+impl PointPolyline {
+    /// The segment holding lab time `t` and the point's straight worldline on
+    /// it; `None` outside the keyframes' span.
+    pub fn segment_at(&self, t: f64) -> Option<(usize, PointWorldline)> {
+        let k = self
+            .events
+            .windows(2)
+            .position(|w| w[0].0 <= t && t <= w[1].0)?;
+        Some((k, self.segment(k)))
+    }
+
+    /// The straight worldline through keyframes k and k + 1.
+    pub fn segment(&self, k: usize) -> PointWorldline {
+        let ((t0, x0), (t1, x1)) = (self.events[k], self.events[k + 1]);
+        PointWorldline {
+            t0,
+            x0,
+            v: (x1 - x0) / (t1 - t0),
+        }
+    }
+
+    /// Lab position at lab time `t`, inside the keyframes' span.
+    pub fn at(&self, t: f64) -> Option<DVec3> {
+        self.segment_at(t).map(|(_, w)| w.at(t))
+    }
+}
+
+/// Where the camera at (`tc`, `camera`) sees a point moving straight
+/// between keyframes: on each segment the straight-worldline quadratic of
+/// [`retarded`], kept where its root lies within the segment's times; the
+/// latest such emission not after `tc` is seen (a subluminal polyline
+/// meets the past light cone once).
+pub fn retarded_polyline(p: &PointPolyline, tc: f64, camera: DVec3) -> Option<Retarded> {
+    let slack = |t: f64| 1e-12 * t.abs().max(1.0);
+    (0..p.events.len().saturating_sub(1))
+        .rev()
+        .filter_map(|k| {
+            let (t0, t1) = (p.events[k].0, p.events[k + 1].0);
+            retarded(&p.segment(k), tc, camera)
+                .filter(|r| r.t >= t0 - slack(t0) && r.t <= t1 + slack(t1))
+        })
+        .max_by(|a, b| a.t.total_cmp(&b.t))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -217,5 +271,34 @@ mod tests {
         let v = (p.at(2.0 + 1e-6).x - p.at(2.0 - 1e-6).x) / 2e-6;
         assert_abs_diff_eq!(p.at(2.0).x, -3.0, epsilon = 1e-12);
         assert_abs_diff_eq!(v, -0.4, epsilon = 1e-8);
+    }
+
+    /// The polyline solve against bisection on a zig-zag path: the emission
+    /// it finds lies on the past light cone and no later one does.
+    #[test]
+    fn a_polyline_is_seen_where_it_meets_the_past_light_cone() {
+        let events: Vec<(f64, DVec3)> = (0..=20)
+            .map(|k| {
+                let t = -30.0 + 1.5 * f64::from(k);
+                let wiggle = if k % 2 == 0 { 0.0 } else { 0.6 };
+                (t, DVec3::new(0.5 * t, wiggle, -8.0))
+            })
+            .collect();
+        let p = PointPolyline { events };
+        let camera = DVec3::new(1.0, 0.5, 2.0);
+        for tc in [-12.0, -5.3, 0.0, 4.2] {
+            let r = retarded_polyline(&p, tc, camera).unwrap();
+            assert_abs_diff_eq!((r.x - camera).length(), tc - r.t, epsilon = 1e-9);
+            assert_abs_diff_eq!(r.x.distance(p.at(r.t).unwrap()), 0.0, epsilon = 1e-9);
+            let cone = |t: f64| (p.at(t).unwrap() - camera).length() - (tc - t);
+            // After the emission the point is outside the past light cone
+            // (it grows at 1 + d|x - c|/dt > 0): no later emission.
+            let mut t = r.t + 1e-6;
+            while t < tc.min(0.0) {
+                assert!(cone(t) > 0.0, "a later emission near t = {t}");
+                t += 0.01;
+            }
+        }
+        assert!(retarded_polyline(&p, -40.0, camera).is_none());
     }
 }

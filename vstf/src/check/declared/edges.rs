@@ -55,6 +55,28 @@ impl SeenEdge<'_> {
         Ok((lo + trim * (hi - lo), hi - trim * (hi - lo)))
     }
 
+    /// The keyframe bound of the path at parameter `s`, seen at `at`
+    /// ([`BodyPath::keyframe_shift`]), l.units.
+    fn shift(&self, s: f64, at: &Retarded) -> f64 {
+        self.path
+            .keyframe_shift(self.ends, s, at, self.setup.camera_x())
+    }
+
+    /// The same bound as an offset in the image of `camera` along its rows
+    /// (`horizontal`) or columns, pixels: the angle it subtends at the
+    /// camera over the angle of one pixel there.
+    fn shift_px(&self, s: f64, at: &Retarded, camera: &Pinhole, horizontal: bool) -> f64 {
+        let shift = self.shift(s, at);
+        if shift == 0.0 {
+            return 0.0;
+        }
+        let Some((px, py)) = camera.pixel_of(at.direction) else {
+            return f64::INFINITY;
+        };
+        let angle = shift / (at.x - self.setup.camera_x()).length();
+        angle / camera.angular_footprint(px, py, horizontal)
+    }
+
     /// The first point along the edge whose `level_of` is `level`.
     fn crossing(
         &self,
@@ -163,9 +185,7 @@ fn plane_edge(
         .fit(&on, sweep, probe.background(), effort)
         .map_err(|err| format!("the edge is not visible in view {:?}: {err}", e.view))?;
     let reading = fitted.at(p.level);
-    let shift = seen
-        .path
-        .keyframe_shift(seen.point(s), &at, setup.camera_x());
+    let shift = seen.shift(s, &at);
     let measured = Reading {
         value: reading.value,
         tolerance: reading.tolerance + shift,
@@ -264,7 +284,7 @@ fn pixel_edge(
     let level_of = |r: &Retarded| camera.pixel_of(r.direction).map(|p| split(horizontal, p).0);
     let range = seen.range(level_of, e.trim)?;
     let centre = f64::from(line) + 0.5;
-    let (_, at) = seen.crossing(level_of, centre).ok_or_else(|| {
+    let (s, at) = seen.crossing(level_of, centre).ok_or_else(|| {
         format!(
             "the edge's image does not cross {} {line} in view {:?} (it spans {:.2} to {:.2} px there, trimmed)",
             if horizontal { "row" } else { "column" },
@@ -286,10 +306,16 @@ fn pixel_edge(
     let fitted = trace
         .fit(e.side, e.degree, spp)
         .map_err(|err| format!("the edge is not visible in view {:?}: {err}", e.view))?;
-    Ok((fitted.at(centre), expected, Unit::Pixels, at.direction))
+    let reading = fitted.at(centre);
+    let measured = Reading {
+        value: reading.value,
+        tolerance: reading.tolerance + seen.shift_px(s, &at, &camera, horizontal),
+    };
+    Ok((measured, expected, Unit::Pixels, at.direction))
 }
 
-/// One edge of a corner, fitted: position against height in the image.
+/// One edge of a corner, fitted (position against height in the image),
+/// and the keyframe bound of its path at the corner, pixels.
 fn corner_edge(
     img: &RgbImage,
     camera: &Pinhole,
@@ -297,8 +323,11 @@ fn corner_edge(
     object: &str,
     edge: &CornerEdge,
     (horizontal, degree, trim, spp): (bool, usize, f64, u32),
-) -> Result<Edge, String> {
+) -> Result<(Edge, f64), String> {
     let seen = seen_edge(described, object, edge.points)?;
+    let bound = seen
+        .seen(0.0)
+        .map_or(0.0, |at| seen.shift_px(0.0, &at, camera, horizontal));
     let level_of = |r: &Retarded| camera.pixel_of(r.direction).map(|p| split(horizontal, p).0);
     let trace = LineTrace {
         img,
@@ -306,16 +335,18 @@ fn corner_edge(
         horizontal,
         range: seen.range(level_of, trim)?,
     };
-    trace.fit(edge.side, degree, spp).map_err(|err| {
+    let fitted = trace.fit(edge.side, degree, spp).map_err(|err| {
         let lines = if horizontal { "rows" } else { "columns" };
         format!("the edge along the {lines} is not visible: {err}")
-    })
+    })?;
+    Ok((fitted, bound))
 }
 
 /// A corner check: where the edge crossed by rows (x = f(y)) and the edge
 /// crossed by columns (y = g(x)) meet, found by iterating the two fits from
-/// the expected corner; its uncertainty propagates both fits' through the
-/// intersection, (tf + f' tg) / (1 - f' g') for x, and likewise for y.
+/// the expected corner; its uncertainty propagates both fits' (each with its
+/// path's keyframe bound) through the intersection, (tf + f' tg) / (1 - f' g')
+/// for x, and likewise for y.
 pub fn corner(
     measuring: &Setup,
     described: &Setup,
@@ -338,7 +369,7 @@ pub fn corner(
         .pixel_of(corner.direction)
         .ok_or("the corner is behind the camera")?;
     let fit = (k.degree, k.trim, spp);
-    let f = corner_edge(
+    let (f, bound_f) = corner_edge(
         &img,
         &camera,
         described,
@@ -346,7 +377,7 @@ pub fn corner(
         &k.rows,
         (true, fit.0, fit.1, fit.2),
     )?;
-    let g = corner_edge(
+    let (g, bound_g) = corner_edge(
         &img,
         &camera,
         described,
@@ -365,7 +396,7 @@ pub fn corner(
     }
     let slope = |e: &Edge, at: f64| e.fit.eval(at + 0.5) - e.fit.eval(at - 0.5);
     let (fp, gp) = (slope(&f, y), slope(&g, x));
-    let (tf, tg) = (f.at(y).tolerance, g.at(x).tolerance);
+    let (tf, tg) = (f.at(y).tolerance + bound_f, g.at(x).tolerance + bound_g);
     let gain = (1.0 - fp * gp).abs();
     if !(x.is_finite() && y.is_finite()) || gain < 0.1 {
         return Err("the two edges do not meet at a clear angle".into());
