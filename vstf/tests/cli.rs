@@ -532,7 +532,7 @@ fn a_project_from_init_checks_approves_and_catches_a_tamper() {
     let first = run(&["check", "--quick"]);
     let text = String::from_utf8_lossy(&first.stdout);
     assert!(!first.status.success());
-    assert!(text.contains("check: 24 passed, 0 failed"), "{text}");
+    assert!(text.contains("check: 25 passed, 0 failed"), "{text}");
     assert_eq!(text.matches("golden MISSING").count(), 3, "{text}");
     let approved = run(&["approve", "--all"]);
     assert!(

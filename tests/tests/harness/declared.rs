@@ -123,6 +123,12 @@ fn bad_declarations_name_the_file_and_json_path() {
             "checks[8].measure.corner.columns.side: columns are scanned from the top or the bottom",
         ),
         (
+            Box::new(|v| {
+                v["checks"][10]["measure"]["edge"]["at"]["report"] = "angle".into()
+            }),
+            "checks[10].measure.edge.at.report: a plane reading is reported in l.units",
+        ),
+        (
             Box::new(|v| v["checks"][0]["measure"]["edge"]["colour"] = "red".into()),
             "checks[0].measure.edge.colour: unknown field `colour`",
         ),
@@ -141,7 +147,7 @@ fn bad_declarations_name_the_file_and_json_path() {
 fn the_example_passes_every_row_and_a_wrong_side_fails_its_row() {
     let cube = parse(&cube_text()).unwrap();
     let honest = rows(&cube, &cube);
-    assert_eq!(honest.len(), 13);
+    assert_eq!(honest.len(), 14);
     assert!(
         honest.iter().all(|r| r.pass),
         "{}",

@@ -19,7 +19,7 @@
 use super::{Effort, Probed, Reading, Setup, Unit};
 use crate::fixture::checks::OutlineRead;
 use crate::fixture::Fixture;
-use crate::measure::{edge, Scan};
+use crate::measure::{azimuth, edge, elevation, Scan};
 use crate::oracle::{aberrate_lorentz, to_frame_of};
 use glam::{DVec2, DVec3};
 use renderer::Event;
@@ -202,16 +202,6 @@ fn span(d: &[DVec3], f: impl Fn(&DVec3) -> f64) -> f64 {
             (a.min(x), b.max(x))
         });
     hi - lo
-}
-
-/// Azimuth of a lab direction (about +y, from -z towards +x), degrees.
-fn azimuth(v: &DVec3) -> f64 {
-    v.x.atan2(-v.z).to_degrees()
-}
-
-/// Elevation of a lab direction above the x-z plane, degrees.
-fn elevation(v: &DVec3) -> f64 {
-    v.y.atan2(v.x.hypot(v.z)).to_degrees()
 }
 
 /// The sphere as the fixture gives it: radius and uniform motion, and

@@ -14,5 +14,5 @@ pub mod pinhole;
 pub mod scan;
 
 pub use fit::PolyFit;
-pub use pinhole::{Kinematics, Pinhole, Plane};
+pub use pinhole::{azimuth, elevation, Kinematics, Pinhole, Plane};
 pub use scan::{color, edge, Scan};

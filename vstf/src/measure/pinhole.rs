@@ -311,6 +311,16 @@ fn boost(t: f64, x: DVec3, v: DVec3) -> (f64, DVec3) {
     )
 }
 
+/// Azimuth of a lab direction (about +y, from -z towards +x), degrees.
+pub fn azimuth(v: &DVec3) -> f64 {
+    v.x.atan2(-v.z).to_degrees()
+}
+
+/// Elevation of a lab direction above the x-z plane, degrees.
+pub fn elevation(v: &DVec3) -> f64 {
+    v.y.atan2(v.x.hypot(v.z)).to_degrees()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

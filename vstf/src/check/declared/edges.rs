@@ -8,10 +8,10 @@ use super::super::path::BodyPath;
 use super::super::row::{Reading, Unit};
 use super::super::setup::{background, is_background, Effort, Setup};
 use crate::fixture::checks::{
-    edge_ends, view_size, Axis, AxisValue, CornerEdge, CornerSpec, EdgeAt, EdgeSpec, PixelAxis,
-    PlaneAt, Side, ViewSpec,
+    edge_ends, view_size, Axis, AxisValue, CornerEdge, CornerSpec, EdgeAt, EdgeSpec, ImageReport,
+    PixelAxis, PlaneAt, Side, ViewSpec,
 };
-use crate::measure::{self, Pinhole, Plane, Scan};
+use crate::measure::{self, azimuth, elevation, Pinhole, Plane, Scan};
 use crate::oracle::{first_root, Retarded};
 use glam::DVec3;
 use image::RgbImage;
@@ -307,11 +307,29 @@ fn pixel_edge(
         .fit(e.side, e.degree, spp)
         .map_err(|err| format!("the edge is not visible in view {:?}: {err}", e.view))?;
     let reading = fitted.at(centre);
-    let measured = Reading {
-        value: reading.value,
-        tolerance: reading.tolerance + seen.shift_px(s, &at, &camera, horizontal),
+    let tolerance = reading.tolerance + seen.shift_px(s, &at, &camera, horizontal);
+    let crossing = if horizontal {
+        (reading.value, centre)
+    } else {
+        (centre, reading.value)
     };
-    Ok((measured, expected, Unit::Pixels, at.direction))
+    if e.at.report.unwrap_or_default() == ImageReport::Pixels {
+        let measured = Reading {
+            value: reading.value,
+            tolerance,
+        };
+        return Ok((measured, expected, Unit::Pixels, at.direction));
+    }
+    // The same crossing as the direction of its line of sight.
+    let angle = |d: &DVec3| if horizontal { azimuth(d) } else { elevation(d) };
+    let per_px = camera
+        .angular_footprint(crossing.0, crossing.1, horizontal)
+        .to_degrees();
+    let measured = Reading {
+        value: angle(&camera.direction(crossing.0, crossing.1)),
+        tolerance: tolerance * per_px,
+    };
+    Ok((measured, angle(&at.direction), Unit::Degrees, at.direction))
 }
 
 /// One edge of a corner, fitted (position against height in the image),
