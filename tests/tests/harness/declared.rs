@@ -37,9 +37,21 @@ fn rows(rendered: &Fixture, described: &Fixture) -> Vec<Row> {
 /// A change to a fixture's JSON.
 type Edit = dyn FnOnce(&mut serde_json::Value);
 
+/// Each edit must be refused at load with its message, naming the file.
+fn assert_refused(cases: Vec<(Box<Edit>, &str)>) {
+    for (edit, expected) in cases {
+        let e = match parse(&cube_with(edit)) {
+            Ok(_) => panic!("accepted; expected {expected:?}"),
+            Err(e) => e,
+        };
+        assert!(e.contains(expected), "expected {expected:?} in:\n{e}");
+        assert!(e.starts_with("fixtures/cube.json: "), "{e}");
+    }
+}
+
 #[test]
-fn bad_declarations_name_the_file_and_json_path() {
-    let cases: Vec<(Box<Edit>, &str)> = vec![
+fn bad_edge_declarations_name_the_file_and_json_path() {
+    assert_refused(vec![
         (
             Box::new(|v| v["checks"][0]["measure"]["edge"]["object"] = "nope".into()),
             "fixtures/cube.json: checks[0].measure.edge.object: no object named \"nope\"",
@@ -93,6 +105,12 @@ fn bad_declarations_name_the_file_and_json_path() {
             Box::new(|v| v["checks"][1]["name"] = v["checks"][0]["name"].clone()),
             "checks[1].name: check name",
         ),
+    ]);
+}
+
+#[test]
+fn bad_declarations_of_other_kinds_name_the_file_and_json_path() {
+    assert_refused(vec![
         (
             Box::new(|v| {
                 v["checks"][0]["measure"] = serde_json::json!({"outline":
@@ -132,15 +150,7 @@ fn bad_declarations_name_the_file_and_json_path() {
             Box::new(|v| v["checks"][0]["measure"]["edge"]["colour"] = "red".into()),
             "checks[0].measure.edge.colour: unknown field `colour`",
         ),
-    ];
-    for (edit, expected) in cases {
-        let e = match parse(&cube_with(edit)) {
-            Ok(_) => panic!("accepted; expected {expected:?}"),
-            Err(e) => e,
-        };
-        assert!(e.contains(expected), "expected {expected:?} in:\n{e}");
-        assert!(e.starts_with("fixtures/cube.json: "), "{e}");
-    }
+    ]);
 }
 
 #[test]
