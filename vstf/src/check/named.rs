@@ -22,7 +22,7 @@ pub fn run(f: &Fixture, n: &NamedSpec, effort: &Effort) -> Result<Findings, Stri
         NamedSpec::Terrell { front, side } => {
             terrell::run(f, &terrell::Faces { front, side }, effort)
         }
-        NamedSpec::Aberration {} => aberration::run(f, effort),
+        NamedSpec::Aberration { speeds } => aberration::run(f, speeds, effort),
         NamedSpec::Teaser {} => teaser::run(f, effort),
         NamedSpec::Relativity {} => relativity::run(f, effort),
     }

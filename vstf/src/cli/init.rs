@@ -49,8 +49,11 @@ pub fn run(args: InitArgs) -> Result<(), String> {
         }
     }
     println!("created a vstf project in {}", dir.display());
-    println!("next: vstf check (its golden images are MISSING), look at the pending images,");
-    println!("      vstf approve moving-cube, and vstf check passes");
+    println!("next, in {}:", dir.display());
+    println!("  vstf check                 # passes its rows; its golden images are MISSING");
+    println!("  (look at target/vstf/moving-cube/*/actual.png)");
+    println!("  vstf approve moving-cube   # then vstf check passes");
+    println!("docs/checks.md of vstf explains the checks in fixtures/moving-cube.json");
     Ok(())
 }
 

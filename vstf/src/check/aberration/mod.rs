@@ -172,14 +172,14 @@ impl Case {
     }
 
     /// Every view in report order: at rest (under the fixture's model),
-    /// then each speed, model and season.
-    fn all(base: Model) -> Vec<Case> {
+    /// then each of the `speeds`, model and season.
+    fn all(base: Model, speeds: &[f64]) -> Vec<Case> {
         let mut cases = vec![Case {
             season: None,
             beta: 0.0,
             model: base,
         }];
-        for beta in [0.5, 0.866] {
+        for &beta in speeds {
             for model in [Model::CLASSICAL, Model::RELATIVISTIC] {
                 for s in SEASONS {
                     cases.push(Case {
@@ -304,12 +304,13 @@ fn view(
     Ok((table.quantities, report))
 }
 
-/// Every view of the cube: its edges against the retarded (cube moving) and
-/// aberrated (Earth moving) azimuths, and the paper's figures.
-pub fn run(control: &Fixture, effort: &Effort) -> Result<Findings, String> {
+/// Every view of the cube at each of the orbital `speeds` (fractions of c):
+/// its edges against the retarded (cube moving) and aberrated (Earth
+/// moving) azimuths, and the paper's figures where it prints them.
+pub fn run(control: &Fixture, speeds: &[f64], effort: &Effort) -> Result<Findings, String> {
     let mut quantities = Vec::new();
     let mut views = Vec::new();
-    for case in Case::all(fixture_model(control)) {
+    for case in Case::all(fixture_model(control), speeds) {
         let (q, v) = view(control, case, effort)?;
         quantities.extend(q);
         views.push(v);
