@@ -152,12 +152,7 @@ impl Panel {
         effort: &Effort,
     ) -> Result<Panel, String> {
         let f = described.fixture;
-        let obj = f
-            .scene
-            .objects
-            .iter()
-            .find(|o| o.name == name)
-            .ok_or_else(|| format!("no object {name:?}"))?;
+        let obj = f.object(name)?;
         let source = match obj.material.emission {
             Some(Spectrum::Blackbody { kelvin, scale }) => Blackbody { kelvin, scale },
             _ => return Err(format!("{name} must glow as a blackbody")),

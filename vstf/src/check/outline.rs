@@ -215,12 +215,7 @@ struct Sphere {
 
 impl Sphere {
     fn of(f: &Fixture, object: &str, model: renderer::Model) -> Result<Sphere, String> {
-        let obj = f
-            .scene
-            .objects
-            .iter()
-            .find(|o| o.name == object)
-            .ok_or_else(|| format!("no object {object:?}"))?;
+        let obj = f.object(object)?;
         let radius = obj
             .shape
             .sphere_radius()

@@ -148,12 +148,7 @@ pub fn hyperbola_of(h: &Hyperbolic, r: DVec3, born_rigid: bool) -> PointHyperbol
 impl BodyPath {
     /// The path of the object `name` under `model`.
     pub fn of(fixture: &Fixture, name: &str, model: Model) -> Result<BodyPath, String> {
-        let obj = fixture
-            .scene
-            .objects
-            .iter()
-            .find(|o| o.name == name)
-            .ok_or_else(|| format!("{}: no object {name:?}", fixture.file.display()))?;
+        let obj = fixture.object(name)?;
         match &obj.motion {
             Motion::Hyperbolic(h) => Ok(BodyPath::Hyperbolic {
                 motion: *h,

@@ -133,12 +133,7 @@ struct Blinker {
 
 impl Blinker {
     fn of(f: &Fixture, name: &str) -> Result<Blinker, String> {
-        let obj = f
-            .scene
-            .objects
-            .iter()
-            .find(|o| o.name == name)
-            .ok_or_else(|| format!("no object {name:?}"))?;
+        let obj = f.object(name)?;
         let blink = obj
             .material
             .blink

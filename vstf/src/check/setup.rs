@@ -299,12 +299,7 @@ impl UniformMotion {
 /// The uniform motion under `model` of the object named `name`, read from
 /// the fixture.
 pub fn motion_of(fixture: &Fixture, name: &str, model: Model) -> Result<UniformMotion, String> {
-    let obj = fixture
-        .scene
-        .objects
-        .iter()
-        .find(|o| o.name == name)
-        .ok_or_else(|| format!("{}: no object {name:?}", fixture.file.display()))?;
+    let obj = fixture.object(name)?;
     let contracted = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
     let (start, velocity) = uniform(&obj.motion).ok_or_else(|| {
         format!(

@@ -120,13 +120,7 @@ pub fn edge(
     e: &EdgeSpec,
     effort: &Effort,
 ) -> Result<(Row, DVec3), String> {
-    let obj = described
-        .fixture
-        .scene
-        .objects
-        .iter()
-        .find(|o| o.name == e.object)
-        .ok_or_else(|| format!("no object named {:?}", e.object))?;
+    let obj = described.fixture.object(&e.object)?;
     let ends = edge_ends(obj, e).map_err(|(field, m)| format!("{field}: {m}"))?;
     let seen = seen_edge(described, &e.object, ends)?;
     let keep = kept(&e.keep, &e.object);
