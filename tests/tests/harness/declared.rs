@@ -147,6 +147,31 @@ fn bad_declarations_of_other_kinds_name_the_file_and_json_path() {
             "checks[10].measure.edge.at.report: a plane reading is reported in l.units",
         ),
         (
+            Box::new(|v| {
+                let (a, b) = (v["checks"][10]["name"].clone(), v["checks"][0]["name"].clone());
+                v["checks"][12]["measure"] = serde_json::json!({"difference": [a, b]});
+            }),
+            "checks[12].measure.difference[1]: \"leading edge on the plane z = 1 at y = 0, t = 10 (x)\" is in Length and \"front face, left edge at row 120 (px)\" in Pixels"),
+        (
+            Box::new(|v| v["views"][0]["spp"] = 8.into()),
+            "views[0].spp: expected a square number of samples",
+        ),
+        (
+            Box::new(|v| {
+                v["checks"][0]["paper"] = 1.0.into();
+                v["checks"][0]["measure"] = serde_json::json!({"named": {"relativity": {}}});
+            }),
+            "checks[0].paper: a named kind gives its rows' paper figures and tolerances itself",
+        ),
+        (
+            Box::new(|v| {
+                v["camera"]["velocity"] = serde_json::json!([0.1, 0.0, 0.0]);
+                v["checks"][0]["measure"] = serde_json::json!({"doppler":
+                    {"view": "t = 10", "object": "front face", "from": "colour"}});
+            }),
+            "checks[0].measure.doppler.view: doppler checks expect a camera at rest",
+        ),
+        (
             Box::new(|v| v["checks"][0]["measure"]["edge"]["colour"] = "red".into()),
             "checks[0].measure.edge.colour: unknown field `colour`",
         ),
@@ -315,5 +340,75 @@ fn a_keyframed_turning_plate_is_checked_and_a_faster_turn_is_caught() {
         !moved[2].pass,
         "the corner's x missed a faster turn: {:?}",
         moved[2]
+    );
+}
+
+/// The repository's fixture `name` with `edit` applied to its JSON, parsed.
+fn repo_fixture_with(name: &str, edit: impl FnOnce(&mut serde_json::Value)) -> Fixture {
+    let file = workspace_tests::repo()
+        .fixtures_dir()
+        .join(format!("{name}.json"));
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    edit(&mut v);
+    Fixture::parse(&v.to_string(), &file).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The relativity fixture's camera moves at `speed` along x; its cube's
+/// right edge is read at a row at t = 0 and 2, and its image velocity.
+fn moving_camera(speed: f64) -> Fixture {
+    repo_fixture_with("relativity", |v| {
+        v["camera"]["velocity"] = serde_json::json!([speed, 0.0, 0.0]);
+        v["views"] = serde_json::json!([{"name": "t = 0", "t": 0.0}, {"name": "t = 2", "t": 2.0}]);
+        let edge = |name: &str, view: &str| {
+            serde_json::json!({"name": name, "measure": {"edge": {"view": view, "object": "cube",
+                "points": [[1.5, -1.5, 1.5], [1.5, 1.5, 1.5]], "side": "right", "at": {"row": 120}}}})
+        };
+        v["checks"] = serde_json::json!([
+            edge("right edge, t = 0", "t = 0"),
+            edge("right edge, t = 2", "t = 2"),
+            {"name": "image velocity", "measure": {"velocity": ["right edge, t = 0", "right edge, t = 2"]}}
+        ]);
+    })
+}
+
+/// A moving camera is where its velocity takes it at each view's time, for
+/// the render and the oracle alike; image velocities come in px/t.unit.
+/// Rendered with the camera at 0.5c where 0.6c is declared, the later view
+/// and the velocity fail.
+#[test]
+fn a_moving_camera_is_followed_to_each_view_time() {
+    let declared = moving_camera(0.6);
+    let honest = rows(&declared, &declared);
+    assert!(
+        honest.iter().all(|r| r.pass),
+        "{}",
+        vstf::report::table(&honest)
+    );
+    assert_eq!(honest[2].unit.as_str(), "px/t.unit");
+    let slower = rows(&moving_camera(0.5), &declared);
+    assert!(
+        !slower[1].pass && !slower[2].pass,
+        "{}",
+        vstf::report::table(&slower)
+    );
+}
+
+/// The fitted circle of a sphere that is not Lorentz-contracted is not
+/// read: an error naming the check, not a row.
+#[test]
+fn a_decoupled_spheres_circle_is_not_read() {
+    let f = repo_fixture_with("sphere-classical", |v| {
+        let radius = serde_json::json!({"name": "radius", "measure": {"outline":
+            {"view": "view", "object": "sphere", "read": "radius"}}});
+        v["checks"].as_array_mut().unwrap().push(radius);
+    });
+    let e = match declared::run(&f, &Effort::QUICK) {
+        Ok(found) => panic!("read a circle: {:?}", found.quantities),
+        Err(e) => e,
+    };
+    assert!(
+        e.contains("checks[2] \"radius\"") && e.contains("not Lorentz-contracted"),
+        "{e}"
     );
 }

@@ -161,8 +161,7 @@ impl Panel {
             super::uniform(&obj.motion).ok_or_else(|| format!("{name} must move uniformly"))?;
         let lorentz = described.model.lorentz;
         let middle = body_point(start.t, start.x, u, DVec3::ZERO, lorentz);
-        let mark =
-            retarded(&middle, described.camera_t, f.spec.camera.position).map(|r| r.direction);
+        let mark = retarded(&middle, described.camera_t, described.camera_x()).map(|r| r.direction);
         let variants = [(false, false), (false, true), (true, false), (true, true)]
             .map(|(d, s)| with_effects(measuring.fixture, d, s));
         let (pixels, dir) = panel_pixels(measuring, &variants, name, effort)?;

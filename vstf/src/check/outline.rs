@@ -193,15 +193,26 @@ fn expected_classical(centre0: DVec3, t0: f64, u: DVec3, radius: f64, cam: Event
         .collect()
 }
 
-/// The angular extent (max - min) of directions under `f`, degrees.
+/// The angular extent (max - min) of directions under `f`, degrees; an
+/// outline that straddles the azimuth's wrap at 180 degrees is measured
+/// across it.
 fn span(d: &[DVec3], f: impl Fn(&DVec3) -> f64) -> f64 {
-    let (lo, hi) = d
-        .iter()
-        .map(f)
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+    let extent = |values: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
             (a.min(x), b.max(x))
         });
-    hi - lo
+        hi - lo
+    };
+    let plain = extent(&mut d.iter().map(&f));
+    if plain <= 180.0 {
+        return plain;
+    }
+    extent(
+        &mut d
+            .iter()
+            .map(&f)
+            .map(|a| if a < 0.0 { a + 360.0 } else { a }),
+    )
 }
 
 /// The sphere as the fixture gives it: radius and uniform motion, and
@@ -246,6 +257,8 @@ impl Sphere {
 /// value read off the expected outline.
 pub struct Outline {
     values: Vec<(OutlineRead, Reading, f64)>,
+    /// Whether the sphere is Lorentz-contracted (its outline a circle).
+    contracted: bool,
     /// Expected outline directions to mark in the report.
     pub marks: Vec<DVec3>,
 }
@@ -261,7 +274,7 @@ impl Outline {
     ) -> Result<Outline, String> {
         let f = described.fixture;
         let sphere = Sphere::of(f, object, described.model)?;
-        let cam = Event::new(described.camera_t, f.spec.camera.position);
+        let cam = Event::new(described.camera_t, described.camera_x());
         let (row_dirs, col_dirs, px) = measured_outline(measuring, object, effort)?;
         let dirs: Vec<DVec3> = row_dirs.iter().chain(&col_dirs).copied().collect();
         let measured = fit_sky_circle(&dirs).ok_or("cannot fit the measured outline")?;
@@ -271,47 +284,67 @@ impl Outline {
         // uniform: / sqrt 12); the radius is a mean over N points, the RMS a
         // spread of them.
         let sigma = px / effort.strata() / 12f64.sqrt();
+        // An azimuth step is the angle over the cosine of the elevation.
+        let per_azimuth = 1.0 / elevation(&expected.centre).to_radians().cos();
         let n = dirs.len() as f64;
-        let mut values = extents(&row_dirs, &col_dirs, &expected_dirs, sigma);
-        values.extend(circle(&measured, &expected, sigma, n));
+        let mut values = extents(&row_dirs, &col_dirs, &expected_dirs, (sigma, per_azimuth));
+        values.extend(circle(&measured, &expected, (sigma, per_azimuth), n));
         Ok(Outline {
             values,
+            contracted: sphere.contracted,
             marks: expected_dirs.iter().step_by(45).copied().collect(),
         })
     }
 
-    /// The reading of `what`, its expectation and unit.
-    pub fn read(&self, what: OutlineRead) -> (Reading, f64, Unit) {
+    /// The reading of `what`, its expectation and unit. The fitted circle
+    /// (radius, RMS, centre) is read only for a Lorentz-contracted sphere,
+    /// whose outline is a circle: another outline's circle fit depends on
+    /// how its points are sampled.
+    pub fn read(&self, what: OutlineRead) -> Result<(Reading, f64, Unit), String> {
+        let circular = matches!(
+            what,
+            OutlineRead::Radius
+                | OutlineRead::Rms
+                | OutlineRead::CentreAzimuth
+                | OutlineRead::CentreElevation
+        );
+        if circular && !self.contracted {
+            return Err(format!(
+                "{what:?} reads the fitted circle, but this sphere is not Lorentz-contracted \
+                 in the view: its outline is no circle (read its width, height or axis ratio)"
+            ));
+        }
         let (_, reading, expected) = self
             .values
             .iter()
             .find(|(r, _, _)| *r == what)
             .copied()
-            .expect("every read is measured");
+            .ok_or("every read is measured")?;
         let unit = if what == OutlineRead::AxisRatio {
             Unit::Ratio
         } else {
             Unit::Degrees
         };
-        (reading, expected, unit)
+        Ok((reading, expected, unit))
     }
 }
 
 /// The outline's extent: width along the motion (azimuth) and height
 /// across it (elevation), from its extreme points, which do not depend on
 /// how the outline is sampled, and their ratio. Each extreme is one edge
-/// point (known to `sigma`, degrees), taken from scans that cross the
-/// outline squarely there: rows for the width, columns for the height.
+/// point (known to `sigma`, degrees; in azimuth `per_azimuth` times that),
+/// taken from scans that cross the outline squarely there: rows for the
+/// width, columns for the height.
 fn extents(
     row_dirs: &[DVec3],
     col_dirs: &[DVec3],
     expected_dirs: &[DVec3],
-    sigma: f64,
+    (sigma, per_azimuth): (f64, f64),
 ) -> Vec<(OutlineRead, Reading, f64)> {
     let tol_extent = 3.0 * sigma * 2f64.sqrt();
     let width = Reading {
         value: span(row_dirs, azimuth),
-        tolerance: tol_extent,
+        tolerance: tol_extent * per_azimuth,
     };
     let height = Reading {
         value: span(col_dirs, elevation),
@@ -326,7 +359,7 @@ fn extents(
             OutlineRead::AxisRatio,
             Reading {
                 value: ratio,
-                tolerance: ratio * (tol_extent / width.value).hypot(tol_extent / height.value),
+                tolerance: ratio * (width.tolerance / width.value).hypot(tol_extent / height.value),
             },
             eh / ew,
         ),
@@ -339,7 +372,7 @@ fn extents(
 fn circle(
     measured: &SkyCircle,
     expected: &SkyCircle,
-    sigma: f64,
+    (sigma, per_azimuth): (f64, f64),
     n: f64,
 ) -> [(OutlineRead, Reading, f64); 4] {
     let centre = 3.0 * sigma * (2.0 / n).sqrt();
@@ -357,7 +390,7 @@ fn circle(
         ),
         (
             OutlineRead::CentreAzimuth,
-            reading(azimuth(&measured.centre), centre),
+            reading(azimuth(&measured.centre), centre * per_azimuth),
             azimuth(&expected.centre),
         ),
         (

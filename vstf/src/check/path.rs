@@ -70,6 +70,19 @@ impl KeyframedMesh {
         }
     }
 
+    /// The largest lab speed of any vertex between keyframes.
+    fn fastest(&self) -> f64 {
+        self.frames
+            .windows(2)
+            .flat_map(|w| {
+                let ((t0, a), (t1, b)) = (&w[0], &w[1]);
+                a.iter()
+                    .zip(b)
+                    .map(move |(p, q)| p.distance(*q) / (t1 - t0))
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// The triangle side (i, j) that the rest point `r` lies on, and its
     /// parameter along it.
     fn side_of(&self, r: DVec3) -> Option<(usize, usize, f64)> {
@@ -161,9 +174,15 @@ impl BodyPath {
                     ));
                 };
                 let contracted = model.lorentz && obj.kind == ObjectKind::VObj;
-                Ok(BodyPath::Keyframed(KeyframedMesh::of(
-                    mesh, keyframes, contracted,
-                )))
+                let path = KeyframedMesh::of(mesh, keyframes, contracted);
+                if path.fastest() >= 1.0 {
+                    return Err(format!(
+                        "{name:?}: a vertex moves at {:.6}c between keyframes; the oracle follows \
+                         points slower than light (a faster one may be seen more than once)",
+                        path.fastest()
+                    ));
+                }
+                Ok(BodyPath::Keyframed(path))
             }
             _ => Ok(BodyPath::Uniform(motion_of(fixture, name, model)?)),
         }

@@ -14,7 +14,7 @@ use crate::fixture::checks::PeriodSpec;
 use crate::fixture::{Fixture, Overrides};
 use crate::oracle::{body_point, gamma, retarded};
 use glam::DVec3;
-use renderer::{Event, Model, Shape, Traversal};
+use renderer::{Event, Model, ObjectKind, Shape, Traversal};
 
 /// The camera times at which the plate is first seen switching on, from
 /// the frames: midway between the last frame seen off and the first seen on.
@@ -109,7 +109,7 @@ fn animate(f: &Fixture, model: Model, frames: &Frames, on: OnOff) -> Result<Sigh
         );
         let (mut n, mut sum) = (0.0, DVec3::ZERO);
         for p in &img.pixels {
-            if p.length() > 0.05 {
+            if (*p - f.scene.background).length() > 0.05 {
                 n += 1.0;
                 sum += *p;
             }
@@ -127,12 +127,15 @@ struct Blinker {
     velocity: DVec3,
     /// The blink period in the object's proper time, t.units.
     period: f64,
+    /// Whether its clock is dilated (a V_obj under the Lorentz transform);
+    /// otherwise it reads lab time.
+    dilated: bool,
     on: OnOff,
     extremes: Vec<DVec3>,
 }
 
 impl Blinker {
-    fn of(f: &Fixture, name: &str) -> Result<Blinker, String> {
+    fn of(f: &Fixture, name: &str, model: Model) -> Result<Blinker, String> {
         let obj = f.object(name)?;
         let blink = obj
             .material
@@ -151,6 +154,7 @@ impl Blinker {
             start,
             velocity,
             period: blink.period,
+            dilated: model.lorentz && obj.kind == ObjectKind::VObj,
             on: OnOff::between(obj.material.color, blink.color),
             extremes,
         })
@@ -161,43 +165,51 @@ impl Blinker {
 /// the first and last of `switches`, and its uncertainty.
 fn expected_period(
     b: &Blinker,
-    model: Model,
     cam: DVec3,
     switches: &[f64],
     step: f64,
-) -> (f64, f64) {
-    let (start, v, period) = (b.start, b.velocity, b.period);
-    let g = if model.lorentz {
-        gamma(v.length())
-    } else {
-        1.0
-    };
-    // Switch m happens at proper time m P; the point at offset r reads it
-    // at lab time t0 + gamma (m P + gamma v.r') and is seen a light time later.
+) -> Result<(f64, f64), String> {
+    let (start, v, period, dilated) = (b.start, b.velocity, b.period, b.dilated);
+    let g = if dilated { gamma(v.length()) } else { 1.0 };
+    // Switch m happens at proper time m P. With the object's clock dilated,
+    // the point at rest offset r' (lab offset r, contracted) reads it at lab
+    // time t0 + gamma (m P + gamma v.r) (t = gamma (t' + v.r')); without, at
+    // lab time t0 + m P everywhere. It is seen a light time later.
     let seen_at = |m: f64, r: DVec3| {
-        let p = body_point(start.t, start.x, v, r, model.lorentz);
-        let offset = if model.lorentz {
-            crate::oracle::contract(r, v)
+        let p = body_point(start.t, start.x, v, r, dilated);
+        let t = if dilated {
+            let offset = crate::oracle::contract(r, v);
+            start.t + g * (m * period + g * v.dot(offset))
         } else {
-            r
+            start.t + m * period
         };
-        let t = start.t + g * (m * period + g * v.dot(offset));
         t + (p.at(t) - cam).length()
     };
     // The switch numbers m nearest to the first and last measured switches.
-    let nearest = |t: f64| {
+    let nearest = |t: f64| -> Option<f64> {
         let mut m = 0.0;
-        while seen_at(m + 1.0, DVec3::ZERO) <= t {
+        for _ in 0..MAX_SWITCHES {
+            if seen_at(m + 1.0, DVec3::ZERO) > t {
+                let after = (seen_at(m + 1.0, DVec3::ZERO) - t).abs();
+                return Some(if after < (seen_at(m, DVec3::ZERO) - t).abs() {
+                    m + 1.0
+                } else {
+                    m
+                });
+            }
             m += 1.0;
         }
-        if (seen_at(m + 1.0, DVec3::ZERO) - t).abs() < (seen_at(m, DVec3::ZERO) - t).abs() {
-            m + 1.0
-        } else {
-            m
-        }
+        None
     };
     let n = (switches.len() - 1) as f64;
-    let (m0, m1) = (nearest(switches[0]), nearest(switches[switches.len() - 1]));
+    let first = nearest(switches[0]);
+    let last = nearest(switches[switches.len() - 1]);
+    let (m0, m1) = first
+        .zip(last)
+        .filter(|(m0, m1)| m1 > m0)
+        .ok_or_else(|| {
+            format!("the switches seen do not match distinct switches of the object's clock (more than {MAX_SWITCHES} periods, or before its start)")
+        })?;
     let expected = (seen_at(m1, DVec3::ZERO) - seen_at(m0, DVec3::ZERO)) / (m1 - m0);
     // Uncertainty: each switch is known to within half a frame step; the
     // object's extent (its extreme points switch at other seen times) may
@@ -210,8 +222,11 @@ fn expected_period(
             .fold(0.0f64, |a, b| a.max(b.abs()))
     };
     let tolerance = (step + (spread(m1) - spread(m0)).abs() + spread(m0).max(spread(m1))) / n;
-    (expected, tolerance)
+    Ok((expected, tolerance))
 }
+
+/// The most blink periods counted from the object's start to a seen switch.
+const MAX_SWITCHES: usize = 10_000_000;
 
 /// The blink period the object of `p` is seen with, measured from an
 /// animation of `measuring`'s camera against the dilated, light-delayed
@@ -228,7 +243,7 @@ pub fn measure(
         to: p.to,
         step: p.step,
     };
-    let b = Blinker::of(described.fixture, &p.object)?;
+    let b = Blinker::of(described.fixture, &p.object, described.model)?;
     let alone = measuring
         .fixture
         .only(&[p.object.as_str()])
@@ -245,10 +260,9 @@ pub fn measure(
     }
     let n = (switches.len() - 1) as f64;
     let measured = (switches[switches.len() - 1] - switches[0]) / n;
-    let model = described.model;
-    let cam = described.fixture.spec.camera.position;
-    let (expected, tolerance) = expected_period(&b, model, cam, &switches, p.step);
-    let centre = body_point(b.start.t, b.start.x, b.velocity, DVec3::ZERO, model.lorentz);
+    let cam = described.camera_x();
+    let (expected, tolerance) = expected_period(&b, cam, &switches, p.step)?;
+    let centre = body_point(b.start.t, b.start.x, b.velocity, DVec3::ZERO, b.dilated);
     let mark = retarded(&centre, described.camera_t, cam).map(|r| r.direction);
     Ok((
         Reading {

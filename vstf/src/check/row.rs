@@ -40,6 +40,8 @@ pub enum Unit {
     Factor,
     /// Positions in an image, continuous pixels from its top left corner.
     Pixels,
+    /// Apparent velocities in an image, pixels per t.unit of camera time.
+    PixelsPerTUnit,
 }
 
 impl Unit {
@@ -54,6 +56,7 @@ impl Unit {
             Unit::Ratio => "ratio",
             Unit::Factor => "factor",
             Unit::Pixels => "px",
+            Unit::PixelsPerTUnit => "px/t.unit",
         }
     }
 }
@@ -87,8 +90,9 @@ pub struct Quantity {
 }
 
 impl Quantity {
-    /// The quantity judged for `fixture`: it passes when the measurement is
-    /// finite and within its tolerance of the expectation.
+    /// The quantity judged for `fixture`: it passes when the measurement and
+    /// its tolerance are finite and the measurement lies within the
+    /// tolerance of the expectation.
     pub fn judge(self, fixture: &str) -> Row {
         let Reading { value, tolerance } = self.measured;
         Row {
@@ -99,7 +103,9 @@ impl Quantity {
             paper: self.paper,
             tolerance,
             unit: self.unit,
-            pass: value.is_finite() && (value - self.expected).abs() <= tolerance,
+            pass: value.is_finite()
+                && tolerance.is_finite()
+                && (value - self.expected).abs() <= tolerance,
         }
     }
 }

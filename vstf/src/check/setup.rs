@@ -76,9 +76,15 @@ pub struct Setup<'a> {
 }
 
 impl Setup<'_> {
-    /// The camera position.
+    /// The camera's position at this setup's time: where the fixture puts
+    /// it at its own time, moved on with the camera's velocity (a camera at
+    /// rest stays put).
     pub fn camera_x(&self) -> DVec3 {
-        self.fixture.spec.camera.position
+        let c = &self.fixture.spec.camera;
+        match c.velocity {
+            Some(v) if v != DVec3::ZERO => c.position + v * (self.camera_t - c.t),
+            _ => c.position,
+        }
     }
 
     /// The image size at `width` with the fixture's aspect ratio.

@@ -314,16 +314,30 @@ fn pixel_edge(
         };
         return Ok((measured, expected, Unit::Pixels, at.direction));
     }
-    // The same crossing as the direction of its line of sight.
+    // The same crossing as the direction of its line of sight; a pixel's
+    // worth of angle is the change between its neighbours half a pixel
+    // either side along the scan (an azimuth step grows off the horizon).
     let angle = |d: &DVec3| if horizontal { azimuth(d) } else { elevation(d) };
-    let per_px = camera
-        .angular_footprint(crossing.0, crossing.1, horizontal)
-        .to_degrees();
+    let along = |u: f64| {
+        let (px, py) = if horizontal {
+            (crossing.0 + u, crossing.1)
+        } else {
+            (crossing.0, crossing.1 + u)
+        };
+        angle(&camera.direction(px, py))
+    };
+    let per_px = wrapped(along(0.5) - along(-0.5)).abs();
+    let expected = angle(&at.direction);
     let measured = Reading {
-        value: angle(&camera.direction(crossing.0, crossing.1)),
+        value: expected + wrapped(along(0.0) - expected),
         tolerance: tolerance * per_px,
     };
-    Ok((measured, angle(&at.direction), Unit::Degrees, at.direction))
+    Ok((measured, expected, Unit::Degrees, at.direction))
+}
+
+/// An angle difference brought into [-180, 180) degrees.
+fn wrapped(d: f64) -> f64 {
+    (d + 180.0).rem_euclid(360.0) - 180.0
 }
 
 /// One edge of a corner, fitted (position against height in the image),
@@ -354,11 +368,26 @@ fn corner_edge(
     Ok((fitted, bound))
 }
 
+/// Where x = f(y) meets y = g(x), by iterating from `start` (a contraction
+/// where |f' g'| < 1); `None` if it does not settle.
+fn meet(f: &Edge, g: &Edge, start: (f64, f64)) -> Option<(f64, f64)> {
+    let (mut x, mut y) = start;
+    for _ in 0..200 {
+        let (nx, ny) = (f.fit.eval(y), g.fit.eval(f.fit.eval(y)));
+        let settled = (nx - x).abs().max((ny - y).abs()) < 1e-12;
+        (x, y) = (nx, ny);
+        if settled {
+            return (x.is_finite() && y.is_finite()).then_some((x, y));
+        }
+    }
+    None
+}
+
 /// A corner check: where the edge crossed by rows (x = f(y)) and the edge
 /// crossed by columns (y = g(x)) meet, found by iterating the two fits from
 /// the expected corner; its uncertainty propagates both fits' (each with its
-/// path's keyframe bound) through the intersection, (tf + f' tg) / (1 - f' g')
-/// for x, and likewise for y.
+/// path's keyframe bound) through the intersection, in quadrature:
+/// sqrt(tf^2 + (f' tg)^2) / |1 - f' g'| for x, and likewise for y.
 pub fn corner(
     measuring: &Setup,
     described: &Setup,
@@ -397,22 +426,19 @@ pub fn corner(
         &k.columns,
         (false, fit.0, fit.1, fit.2),
     )?;
-    let (mut x, mut y) = (ex, ey);
-    for _ in 0..100 {
-        let (nx, ny) = (f.fit.eval(y), g.fit.eval(f.fit.eval(y)));
-        let converged = (nx - x).abs().max((ny - y).abs()) < 1e-12;
-        (x, y) = (nx, ny);
-        if converged {
-            break;
-        }
-    }
     let slope = |e: &Edge, at: f64| e.fit.eval(at + 0.5) - e.fit.eval(at - 0.5);
+    if (slope(&f, ey) * slope(&g, ex)).abs() >= 0.9 {
+        return Err(
+            "the two edges do not meet at a clear angle: the rows edge must be \
+                    steeper than 45 degrees in the image and the columns edge flatter"
+                .into(),
+        );
+    }
+    let (x, y) = meet(&f, &g, (ex, ey))
+        .ok_or("the fits of the two edges do not meet near the expected corner")?;
     let (fp, gp) = (slope(&f, y), slope(&g, x));
     let (tf, tg) = (f.at(y).tolerance + bound_f, g.at(x).tolerance + bound_g);
     let gain = (1.0 - fp * gp).abs();
-    if !(x.is_finite() && y.is_finite()) || gain < 0.1 {
-        return Err("the two edges do not meet at a clear angle".into());
-    }
     let reading = match k.read {
         PixelAxis::X => (x, tf.hypot(fp * tg) / gain, ex),
         PixelAxis::Y => (y, tg.hypot(gp * tf) / gain, ey),

@@ -213,7 +213,7 @@ impl<'a> Run<'a> {
                         self.outlines.len() - 1
                     }
                 };
-                Ok(row(self.outlines[k].2.read(o.read)))
+                Ok(row(self.outlines[k].2.read(o.read)?))
             }
             MeasureSpec::Doppler(d) => {
                 let v = self.view(&d.view)?;
@@ -340,15 +340,18 @@ fn ratio(a: &Reading, b: &Reading) -> Reading {
 }
 
 /// (b - a) / (t_b - t_a) of two positions measured in views at camera times
-/// t_a and t_b: an apparent velocity.
+/// t_a and t_b: an apparent velocity, on a plane or in the image.
 fn velocity(a: &Done, b: &Done) -> Result<(Reading, f64, Unit), String> {
     same_unit(a, b)?;
-    if a.unit != Unit::LUnits {
-        return Err(format!(
-            "a velocity needs positions in l.units, not {}",
-            a.unit
-        ));
-    }
+    let unit = match a.unit {
+        Unit::LUnits => Unit::LUnitsPerTUnit,
+        Unit::Pixels => Unit::PixelsPerTUnit,
+        other => {
+            return Err(format!(
+                "a velocity needs positions in l.units or px, not {other}"
+            ))
+        }
+    };
     let dt = b
         .camera_t
         .zip(a.camera_t)
@@ -359,9 +362,5 @@ fn velocity(a: &Done, b: &Done) -> Result<(Reading, f64, Unit), String> {
         value: d.value / dt,
         tolerance: d.tolerance / dt.abs(),
     };
-    Ok((
-        measured,
-        (b.expected - a.expected) / dt,
-        Unit::LUnitsPerTUnit,
-    ))
+    Ok((measured, (b.expected - a.expected) / dt, unit))
 }
