@@ -133,6 +133,21 @@ pub struct Store {
 }
 
 impl Store {
+    /// Temporary files in `golden/` and the pending folder left by writes
+    /// that were interrupted (their process is gone).
+    pub fn stale_temps(&self) -> Vec<PathBuf> {
+        let mut all = crate::output::stale_temps(&self.golden);
+        all.extend(crate::output::stale_temps(&self.pending));
+        all
+    }
+
+    /// Removes those stale temporary files; returns them.
+    pub fn remove_stale_temps(&self) -> Vec<PathBuf> {
+        let mut all = crate::output::remove_stale(&self.golden);
+        all.extend(crate::output::remove_stale(&self.pending));
+        all
+    }
+
     /// The approved image of a view.
     pub fn golden_path(&self, fixture: &str, view: &str) -> PathBuf {
         self.golden

@@ -615,3 +615,83 @@ const FAST_BALL: &str = r#"{
     {"name": "lamp: D from the searchlight, RGB", "measure": {"doppler": {"view": "now", "object": "lamp", "from": "searchlight_rgb"}}}
   ]
 }"#;
+
+/// A write that was killed leaves a recognisable temporary file: `approve
+/// --list` reports it, `approve` removes it, and a live writer's is kept.
+#[test]
+fn stale_temporary_files_are_reported_and_removed() {
+    let dir = scratch("stale");
+    let out = vstf()
+        .current_dir(&dir)
+        .args(["init", "p"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let project = dir.join("p");
+    std::fs::create_dir_all(project.join("golden/moving-cube")).unwrap();
+    // No process has this id.
+    let stale = project.join(format!(
+        "golden/moving-cube/.t-10.png.vstf-tmp-{}",
+        u32::MAX - 1
+    ));
+    std::fs::write(&stale, "half a png").unwrap();
+    let listed = vstf()
+        .current_dir(&project)
+        .args(["approve", "--list"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&listed.stdout);
+    assert!(
+        text.contains("stale") && text.contains(".t-10.png.vstf-tmp-"),
+        "{text}"
+    );
+    assert!(stale.exists(), "--list removed it");
+    let out = vstf()
+        .current_dir(&project)
+        .env_remove("CI")
+        .args(["approve", "--all"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(!stale.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `--out` writes through a symbolic link and refuses what is not a
+/// regular file, leaving it as it was.
+#[test]
+fn render_out_follows_links_and_refuses_special_files() {
+    let dir = scratch("out");
+    let render = |out: &std::path::Path| {
+        vstf()
+            .args([
+                "render", "stage", "--width", "16", "--height", "12", "--out",
+            ])
+            .arg(out)
+            .output()
+            .unwrap()
+    };
+    std::fs::write(dir.join("real.png"), "old").unwrap();
+    std::os::unix::fs::symlink("real.png", dir.join("link.png")).unwrap();
+    assert!(render(&dir.join("link.png")).status.success());
+    assert!(std::fs::symlink_metadata(dir.join("link.png"))
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert_eq!(image::open(dir.join("real.png")).unwrap().width(), 16);
+    for special in [std::path::PathBuf::from("/dev/null"), dir.clone()] {
+        let out = render(&special);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success() && err.contains("not a regular file"),
+            "{err}"
+        );
+    }
+    let null = std::fs::metadata("/dev/null").unwrap().file_type();
+    assert!(std::os::unix::fs::FileTypeExt::is_char_device(&null));
+    std::fs::remove_dir_all(&dir).ok();
+}

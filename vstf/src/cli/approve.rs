@@ -21,7 +21,10 @@ pub fn run(root: Option<&Path>, args: ApproveArgs) -> Result<(), String> {
     if fixtures.is_empty() && !all {
         return Err("name the fixtures to approve, or give --all (see --list)".into());
     }
-    let ci = std::env::var_os("CI").is_some();
+    for p in store.remove_stale_temps() {
+        eprintln!("removed {} (left by an interrupted write)", p.display());
+    }
+    let ci = ci_is_set(std::env::var("CI").ok().as_deref());
     let chosen = if all { None } else { Some(fixtures.as_slice()) };
     let done = store.approve(chosen, ci)?;
     if done.is_empty() {
@@ -35,6 +38,15 @@ pub fn run(root: Option<&Path>, args: ApproveArgs) -> Result<(), String> {
         );
     }
     Ok(())
+}
+
+/// Whether the `CI` variable says this runs under CI: set, non-empty and
+/// not `0` or `false`.
+fn ci_is_set(value: Option<&str>) -> bool {
+    value.is_some_and(|v| {
+        let v = v.trim();
+        !(v.is_empty() || v == "0" || v.eq_ignore_ascii_case("false"))
+    })
 }
 
 /// Prints each pending image: new, or changed from its golden image.
@@ -51,5 +63,33 @@ fn list_pending(store: &Store) {
             p.view,
             p.actual.display()
         );
+    }
+    for p in store.stale_temps() {
+        println!(
+            "stale    {}  (left by an interrupted write; vstf approve or vstf check removes it)",
+            p.display()
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ci_is_set;
+
+    #[test]
+    fn ci_counts_only_when_set_to_something_true() {
+        for yes in ["true", "1", "yes", "github"] {
+            assert!(ci_is_set(Some(yes)), "{yes}");
+        }
+        for no in [
+            None,
+            Some(""),
+            Some("0"),
+            Some("false"),
+            Some("FALSE"),
+            Some(" "),
+        ] {
+            assert!(!ci_is_set(no), "{no:?}");
+        }
     }
 }

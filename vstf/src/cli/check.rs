@@ -21,6 +21,9 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
     let started = Instant::now();
     let project = Project::locate(root)?;
     let store = project.store();
+    for p in store.remove_stale_temps() {
+        eprintln!("removed {} (left by an interrupted write)", p.display());
+    }
     let reports = vstf::check::run(&project, &fixtures, &effort)?;
     let rows: Vec<Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
     print!("{}", vstf::report::table(&rows));

@@ -14,7 +14,8 @@ const MARKER: &str =
     "# This file marks a vstf project: fixtures/ holds its scenes, golden/ their\n\
 # approved images, target/vstf/ the images waiting for approval.\n";
 
-const GITIGNORE: &str = "# Pending images and reports of vstf check.\ntarget/\n";
+const GITIGNORE: &str = "# Pending images and reports of vstf check.\ntarget/\n\
+# Temporary files of an interrupted vstf write (removed by its next run).\n.*.vstf-tmp-*\n";
 
 const README: &str = "# Checked spacetime scenes\n\n\
 Each file in `fixtures/` is a scene with the checks it declares\n\
