@@ -110,7 +110,7 @@ pub fn render_frames(
             camera_t: t,
             ..*view
         };
-        let img = crate::run::render_with(db, f, &frame).to_rgb8();
+        let img = crate::run::render_with(db, f, &frame)?.to_rgb8();
         write_png(&frame_path(&dir, i), &img)?;
         done(i + 1);
     }

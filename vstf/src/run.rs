@@ -25,17 +25,51 @@ pub fn view(fixture: &Fixture, overrides: &Overrides) -> Result<View, String> {
 /// Renders `view` of `fixture` with a database built for it.
 pub fn render(fixture: &Fixture, view: &View, traversal: Traversal) -> Result<Image, String> {
     let db = database(fixture, view.model.lorentz, traversal)?;
-    Ok(render_with(&db, fixture, view))
+    render_with(&db, fixture, view)
 }
 
-/// Renders `view` with an existing database (built with the view's Lorentz setting).
-pub fn render_with(db: &Database, fixture: &Fixture, view: &View) -> Image {
-    renderer::render(
+/// Renders `view` with an existing database (built with the view's Lorentz
+/// setting). A pixel that is not a finite colour fails the render: a NaN or
+/// an infinity would be written as black without a word.
+pub fn render_with(db: &Database, fixture: &Fixture, view: &View) -> Result<Image, String> {
+    let image = renderer::render(
         db,
         &fixture.scene,
         &view.camera,
         view.camera_t,
         view.model,
         &view.settings,
+    );
+    match image.pixels.iter().position(|p| !p.is_finite()) {
+        None => Ok(image),
+        Some(i) => Err(non_finite(db, fixture, view, &image, i)),
+    }
+}
+
+/// The error for a render whose pixel `i` is not finite: the pixel, its
+/// value, how many more there are, the object its primary ray hits and the
+/// command that shows every variable along its rays.
+fn non_finite(db: &Database, fixture: &Fixture, view: &View, image: &Image, i: usize) -> String {
+    let (x, y) = (i as u32 % image.width, i as u32 / image.width);
+    let count = image.pixels.iter().filter(|p| !p.is_finite()).count();
+    let object = crate::debug::trace_pixel(fixture, view, db, x, y)
+        .ok()
+        .and_then(|log| {
+            log.steps.iter().find_map(|s| match s {
+                renderer::Step::Hit { object, .. } => Some(object.clone()),
+                _ => None,
+            })
+        })
+        .map_or("no object".to_string(), |o| format!("object {o:?}"));
+    format!(
+        "{}: pixel ({x}, {y}) is {} (not a finite colour; {count} such pixels), where the ray meets {object}; \
+         `vstf debug {} --pixel {x},{y} --width {} --height {} --camera-t {} --spp {}` shows how",
+        fixture.file.display(),
+        image.pixels[i],
+        fixture.file.display(),
+        view.camera.width,
+        view.camera.height,
+        view.camera_t,
+        view.settings.spp
     )
 }

@@ -25,7 +25,7 @@ fn the_debugged_colour_is_the_rendered_colour() {
     for name in ["teaser", "terrell-contracted", "flange", "doppler"] {
         let (f, view) = setup(name, 64, 36);
         let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
-        let image = vstf::run::render_with(&db, &f, &view);
+        let image = vstf::run::render_with(&db, &f, &view).unwrap();
         for (x, y) in [(0, 0), (31, 18), (30, 5), (20, 25), (45, 10), (63, 35)] {
             let log = trace_pixel(&f, &view, &db, x, y).unwrap();
             let rendered = image.pixels[(y * 64 + x) as usize];

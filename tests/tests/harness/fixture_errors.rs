@@ -361,3 +361,62 @@ fn keeping_only_some_objects_names_a_missing_one() {
         "{e}"
     );
 }
+
+#[test]
+fn out_of_range_materials_lights_and_grouped_spheres_are_refused_at_their_field() {
+    let e = error_of(&flange_with(|v| {
+        let i = flange_index(v);
+        v["objects"][i]["material"]["mirror"] = 1e308.into();
+    }));
+    assert!(
+        e.contains("objects[5].material.mirror: 1e308 is out of range"),
+        "{e}"
+    );
+    let e = error_of(&flange_with(|v| {
+        v["objects"][0]["material"]["color"][2] = (-1e308).into()
+    }));
+    assert!(e.contains("objects[0].material.color[2]"), "{e}");
+    let e = error_of(&flange_with(|v| v["light"]["ambient"] = (-0.5).into()));
+    assert!(e.contains("light.ambient: -0.5 is out of range"), "{e}");
+    let e = error_of(&flange_with(|v| {
+        v["objects"][0]["mesh"] = serde_json::json!({"group": [
+            {"cuboid": {"min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 1.0]}},
+            {"analytic_sphere": {"radius": 1.0}}
+        ]});
+    }));
+    assert!(
+        e.contains("objects[0].mesh.group[1]: an analytic sphere is not a mesh"),
+        "{e}"
+    );
+}
+
+/// A pixel that is not a finite colour fails the render with the pixel, the
+/// object its ray meets and the debug command, instead of a black pixel.
+#[test]
+fn a_non_finite_pixel_fails_the_render_and_says_where() {
+    let mut f = workspace_tests::fixture("stage");
+    let bars = f
+        .scene
+        .objects
+        .iter()
+        .position(|o| o.name == "stage floor")
+        .unwrap();
+    f.scene.objects[bars].material.color = glam::DVec3::splat(f64::NAN);
+    let small = vstf::fixture::Overrides {
+        width: Some(32),
+        height: Some(24),
+        spp: Some(1),
+        ..Default::default()
+    };
+    let view = vstf::run::view(&f, &small).unwrap();
+    let e = vstf::run::render(&f, &view, renderer::Traversal::Bvh).unwrap_err();
+    assert!(
+        e.contains("not a finite colour")
+            && e.contains("object \"stage floor\"")
+            && e.contains("vstf debug"),
+        "{e}"
+    );
+    // The same scene with a finite colour renders.
+    f.scene.objects[bars].material.color = glam::DVec3::splat(0.5);
+    assert!(vstf::run::render(&f, &view, renderer::Traversal::Bvh).is_ok());
+}

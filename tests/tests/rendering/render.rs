@@ -83,7 +83,7 @@ fn images_do_not_depend_on_thread_count() {
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| vstf::run::render_with(&db, &f, &view))
+            .install(|| vstf::run::render_with(&db, &f, &view).unwrap())
     };
     assert_eq!(bits(&with(1)), bits(&with(2)));
     assert_eq!(bits(&with(2)), bits(&with(3)));

@@ -106,7 +106,7 @@ fn animate(f: &Fixture, model: Model, frames: &Frames, on: OnOff) -> Result<Sigh
                 camera_t: t,
                 ..view
             },
-        );
+        )?;
         let (mut n, mut sum) = (0.0, DVec3::ZERO);
         for p in &img.pixels {
             if (*p - f.scene.background).length() > 0.05 {

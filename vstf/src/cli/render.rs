@@ -16,7 +16,7 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
     } = args;
     let started = Instant::now();
     let (fixture, view, db) = prepare(root, &fixture, &view, brute_force)?;
-    let image = vstf::run::render_with(&db, &fixture, &view);
+    let image = vstf::run::render_with(&db, &fixture, &view)?;
     vstf::output::write_png(&out, &image.to_rgb8())?;
     eprintln!(
         "rendered {} ({} model{}, t_c = {}, {}x{}, {} spp, {} tetrahedra) in {:.2} s -> {}",
