@@ -695,3 +695,19 @@ fn render_out_follows_links_and_refuses_special_files() {
     assert!(std::os::unix::fs::FileTypeExt::is_char_device(&null));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `debug-diff --tol` takes only a finite tolerance of 0 or more.
+#[test]
+fn debug_diff_refuses_a_tolerance_that_is_not_a_number() {
+    for bad in ["nan", "-1", "inf"] {
+        let out = vstf()
+            .args(["debug-diff", "a.jsonl", "b.jsonl", "--tol", bad])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success() && err.contains("expected a finite tolerance"),
+            "{bad}: {err}"
+        );
+    }
+}

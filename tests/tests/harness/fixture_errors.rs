@@ -420,3 +420,53 @@ fn a_non_finite_pixel_fails_the_render_and_says_where() {
     f.scene.objects[bars].material.color = glam::DVec3::splat(0.5);
     assert!(vstf::run::render(&f, &view, renderer::Traversal::Bvh).is_ok());
 }
+
+/// A fixture in a scratch folder whose first object is the OBJ file `obj`
+/// (written beside it by `make`), parsed.
+fn with_obj(name: &str, make: impl FnOnce(&Path)) -> Result<Fixture, String> {
+    let dir = std::env::temp_dir().join(format!("vstf-obj-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    make(&dir.join("mesh.obj"));
+    let text =
+        flange_with(|v| v["objects"][0]["mesh"] = serde_json::json!({"obj": {"path": "mesh.obj"}}));
+    let result = Fixture::parse(&text, &dir.join("scene.json")).map_err(|e| e.to_string());
+    std::fs::remove_dir_all(&dir).ok();
+    result
+}
+
+#[test]
+fn an_obj_with_a_byte_order_mark_keeps_its_first_vertex() {
+    let quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    let f = with_obj("bom", |p| {
+        std::fs::write(p, format!("\u{feff}{quad}")).unwrap()
+    })
+    .unwrap();
+    let plain = with_obj("plain", |p| std::fs::write(p, quad).unwrap()).unwrap();
+    assert_eq!(f.scene.objects[0].shape, plain.scene.objects[0].shape);
+}
+
+#[test]
+fn an_obj_path_naming_a_fifo_is_refused_not_read() {
+    let e = with_obj("fifo", |p| {
+        let made = std::process::Command::new("mkfifo").arg(p).status();
+        assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    })
+    .unwrap_err();
+    assert!(
+        e.contains("objects[0].mesh.obj.path") && e.contains("not a regular file"),
+        "{e}"
+    );
+}
+
+#[test]
+fn an_absurd_unknown_key_is_named_briefly() {
+    let e = error_of(&flange_with(|v| {
+        v["camera"]["x".repeat(100_000)] = 1.into()
+    }));
+    assert!(
+        e.len() < 400 && e.contains("(100000 characters)"),
+        "{} characters",
+        e.len()
+    );
+}

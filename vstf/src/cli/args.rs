@@ -174,7 +174,7 @@ pub struct DebugDiffArgs {
     pub a: PathBuf,
     pub b: PathBuf,
     /// Relative tolerance on numbers: |a - b| <= tol * max(1, |a|, |b|).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = parse_tolerance, allow_hyphen_values = true)]
     pub tol: f64,
     /// Skip steps of this kind (e.g. candidate, which a change of traversal changes).
     #[arg(long)]
@@ -203,6 +203,14 @@ pub struct AnimateArgs {
     pub fps: u32,
     #[command(flatten)]
     pub view: ViewArgs,
+}
+
+/// Parses `--tol`: a finite, non-negative number.
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() && t >= 0.0 => Ok(t),
+        _ => Err(format!("{s:?}: expected a finite tolerance of 0 or more")),
+    }
 }
 
 /// Parses `--pixel X,Y`.
