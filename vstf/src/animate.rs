@@ -89,22 +89,76 @@ pub fn frame_path(dir: &Path, i: usize) -> PathBuf {
     dir.join(format!("frame-{i:05}.png"))
 }
 
+/// What an animation's frames are, written beside them so that a resumed
+/// run only keeps frames of the same animation.
+pub fn manifest(f: &Fixture, view: &View, times: &[f64]) -> String {
+    format!(
+        "vstf animation\nfixture {}\nmodel {}\nsize {}x{}\nspp {}\ntimes {:?}\n",
+        f.file.display(),
+        view.model,
+        view.camera.width,
+        view.camera.height,
+        view.settings.spp,
+        times
+    )
+}
+
+/// The manifest's file in a frames folder.
+fn manifest_path(dir: &Path) -> PathBuf {
+    dir.join("animation.txt")
+}
+
+/// Whether frame `i` is already in `dir`, whole: a PNG of the view's size.
+fn frame_is_whole(dir: &Path, i: usize, view: &View) -> bool {
+    image::open(frame_path(dir, i))
+        .is_ok_and(|im| (im.width(), im.height()) == (view.camera.width, view.camera.height))
+}
+
 /// Renders every frame with one database, calling `done` after each; stops
 /// early (returning how many frames were finished) when `stop` is raised.
+/// With `resume`, frames already written whole by a run of the same
+/// animation (its manifest matches) are kept, not rendered again.
 pub fn render_frames(
     f: &Fixture,
     view: &View,
     db: &Database,
     times: &[f64],
     out: &Output,
-    stop: &AtomicBool,
+    (stop, resume): (&AtomicBool, bool),
     mut done: impl FnMut(usize),
 ) -> Result<usize, String> {
     let dir = out.frames_dir();
     std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let wanted = manifest(f, view, times);
+    let mpath = manifest_path(&dir);
+    if resume {
+        match std::fs::read_to_string(&mpath) {
+            Ok(found) if found == wanted => {}
+            Ok(_) => {
+                return Err(format!(
+                    "cannot resume: the frames in {} belong to another animation (see {})",
+                    dir.display(),
+                    mpath.display()
+                ))
+            }
+            Err(_) => {
+                return Err(format!(
+                    "cannot resume: {} has no animation to resume ({} is missing)",
+                    dir.display(),
+                    mpath.display()
+                ))
+            }
+        }
+    }
+    write_atomic(&mpath, wanted.as_bytes())
+        .map_err(|e| format!("cannot write {}: {e}", mpath.display()))?;
     for (i, &t) in times.iter().enumerate() {
         if stop.load(Ordering::SeqCst) {
             return Ok(i);
+        }
+        if resume && frame_is_whole(&dir, i, view) {
+            done(i + 1);
+            continue;
         }
         let frame = View {
             camera_t: t,

@@ -303,6 +303,7 @@ fn ctrl_c_leaves_every_finished_frame() {
     let names: Vec<_> = std::fs::read_dir(&frames)
         .unwrap()
         .map(|e| e.unwrap().path())
+        .filter(|p| !p.ends_with("animation.txt"))
         .collect();
     assert!(names.len() >= 3);
     for p in &names {
@@ -710,4 +711,100 @@ fn debug_diff_refuses_a_tolerance_that_is_not_a_number() {
             "{bad}: {err}"
         );
     }
+}
+
+/// `animate --resume` keeps the frames a run of the same animation wrote
+/// whole and renders the missing and broken ones; frames of another
+/// animation are not resumed.
+#[test]
+fn animate_resume_renders_only_missing_and_broken_frames() {
+    let dir = scratch("resume");
+    let frames = dir.join("frames");
+    let animate = |extra: &[&str]| {
+        vstf()
+            .args([
+                "animate", "stage", "--frames", "0..9", "--width", "32", "--height", "24", "--out",
+            ])
+            .arg(&frames)
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    assert!(animate(&[]).status.success());
+    let frame = |i: usize| frames.join(format!("frame-{i:05}.png"));
+    let kept: Vec<(Vec<u8>, std::time::SystemTime)> = (0..10)
+        .map(|i| {
+            (
+                std::fs::read(frame(i)).unwrap(),
+                std::fs::metadata(frame(i)).unwrap().modified().unwrap(),
+            )
+        })
+        .collect();
+    std::fs::remove_file(frame(3)).unwrap();
+    std::fs::write(frame(5), "not a png").unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(20));
+    let out = animate(&["--resume"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for (i, (bytes, when)) in kept.iter().enumerate() {
+        assert_eq!(
+            &std::fs::read(frame(i)).unwrap(),
+            bytes,
+            "frame {i} differs"
+        );
+        if i != 3 && i != 5 {
+            let now = std::fs::metadata(frame(i)).unwrap().modified().unwrap();
+            assert_eq!(&now, when, "frame {i} was rendered again");
+        }
+    }
+    let other = animate(&["--resume", "--step", "2"]);
+    let err = String::from_utf8_lossy(&other.stderr);
+    assert!(
+        !other.status.success() && err.contains("belong to another animation"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A second Ctrl-C ends `animate` at once.
+#[test]
+fn a_second_ctrl_c_exits_at_once() {
+    let dir = scratch("twice");
+    let mut child = vstf()
+        .args([
+            "animate", "teaser", "--frames", "0..50000", "--width", "320", "--height", "180",
+            "--out",
+        ])
+        .arg(dir.join("frames"))
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let started = std::time::Instant::now();
+    while std::fs::read_dir(dir.join("frames")).map_or(0, |d| d.count()) < 2 {
+        assert!(started.elapsed().as_secs() < 60, "no frames appeared");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    for _ in 0..2 {
+        Command::new("kill")
+            .args(["-INT", &child.id().to_string()])
+            .status()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let asked = std::time::Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(
+            asked.elapsed().as_secs() < 5,
+            "still running after two Ctrl-C"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    };
+    assert_eq!(status.code(), Some(130));
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -18,6 +18,7 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
         step,
         out,
         fps,
+        resume,
         view,
     } = args;
     if view.camera_t.is_some() {
@@ -36,9 +37,15 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
     let db = vstf::run::database(&fixture, view.model.lorentz, Traversal::Bvh)?;
     let build = started.elapsed().as_secs_f64();
     let bar = progress_bar(times.len());
-    let done = vstf::animate::render_frames(&fixture, &view, &db, &times, &output, &stop, |n| {
-        bar.set_position(n as u64)
-    })?;
+    let done = vstf::animate::render_frames(
+        &fixture,
+        &view,
+        &db,
+        &times,
+        &output,
+        (&stop, resume),
+        |n| bar.set_position(n as u64),
+    )?;
     bar.finish_and_clear();
     let dir = output.frames_dir();
     if done < times.len() {
@@ -64,12 +71,20 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
     Ok(())
 }
 
-/// A flag that Ctrl-C raises, for the renderer to stop between frames.
+/// A flag that Ctrl-C raises, for the renderer to stop between frames; a
+/// second Ctrl-C exits at once (the frames finished so far are whole on
+/// disk: each is written atomically).
 fn stop_on_ctrl_c() -> Result<Arc<AtomicBool>, String> {
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();
-    ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst))
-        .map_err(|e| format!("cannot handle Ctrl-C: {e}"))?;
+    ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            eprintln!("\ninterrupted twice: exiting now");
+            std::process::exit(130);
+        }
+        eprintln!("\ninterrupted: finishing the frame being rendered (Ctrl-C again to exit now)");
+    })
+    .map_err(|e| format!("cannot handle Ctrl-C: {e}"))?;
     Ok(stop)
 }
 

@@ -201,6 +201,10 @@ pub struct AnimateArgs {
     /// Frames per second of the GIF or APNG.
     #[arg(long, default_value_t = 10)]
     pub fps: u32,
+    /// Keep the frames an interrupted run of the same animation wrote whole
+    /// (its frames folder), and render only the rest.
+    #[arg(long)]
+    pub resume: bool,
     #[command(flatten)]
     pub view: ViewArgs,
 }
