@@ -11,6 +11,7 @@
 
 pub mod animate;
 pub mod bench;
+pub mod budget;
 pub mod check;
 pub mod debug;
 pub mod fixture;
@@ -22,6 +23,7 @@ pub mod project;
 pub mod report;
 pub mod run;
 
+pub use budget::Budget;
 pub use check::{Effort, FixtureReport, Row, Unit};
 pub use fixture::{FieldError, Fixture, FixtureError, Overrides, View};
 pub use golden::{Comparison, Fuzzy, Store};

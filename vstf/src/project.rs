@@ -8,6 +8,7 @@
 //! project it is run in, and a copy of a project is checked against its own
 //! goldens. `vstf.toml` only marks the root; its content is not read.
 
+use crate::budget::Budget;
 use crate::fixture::{Fixture, FixtureError};
 use crate::golden::Store;
 use std::path::{Path, PathBuf};
@@ -109,12 +110,21 @@ impl Project {
 
     /// Loads a fixture by path, or by name from this project's `fixtures/`.
     pub fn load(&self, name_or_path: &str) -> Result<Fixture, FixtureError> {
+        self.load_within(name_or_path, &Budget::DEFAULT)
+    }
+
+    /// [`Project::load`] within a memory budget.
+    pub fn load_within(
+        &self,
+        name_or_path: &str,
+        budget: &Budget,
+    ) -> Result<Fixture, FixtureError> {
         let file = self.resolve(name_or_path).map_err(|message| FixtureError {
             file: PathBuf::from(name_or_path),
             path: String::new(),
             message,
         })?;
-        Fixture::load(&file)
+        Fixture::load_within(&file, budget)
     }
 
     /// Names of the fixtures in `fixtures/`, sorted.
@@ -141,13 +151,17 @@ fn is_root(dir: &Path) -> bool {
 /// Loads a fixture for a command that needs no project when given a file:
 /// a path loads directly, a name is looked up in the project found by
 /// [`Project::locate`].
-pub fn load_fixture(root: Option<&Path>, name_or_path: &str) -> Result<Fixture, String> {
+pub fn load_fixture(
+    root: Option<&Path>,
+    name_or_path: &str,
+    budget: &Budget,
+) -> Result<Fixture, String> {
     let p = Path::new(name_or_path);
     if p.is_file() && root.is_none() {
-        return Fixture::load(p).map_err(|e| e.to_string());
+        return Fixture::load_within(p, budget).map_err(|e| e.to_string());
     }
     Project::locate(root)?
-        .load(name_or_path)
+        .load_within(name_or_path, budget)
         .map_err(|e| e.to_string())
 }
 

@@ -776,7 +776,7 @@ fn a_second_ctrl_c_exits_at_once() {
     let mut child = vstf()
         .args([
             "animate", "teaser", "--frames", "0..50000", "--width", "320", "--height", "180",
-            "--out",
+            "--force", "--out",
         ])
         .arg(dir.join("frames"))
         .stderr(std::process::Stdio::null())
@@ -785,6 +785,7 @@ fn a_second_ctrl_c_exits_at_once() {
     let started = std::time::Instant::now();
     while std::fs::read_dir(dir.join("frames")).map_or(0, |d| d.count()) < 2 {
         assert!(started.elapsed().as_secs() < 60, "no frames appeared");
+        assert!(child.try_wait().unwrap().is_none(), "animate ended early");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
     for _ in 0..2 {
@@ -807,4 +808,33 @@ fn a_second_ctrl_c_exits_at_once() {
     };
     assert_eq!(status.code(), Some(130));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A render far beyond the time budget is refused at once with its
+/// estimate and the flag that overrides it.
+#[test]
+fn a_day_long_render_is_refused_with_its_estimate() {
+    let started = std::time::Instant::now();
+    let out = vstf()
+        .args([
+            "render",
+            "stage",
+            "--out",
+            "/tmp/never.png",
+            "--width",
+            "8192",
+            "--height",
+            "8192",
+            "--spp",
+            "4096",
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("days") && err.contains("--force"),
+        "{err}"
+    );
+    assert!(started.elapsed().as_secs() < 10);
+    assert!(!std::path::Path::new("/tmp/never.png").exists());
 }

@@ -470,3 +470,43 @@ fn an_absurd_unknown_key_is_named_briefly() {
         e.len()
     );
 }
+
+/// A scene whose database would not fit the memory budget is refused at
+/// load, with its estimate, before anything is built: a finely tessellated
+/// sphere through ten keyframes (30 million tetrahedra, about 18 GB).
+#[test]
+fn a_database_over_the_memory_budget_is_refused_with_its_estimate() {
+    let keyframes: Vec<serde_json::Value> = (0..11)
+        .map(
+            |k| serde_json::json!({"t": f64::from(k), "position": [0.01 * f64::from(k), 0.0, 0.0]}),
+        )
+        .collect();
+    let text = flange_with(|v| {
+        v["objects"] = serde_json::json!([{"name": "ball", "mesh": {"sphere": {"radius": 1.0, "segments": 1024}},
+            "worldline": {"keyframes": keyframes}, "material": {"color": [0.5, 0.5, 0.5]}}]);
+    });
+    let started = std::time::Instant::now();
+    let e = error_of(&text);
+    assert!(
+        e.contains("fixtures/bad.json: objects: about 31")
+            && e.contains("tetrahedra")
+            && e.contains("over the budget of 8.0 GB")
+            && e.contains("--force"),
+        "{e}"
+    );
+    assert!(
+        started.elapsed().as_secs() < 20,
+        "the estimate took as long as a build"
+    );
+    let e = error_of(&flange_with(|v| {
+        v["objects"][0]["mesh"] = serde_json::json!({"sphere": {"radius": 1.0, "segments": 4096}})
+    }));
+    assert!(e.contains("sphere.segments 4096: expected 4..=1024"), "{e}");
+    let e = error_of(&flange_with(
+        |v| v["objects"][0]["mesh"] = serde_json::json!({"bar_grid": {"count": 4000000000u32, "spacing": 1.0, "first": 0.0, "thickness": 0.1, "y": 0.0}}),
+    ));
+    assert!(
+        e.contains("bar_grid.count 4000000000: expected 1..=10000"),
+        "{e}"
+    );
+}

@@ -4,6 +4,7 @@
 
 use super::row::{Quantity, Row};
 use super::setup::Effort;
+use crate::budget::Budget;
 use crate::fixture::Fixture;
 use crate::golden::{Comparison, Store};
 use crate::project::Project;
@@ -71,10 +72,12 @@ impl FixtureReport {
 fn run_one(
     project: &Project,
     name: &str,
-    effort: &Effort,
+    (effort, budget): (&Effort, &Budget),
     store: &Store,
 ) -> Result<FixtureReport, String> {
-    let fixture = project.load(name).map_err(|e| e.to_string())?;
+    let fixture = project
+        .load_within(name, budget)
+        .map_err(|e| e.to_string())?;
     let findings = super::declared::run(&fixture, effort)?;
     let mut report = FixtureReport::new(&fixture.name, &fixture, findings);
     for v in &report.views {
@@ -93,6 +96,16 @@ pub fn run(
     names: &[String],
     effort: &Effort,
 ) -> Result<Vec<FixtureReport>, String> {
+    run_within(project, names, effort, &Budget::DEFAULT)
+}
+
+/// [`run`], loading fixtures within `budget`.
+pub fn run_within(
+    project: &Project,
+    names: &[String],
+    effort: &Effort,
+    budget: &Budget,
+) -> Result<Vec<FixtureReport>, String> {
     let store = &project.store();
     let chosen: Vec<String> = if names.is_empty() {
         project.fixture_names()
@@ -109,6 +122,6 @@ pub fn run(
     // serial parts overlap); results come back in the order asked.
     chosen
         .par_iter()
-        .map(|name| run_one(project, name, effort, store))
+        .map(|name| run_one(project, name, (effort, budget), store))
         .collect()
 }

@@ -25,12 +25,18 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
         return Err("animate takes its camera times from --frames, not --camera-t".into());
     }
     let times = vstf::animate::frame_times(frames.0, frames.1, step)?;
-    let fixture = vstf::project::load_fixture(root, &fixture)?;
+    let budget = vstf::Budget::forced(view.force);
+    let fixture = vstf::project::load_fixture(root, &fixture, &budget)?;
     let overrides = Overrides {
         camera_t: Some(times[0]),
         ..view.overrides(&fixture)?
     };
     let view = vstf::run::view(&fixture, &overrides)?;
+    budget.check_work(
+        (view.camera.width, view.camera.height),
+        view.settings.spp,
+        times.len(),
+    )?;
     let output = vstf::animate::Output::from_path(&out);
     let stop = stop_on_ctrl_c()?;
     let started = Instant::now();

@@ -58,6 +58,10 @@ pub struct ViewArgs {
     /// factor; see docs/physics.md).
     #[arg(long)]
     pub searchlight: bool,
+    /// Go on beyond the work and memory budget (8 GB of database, an hour of
+    /// rendering by the estimate printed when it is refused).
+    #[arg(long)]
+    pub force: bool,
 }
 
 #[derive(Subcommand)]
@@ -125,6 +129,9 @@ pub struct CheckArgs {
     /// Smaller probes and fewer samples (what `cargo test` uses).
     #[arg(long)]
     pub quick: bool,
+    /// Load fixtures beyond the memory budget (8 GB of database).
+    #[arg(long)]
+    pub force: bool,
 }
 
 // `vstf init`.

@@ -16,6 +16,7 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
         json,
         report,
         quick,
+        force,
     } = args;
     let effort = if quick { Effort::QUICK } else { Effort::FULL };
     let started = Instant::now();
@@ -24,7 +25,8 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
     for p in store.remove_stale_temps() {
         eprintln!("removed {} (left by an interrupted write)", p.display());
     }
-    let reports = vstf::check::run(&project, &fixtures, &effort)?;
+    let budget = vstf::Budget::forced(force);
+    let reports = vstf::check::run_within(&project, &fixtures, &effort, &budget)?;
     let rows: Vec<Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
     print!("{}", vstf::report::table(&rows));
     let goldens: Vec<&Comparison> = reports.iter().flat_map(|r| &r.goldens).collect();

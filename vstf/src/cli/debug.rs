@@ -16,7 +16,7 @@ pub fn run(root: Option<&Path>, args: DebugArgs) -> Result<(), String> {
         view,
         brute_force,
     } = args;
-    let (fixture, view, db) = prepare(root, &fixture, &view, brute_force)?;
+    let (fixture, view, db) = prepare(root, &fixture, &view, brute_force, false)?;
     let (x0, y0, x1, y1) = match (pixel, region) {
         (Some((x, y)), _) => (x, y, x, y),
         (None, Some(r)) => r,

@@ -15,7 +15,7 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
         brute_force,
     } = args;
     let started = Instant::now();
-    let (fixture, view, db) = prepare(root, &fixture, &view, brute_force)?;
+    let (fixture, view, db) = prepare(root, &fixture, &view, brute_force, true)?;
     let image = vstf::run::render_with(&db, &fixture, &view)?;
     vstf::output::write_png(&out, &image.to_rgb8())?;
     eprintln!(

@@ -6,6 +6,7 @@ use renderer::{Database, Model, Traversal};
 use std::path::Path;
 use vstf::fixture::{Fixture, Overrides, View};
 use vstf::project::load_fixture;
+use vstf::Budget;
 
 impl ViewArgs {
     /// The fixture overrides these flags ask for.
@@ -38,15 +39,22 @@ fn model_of(arg: Option<ModelArg>, lorentz: bool, fixture: &Fixture) -> Option<M
     })
 }
 
-/// Loads a fixture, applies the view flags and builds the database.
+/// Loads a fixture, applies the view flags and builds the database, within
+/// the budget unless `--force` (the time of a whole frame when `frame`).
 pub fn prepare(
     root: Option<&Path>,
     name: &str,
     args: &ViewArgs,
     brute_force: bool,
+    frame: bool,
 ) -> Result<(Fixture, View, Database), String> {
-    let fixture = load_fixture(root, name)?;
+    let budget = Budget::forced(args.force);
+    let fixture = load_fixture(root, name, &budget)?;
     let view = vstf::run::view(&fixture, &args.overrides(&fixture)?)?;
+    if frame {
+        let size = (view.camera.width, view.camera.height);
+        budget.check_work(size, view.settings.spp, 1)?;
+    }
     let traversal = if brute_force {
         Traversal::BruteForce
     } else {

@@ -1,0 +1,172 @@
+//! How much work and memory a command may take before it asks for
+//! `--force`: an estimate made before anything is built or rendered, so
+//! that an absurd fixture or flag is refused in a moment, with the
+//! estimate, instead of running for a day or aborting on a failed
+//! allocation.
+//!
+//! The figures behind the estimates are this project's own, measured by
+//! `vstf bench` on the 2-core machine it is developed on (README,
+//! Performance): about 594 bytes per tetrahedron at peak, and between 2.4
+//! and 3.9 million rays per second at 640x360. The estimates round both the
+//! safe way.
+
+use renderer::{Motion, Scene, Shape};
+use std::fmt;
+
+/// Peak memory per tetrahedron of the 4D database, bytes (bench: 594).
+pub const BYTES_PER_TETRAHEDRON: u64 = 600;
+
+/// Primary rays per second assumed for an estimate (bench: 2.4 to 3.9
+/// million with shadows and mirrors on 2 cores; a tenth of that leaves room
+/// for deep mirrors and slow machines).
+pub const RAYS_PER_SECOND: f64 = 1.0e6;
+
+/// The most tetrahedra one hyperbolic motion's keyframes can give a
+/// triangle (the renderer's cap on generated keyframes, 3 per interval).
+const MAX_HYPERBOLIC_INTERVALS: u64 = 100_000;
+
+/// The limits a command stays within unless forced.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Budget {
+    /// Peak memory of the 4D database, bytes.
+    pub memory: u64,
+    /// Estimated render time, seconds.
+    pub seconds: f64,
+}
+
+impl Budget {
+    /// The default budget: 8 GB of database and an hour of rendering.
+    pub const DEFAULT: Budget = Budget {
+        memory: 8_000_000_000,
+        seconds: 3600.0,
+    };
+
+    /// No limit (`--force`).
+    pub const UNLIMITED: Budget = Budget {
+        memory: u64::MAX,
+        seconds: f64::INFINITY,
+    };
+
+    /// The default budget, or none when `force`.
+    pub fn forced(force: bool) -> Budget {
+        if force {
+            Budget::UNLIMITED
+        } else {
+            Budget::DEFAULT
+        }
+    }
+
+    /// Refuses a scene whose database would exceed the memory budget.
+    pub fn check_scene(&self, scene: &Scene) -> Result<(), String> {
+        let tets = tetrahedra(scene);
+        let bytes = tets.saturating_mul(BYTES_PER_TETRAHEDRON);
+        if bytes <= self.memory {
+            return Ok(());
+        }
+        Err(format!(
+            "about {tets} tetrahedra, {} of memory to build (at {BYTES_PER_TETRAHEDRON} bytes each): \
+             over the budget of {}; pass --force to build it anyway",
+            Bytes(bytes),
+            Bytes(self.memory)
+        ))
+    }
+
+    /// Refuses rendering `frames` frames of `width` x `height` pixels at
+    /// `spp` samples beyond the time budget.
+    pub fn check_work(
+        &self,
+        (width, height): (u32, u32),
+        spp: u32,
+        frames: usize,
+    ) -> Result<(), String> {
+        let rays = f64::from(width) * f64::from(height) * f64::from(spp) * frames as f64;
+        let seconds = rays / RAYS_PER_SECOND;
+        if seconds <= self.seconds {
+            return Ok(());
+        }
+        Err(format!(
+            "{frames} frame(s) of {width}x{height} at {spp} samples per pixel: {rays:.3e} rays, \
+             about {} at {RAYS_PER_SECOND:.0e} rays per second: over the budget of {}; \
+             pass --force to render anyway",
+            Seconds(seconds),
+            Seconds(self.seconds)
+        ))
+    }
+}
+
+/// How many tetrahedra the scene's database will hold: three per triangle
+/// per straight stretch of its path (one stretch for uniform motion, one
+/// per keyframe interval, and for hyperbolic motion one per generated
+/// interval, h = sqrt(8 tolerance / a) long; docs/physics.md).
+pub fn tetrahedra(scene: &Scene) -> u64 {
+    scene
+        .objects
+        .iter()
+        .map(|o| {
+            let triangles = match &o.shape {
+                Shape::Mesh(m) => m.triangles.len() as u64,
+                Shape::Sphere { .. } => 0,
+            };
+            let stretches = match &o.motion {
+                Motion::Keyframes(k) => k.len().saturating_sub(1) as u64,
+                Motion::Hyperbolic(h) => {
+                    let step = (8.0 * h.tolerance / h.acceleration).sqrt();
+                    let n = (h.duration / step).ceil();
+                    if n.is_finite() && n >= 1.0 {
+                        (n as u64).min(MAX_HYPERBOLIC_INTERVALS)
+                    } else {
+                        MAX_HYPERBOLIC_INTERVALS
+                    }
+                }
+                Motion::Extrusion { .. } | Motion::Velocity { .. } => 1,
+            };
+            triangles.saturating_mul(3).saturating_mul(stretches.max(1))
+        })
+        .fold(0u64, u64::saturating_add)
+}
+
+/// A byte count as a person reads it.
+struct Bytes(u64);
+
+impl fmt::Display for Bytes {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let b = self.0 as f64;
+        if b >= 1e9 {
+            write!(f, "{:.1} GB", b / 1e9)
+        } else {
+            write!(f, "{:.0} MB", b / 1e6)
+        }
+    }
+}
+
+/// A duration as a person reads it.
+struct Seconds(f64);
+
+impl fmt::Display for Seconds {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = self.0;
+        if s >= 86_400.0 {
+            write!(f, "{:.1} days", s / 86_400.0)
+        } else if s >= 3600.0 {
+            write!(f, "{:.1} hours", s / 3600.0)
+        } else {
+            write!(f, "{s:.0} s")
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_day_of_rendering_is_refused_with_its_estimate_and_an_hour_is_not() {
+        let e = Budget::DEFAULT
+            .check_work((8192, 8192), 4096, 1)
+            .unwrap_err();
+        assert!(e.contains("days") && e.contains("--force"), "{e}");
+        Budget::DEFAULT.check_work((8192, 8192), 1, 1).unwrap();
+        Budget::DEFAULT.check_work((640, 480), 4096, 1).unwrap();
+        Budget::UNLIMITED.check_work((8192, 8192), 4096, 1).unwrap();
+    }
+}
