@@ -15,6 +15,7 @@ pub mod budget;
 pub mod check;
 pub mod debug;
 pub mod fixture;
+pub mod fuzz;
 pub mod golden;
 pub mod measure;
 pub mod oracle;

@@ -19,6 +19,7 @@ fn main() -> ExitCode {
         Command::Bench { quick } => cli::bench::run(root, quick),
         Command::List => cli::list::run(root),
         Command::Init(args) => cli::init::run(args),
+        Command::Fuzz(args) => cli::fuzz::run(root, args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -510,3 +510,23 @@ fn a_database_over_the_memory_budget_is_refused_with_its_estimate() {
         "{e}"
     );
 }
+
+/// Every input the fuzzer once found failing (`fuzz/found/`) is now refused
+/// or rendered, never a failure.
+#[test]
+fn inputs_the_fuzzer_found_are_handled() {
+    let dir = workspace_tests::repo().root().join("fuzz/found");
+    let mut n = 0;
+    for e in std::fs::read_dir(&dir).unwrap() {
+        let p = e.unwrap().path();
+        let text = std::fs::read_to_string(&p).unwrap();
+        let outcome = vstf::fuzz::one(&text);
+        assert!(
+            !matches!(outcome, vstf::fuzz::Outcome::Failed(_)),
+            "{}: {outcome:?}",
+            p.display()
+        );
+        n += 1;
+    }
+    assert!(n >= 1, "no inputs in {}", dir.display());
+}

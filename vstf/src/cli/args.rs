@@ -92,6 +92,10 @@ pub enum Command {
     },
     /// List the fixtures in fixtures/.
     List,
+    /// Fuzz the fixture path (parse, validate, build, tiny render) with
+    /// seeded mutations of the corpus and the project's fixtures; fails on
+    /// a panic, a non-finite pixel or a hang.
+    Fuzz(FuzzArgs),
     /// Start a project in DIR (default: here): vstf.toml, a fixture with
     /// declared checks, .gitignore and README; nothing existing is overwritten.
     Init(InitArgs),
@@ -132,6 +136,23 @@ pub struct CheckArgs {
     /// Load fixtures beyond the memory budget (8 GB of database).
     #[arg(long)]
     pub force: bool,
+}
+
+// `vstf fuzz`.
+#[derive(clap::Args)]
+pub struct FuzzArgs {
+    /// How long to run, seconds.
+    #[arg(long, default_value_t = 60.0)]
+    pub seconds: f64,
+    /// The seed the inputs are derived from.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Stop after this many inputs.
+    #[arg(long)]
+    pub max_inputs: Option<u64>,
+    /// Where failing inputs are saved (default: target/fuzz-failures of the project).
+    #[arg(long)]
+    pub save: Option<PathBuf>,
 }
 
 // `vstf init`.
