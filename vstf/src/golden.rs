@@ -250,8 +250,27 @@ impl Store {
         if ci {
             return Err("refusing to approve golden images with CI set: approve locally and commit the images".into());
         }
-        let chosen: Vec<Pending> = self
-            .list_pending()
+        let pending = self.list_pending();
+        if let Some(names) = fixtures {
+            if let Some(missing) = names
+                .iter()
+                .find(|n| !pending.iter().any(|p| slug(&p.fixture) == slug(n)))
+            {
+                let what: Vec<String> = pending
+                    .iter()
+                    .map(|p| format!("{}/{}", p.fixture, p.view))
+                    .collect();
+                return Err(format!(
+                    "nothing pending for {missing:?}; pending: {}",
+                    if what.is_empty() {
+                        "nothing".into()
+                    } else {
+                        what.join(", ")
+                    }
+                ));
+            }
+        }
+        let chosen: Vec<Pending> = pending
             .into_iter()
             .filter(|p| fixtures.is_none_or(|f| f.iter().any(|n| slug(n) == slug(&p.fixture))))
             .collect();

@@ -7,6 +7,7 @@ use cli::args::{Cli, Command};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    cli::quiet_on_closed_pipe();
     let Cli { root, command } = Cli::parse();
     let root = root.as_deref();
     let result = match command {

@@ -97,8 +97,11 @@ impl Project {
             return Ok(candidate);
         }
         let known = self.fixture_names();
+        let hint = closest(name_or_path, &known)
+            .map(|k| format!("did you mean {k:?}? "))
+            .unwrap_or_default();
         Err(format!(
-            "no fixture {name_or_path:?}: not a file, and no {}; fixtures here: {}",
+            "no fixture {name_or_path:?}: not a file, and no {}; {hint}fixtures here: {}",
             candidate.display(),
             if known.is_empty() {
                 "none".into()
@@ -141,6 +144,35 @@ impl Project {
         names.sort();
         names
     }
+}
+
+/// The known name nearest to `name` by edit distance, if it is near (at
+/// most a third of its length away, rounded up).
+fn closest<'k>(name: &str, known: &'k [String]) -> Option<&'k String> {
+    known
+        .iter()
+        .map(|k| (edit_distance(name, k), k))
+        .filter(|(d, _)| *d > 0 && *d <= name.chars().count().div_ceil(3))
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, k)| k)
+}
+
+/// The Levenshtein distance between two strings, in characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != *cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
 }
 
 /// Whether `dir` is a project's root.
@@ -205,5 +237,14 @@ mod tests {
         assert!(e.contains("vstf init") && e.contains("--root"), "{e}");
         assert!(Project::at(&dir.join("missing")).is_err());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_near_miss_is_suggested_and_a_far_one_is_not() {
+        let known: Vec<String> = ["flange", "stage", "teaser"].map(String::from).to_vec();
+        assert_eq!(closest("flang", &known).map(String::as_str), Some("flange"));
+        assert_eq!(closest("stgae", &known).map(String::as_str), Some("stage"));
+        assert_eq!(closest("sphere", &known), None);
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
     }
 }

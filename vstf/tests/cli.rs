@@ -838,3 +838,82 @@ fn a_day_long_render_is_refused_with_its_estimate() {
     assert!(started.elapsed().as_secs() < 10);
     assert!(!std::path::Path::new("/tmp/never.png").exists());
 }
+
+/// Output into a pipe that is closed ends quietly, not in a panic (exit
+/// code 101).
+#[test]
+fn a_closed_pipe_ends_list_quietly() {
+    let mut child = vstf()
+        .args(["list"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Close the pipe before `list` has loaded its fixtures and printed.
+    drop(child.stdout.take());
+    let done = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&done.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(done.status.code(), Some(0), "{err}");
+}
+
+/// `--json -` writes the JSON rows, and only them, to stdout.
+#[test]
+fn check_json_dash_writes_only_json_to_stdout() {
+    let out = vstf()
+        .args(["check", "stage", "--quick", "--json", "-"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rows: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "stdout is not JSON ({e}): {}",
+            String::from_utf8_lossy(&out.stdout)
+        )
+    });
+    assert_eq!(rows.as_array().unwrap().len(), 5);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("golden pass fixture=stage"));
+    assert!(
+        !repo_root().join("-").exists(),
+        "a file named - was written"
+    );
+}
+
+/// Small command-line errors: an unknown fixture to approve, an output that
+/// is not a PNG, and a near miss of a fixture's name.
+#[test]
+fn small_cli_mistakes_are_clear_errors() {
+    let out = vstf()
+        .env_remove("CI")
+        .args(["approve", "nosuch"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("nothing pending for \"nosuch\""),
+        "{err}"
+    );
+    let out = vstf()
+        .args(["render", "stage", "--out", "/tmp/vstf-x.jpg"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("writes PNG images"),
+        "{err}"
+    );
+    assert!(!std::path::Path::new("/tmp/vstf-x.jpg").exists());
+    let out = vstf()
+        .args(["render", "flang", "--out", "/tmp/vstf-x.png"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("did you mean \"flange\"?"),
+        "{err}"
+    );
+}

@@ -124,7 +124,8 @@ pub struct RenderArgs {
 pub struct CheckArgs {
     /// Fixture names (default: all checked fixtures).
     pub fixtures: Vec<String>,
-    /// Also write the rows as a JSON array to this file.
+    /// Also write the rows as a JSON array to this file (`-`: to stdout, the
+    /// table then going to stderr).
     #[arg(long)]
     pub json: Option<PathBuf>,
     /// Also write a static HTML report (index.html and images) into this folder.

@@ -28,13 +28,25 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
     let budget = vstf::Budget::forced(force);
     let reports = vstf::check::run_within(&project, &fixtures, &effort, &budget)?;
     let rows: Vec<Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
-    print!("{}", vstf::report::table(&rows));
+    // With `--json -` the JSON is all that goes to stdout; the table goes to stderr.
+    let json_to_stdout = json.as_deref() == Some(Path::new("-"));
+    let say = |line: &str| {
+        if json_to_stdout {
+            eprintln!("{line}");
+        } else {
+            println!("{line}");
+        }
+    };
+    say(vstf::report::table(&rows).trim_end());
     let goldens: Vec<&Comparison> = reports.iter().flat_map(|r| &r.goldens).collect();
     for g in &goldens {
-        println!("{g}");
+        say(&g.to_string());
     }
     let failed = goldens.iter().filter(|g| !g.pass).count();
-    println!("golden: {} passed, {failed} failed", goldens.len() - failed);
+    say(&format!(
+        "golden: {} passed, {failed} failed",
+        goldens.len() - failed
+    ));
     if failed > 0 {
         eprintln!("golden images differ or are missing: look at the pending images under {}, then `vstf approve --list` and `vstf approve FIXTURE...` if the change is right", store.pending.display());
     }
@@ -43,9 +55,11 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
         reports.len(),
         started.elapsed().as_secs_f64()
     );
-    if let Some(path) = json {
-        vstf::output::write_atomic(&path, vstf::report::json(&rows).as_bytes())
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    match json {
+        Some(_) if json_to_stdout => println!("{}", vstf::report::json(&rows)),
+        Some(path) => vstf::output::write_atomic(&path, vstf::report::json(&rows).as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?,
+        None => {}
     }
     if let Some(dir) = report {
         vstf::report::html(&dir, &reports)?;

@@ -14,3 +14,23 @@ pub mod init;
 pub mod list;
 pub mod render;
 pub mod view;
+
+/// Ends the process quietly when its output pipe is closed (`vstf list |
+/// head`), as command-line tools do, instead of a panic message and exit
+/// code 101: printing to a closed stdout panics, and this hook turns that
+/// one panic into a plain exit. Every other panic is reported as before.
+pub fn quiet_on_closed_pipe() {
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(0);
+        }
+        previous(info);
+    }));
+}

@@ -14,6 +14,16 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
         view,
         brute_force,
     } = args;
+    let png = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !png {
+        return Err(format!(
+            "--out {}: vstf writes PNG images; name the file .png",
+            out.display()
+        ));
+    }
     let started = Instant::now();
     let (fixture, view, db) = prepare(root, &fixture, &view, brute_force, true)?;
     let image = vstf::run::render_with(&db, &fixture, &view)?;
