@@ -420,15 +420,16 @@ mod tests {
             .map(|e| e.unwrap().file_name().to_string_lossy().into())
             .collect();
         assert_eq!(names, ["one.png"]);
-        // A passing view has nothing pending, so approve leaves its golden alone.
+        // A passing view has nothing pending, so approving it is an error
+        // that names what is pending, and its golden is left alone.
         assert!(
             s.check("a", "one", &picture(), Fuzzy::default())
                 .unwrap()
                 .pass
         );
-        assert!(s
-            .approve(Some(&["a".to_string()]), false)
-            .unwrap()
-            .is_empty());
+        let before = std::fs::read(s.golden_path("a", "one")).unwrap();
+        let e = s.approve(Some(&["a".to_string()]), false).unwrap_err();
+        assert!(e.contains("nothing pending for \"a\"; pending: b/two"), "{e}");
+        assert_eq!(std::fs::read(s.golden_path("a", "one")).unwrap(), before);
     }
 }

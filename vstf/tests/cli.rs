@@ -684,7 +684,10 @@ fn render_out_follows_links_and_refuses_special_files() {
         .file_type()
         .is_symlink());
     assert_eq!(image::open(dir.join("real.png")).unwrap().width(), 16);
-    for special in [std::path::PathBuf::from("/dev/null"), dir.clone()] {
+    // A link to a device, and a directory, each named like a PNG.
+    std::os::unix::fs::symlink("/dev/null", dir.join("null.png")).unwrap();
+    std::fs::create_dir(dir.join("folder.png")).unwrap();
+    for special in [dir.join("null.png"), dir.join("folder.png")] {
         let out = render(&special);
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(
