@@ -429,7 +429,10 @@ mod tests {
         );
         let before = std::fs::read(s.golden_path("a", "one")).unwrap();
         let e = s.approve(Some(&["a".to_string()]), false).unwrap_err();
-        assert!(e.contains("nothing pending for \"a\"; pending: b/two"), "{e}");
+        assert!(
+            e.contains("nothing pending for \"a\"; pending: b/two"),
+            "{e}"
+        );
         assert_eq!(std::fs::read(s.golden_path("a", "one")).unwrap(), before);
     }
 }
