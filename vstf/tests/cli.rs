@@ -920,3 +920,62 @@ fn small_cli_mistakes_are_clear_errors() {
         "{err}"
     );
 }
+
+/// `render --view` reproduces a declared view bit for bit as `vstf check`
+/// renders it for its golden image (colour effects included); an unknown
+/// view is an error naming the declared ones.
+#[test]
+fn render_view_reproduces_the_golden_image() {
+    let dir = scratch("view");
+    for (fixture, view, golden) in [
+        ("flange", "frame 1151", "flange/frame-1151.png"),
+        ("accelerated", "t_c = 22", "accelerated/t-c-22.png"),
+        (
+            "doppler",
+            "doppler and searchlight",
+            "doppler/doppler-and-searchlight.png",
+        ),
+        (
+            "sphere-relativistic",
+            "view",
+            "sphere-relativistic/view.png",
+        ),
+    ] {
+        let out = dir.join("view.png");
+        let run = vstf()
+            .args(["render", fixture, "--view", view, "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let rendered = image::open(&out).unwrap().to_rgb8();
+        let approved = image::open(repo_root().join("golden").join(golden))
+            .unwrap()
+            .to_rgb8();
+        assert!(
+            rendered == approved,
+            "{fixture} {view} differs from {golden}"
+        );
+    }
+    let out = vstf()
+        .args([
+            "render",
+            "flange",
+            "--view",
+            "frame 9",
+            "--out",
+            "/tmp/vstf-no.png",
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("declared views: frame 920, frame 1151"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -123,7 +123,8 @@ impl Setup<'_> {
             .ok_or_else(|| format!("{}: degenerate camera", self.fixture.name))
     }
 
-    fn view(&self, width: u32) -> Result<View, String> {
+    /// The view rendered for the report and the golden image at `width`.
+    pub fn report_view(&self, width: u32) -> Result<View, String> {
         let (width, height) = self.size(width);
         let o = Overrides {
             model: Some(self.model),
@@ -140,7 +141,7 @@ impl Setup<'_> {
     /// The full view at [`VIEW_WIDTH`], with `markers` at the pixels of
     /// the given lab directions.
     pub fn full_view(&self, name: &str, directions: &[DVec3]) -> Result<ViewReport, String> {
-        let view = self.view(VIEW_WIDTH)?;
+        let view = self.report_view(VIEW_WIDTH)?;
         let image = crate::run::render(self.fixture, &view, Traversal::Bvh)?.to_rgb8();
         let pinhole = self.pinhole(self.size(VIEW_WIDTH))?;
         let markers = directions

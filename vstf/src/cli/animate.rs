@@ -27,11 +27,25 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
     let times = vstf::animate::frame_times(frames.0, frames.1, step)?;
     let budget = vstf::Budget::forced(view.force);
     let fixture = vstf::project::load_fixture(root, &fixture, &budget)?;
-    let overrides = Overrides {
-        camera_t: Some(times[0]),
-        ..view.overrides(&fixture)?
+    // A declared view gives the model, size and samples; the times are the frames'.
+    let (fixture, view) = match &view.view {
+        Some(declared) => {
+            let (fixture, base) = vstf::check::declared::golden_view(&fixture, declared)?;
+            let first = vstf::fixture::View {
+                camera_t: times[0],
+                ..base
+            };
+            (fixture, first)
+        }
+        None => {
+            let overrides = Overrides {
+                camera_t: Some(times[0]),
+                ..view.overrides(&fixture)?
+            };
+            let first = vstf::run::view(&fixture, &overrides)?;
+            (fixture, first)
+        }
     };
-    let view = vstf::run::view(&fixture, &overrides)?;
     budget.check_work(
         (view.camera.width, view.camera.height),
         view.settings.spp,

@@ -62,6 +62,10 @@ pub struct ViewArgs {
     /// rendering by the estimate printed when it is refused).
     #[arg(long)]
     pub force: bool,
+    /// A view the fixture declares, exactly as `vstf check` renders it for
+    /// its golden image (camera time, model, size, samples, colour effects).
+    #[arg(long, conflicts_with_all = ["model", "lorentz", "camera_t", "width", "height", "spp", "doppler", "searchlight"])]
+    pub view: Option<String>,
 }
 
 #[derive(Subcommand)]

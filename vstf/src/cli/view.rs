@@ -50,7 +50,13 @@ pub fn prepare(
 ) -> Result<(Fixture, View, Database), String> {
     let budget = Budget::forced(args.force);
     let fixture = load_fixture(root, name, &budget)?;
-    let view = vstf::run::view(&fixture, &args.overrides(&fixture)?)?;
+    let (fixture, view) = match &args.view {
+        Some(declared) => vstf::check::declared::golden_view(&fixture, declared)?,
+        None => {
+            let view = vstf::run::view(&fixture, &args.overrides(&fixture)?)?;
+            (fixture, view)
+        }
+    };
     if frame {
         let size = (view.camera.width, view.camera.height);
         budget.check_work(size, view.settings.spp, 1)?;

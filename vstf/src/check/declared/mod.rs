@@ -101,6 +101,44 @@ fn adjusted(r: Reading, t: Option<&ToleranceSpec>) -> Reading {
     }
 }
 
+/// The fixture with a view's colour effects, where the view sets any.
+fn with_view_effects(f: &Fixture, v: &ViewSpec) -> Option<Fixture> {
+    if v.doppler.is_none() && v.searchlight.is_none() {
+        return None;
+    }
+    let mut f = f.clone();
+    f.spec.image.doppler = v.doppler.unwrap_or(f.spec.image.doppler);
+    f.spec.image.searchlight = v.searchlight.unwrap_or(f.spec.image.searchlight);
+    Some(f)
+}
+
+/// The declared view `name` of `f` exactly as `vstf check` renders it for
+/// its golden image: the fixture (with the view's colour effects) and the
+/// view (its camera time and model, the report's size, the fixture's
+/// samples), so that `vstf render --view` reproduces the golden bit for bit.
+pub fn golden_view(f: &Fixture, name: &str) -> Result<(Fixture, crate::fixture::View), String> {
+    let v = f
+        .spec
+        .views
+        .iter()
+        .find(|v| v.name == name)
+        .ok_or_else(|| {
+            let known: Vec<&str> = f.spec.views.iter().map(|v| v.name.as_str()).collect();
+            format!(
+                "{}: no view named {name:?} (declared views: {})",
+                f.file.display(),
+                if known.is_empty() {
+                    "none".into()
+                } else {
+                    known.join(", ")
+                }
+            )
+        })?;
+    let fixture = with_view_effects(f, v).unwrap_or_else(|| f.clone());
+    let view = setup_of(&fixture, v).report_view(super::setup::VIEW_WIDTH)?;
+    Ok((fixture, view))
+}
+
 /// The setup of a declared view of `f`: its camera time and model.
 fn setup_of<'f>(f: &'f Fixture, v: &ViewSpec) -> Setup<'f> {
     let mut model = match v.model {
@@ -296,14 +334,12 @@ impl<'a> Run<'a> {
         for (k, v) in spec.views.iter().enumerate() {
             let marks = self.marks_of(k);
             let with_effects;
-            let f = if v.doppler.is_some() || v.searchlight.is_some() {
-                let mut f = self.rendered.clone();
-                f.spec.image.doppler = v.doppler.unwrap_or(f.spec.image.doppler);
-                f.spec.image.searchlight = v.searchlight.unwrap_or(f.spec.image.searchlight);
-                with_effects = f;
-                &with_effects
-            } else {
-                self.rendered
+            let f = match with_view_effects(self.rendered, v) {
+                Some(f) => {
+                    with_effects = f;
+                    &with_effects
+                }
+                None => self.rendered,
             };
             views.push(setup_of(f, v).full_view(&v.name, &marks)?);
         }
