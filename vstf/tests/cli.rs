@@ -435,6 +435,21 @@ fn a_tampered_golden_in_a_copy_of_the_repository_is_caught() {
         text.contains("golden pass fixture=flange view=frame-1151"),
         "{text}"
     );
+    // Each fixture's line as it finishes, the failure again with the command
+    // that renders the view, and the closing summary.
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("FAIL flange") && err.contains("rows 3/3, golden images 1/2"),
+        "{err}"
+    );
+    assert!(
+        err.contains("vstf render flange --view \"frame 920\" --out"),
+        "{err}"
+    );
+    assert!(
+        err.contains("check: 1 fixtures, 3 rows (0 failed), 2 golden images (1 failed)"),
+        "{err}"
+    );
     assert!(copy
         .join("target/vstf/flange/frame-920/actual.png")
         .is_file());

@@ -30,7 +30,7 @@ pub mod terrell;
 
 pub use edge::{trace_rows, Edge, EdgeTrace, OnPlane, Probed, Sweep};
 pub use row::{difference, Quantity, Reading, Row, Unit};
-pub use runner::{run, run_within, Findings, FixtureReport, ViewReport};
+pub use runner::{run, run_reporting, run_within, Findings, FixtureReport, ViewReport};
 pub use setup::{
     background, fixture_model, is_background, motion_of, uniform, Effort, Probe, Setup,
     UniformMotion, VIEW_WIDTH,

@@ -42,6 +42,8 @@ pub struct FixtureReport {
     pub rows: Vec<Row>,
     /// Each view against its golden image (filled in by [`run`]).
     pub goldens: Vec<Comparison>,
+    /// The views the fixture declares (which `vstf render --view` renders).
+    pub declared_views: Vec<String>,
 }
 
 impl FixtureReport {
@@ -58,6 +60,7 @@ impl FixtureReport {
                 .map(|q| q.judge(name))
                 .collect(),
             goldens: Vec::new(),
+            declared_views: fixture.spec.views.iter().map(|v| v.name.clone()).collect(),
         }
     }
 
@@ -106,6 +109,17 @@ pub fn run_within(
     effort: &Effort,
     budget: &Budget,
 ) -> Result<Vec<FixtureReport>, String> {
+    run_reporting(project, names, (effort, budget), &|_, _| {})
+}
+
+/// [`run_within`], calling `finished` with each fixture's report and its
+/// time in seconds as soon as it is done (in the order they finish).
+pub fn run_reporting(
+    project: &Project,
+    names: &[String],
+    (effort, budget): (&Effort, &Budget),
+    finished: &(dyn Fn(&FixtureReport, f64) + Sync),
+) -> Result<Vec<FixtureReport>, String> {
     let store = &project.store();
     let chosen: Vec<String> = if names.is_empty() {
         project.fixture_names()
@@ -122,6 +136,11 @@ pub fn run_within(
     // serial parts overlap); results come back in the order asked.
     chosen
         .par_iter()
-        .map(|name| run_one(project, name, (effort, budget), store))
+        .map(|name| {
+            let started = std::time::Instant::now();
+            let report = run_one(project, name, (effort, budget), store)?;
+            finished(&report, started.elapsed().as_secs_f64());
+            Ok(report)
+        })
         .collect()
 }

@@ -4,7 +4,7 @@
 use super::args::CheckArgs;
 use std::path::Path;
 use std::time::Instant;
-use vstf::check::{Effort, Row};
+use vstf::check::{Effort, FixtureReport, Row};
 use vstf::golden::Comparison;
 use vstf::project::Project;
 
@@ -26,7 +26,10 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
         eprintln!("removed {} (left by an interrupted write)", p.display());
     }
     let budget = vstf::Budget::forced(force);
-    let reports = vstf::check::run_within(&project, &fixtures, &effort, &budget)?;
+    let reports =
+        vstf::check::run_reporting(&project, &fixtures, (&effort, &budget), &|r, seconds| {
+            eprintln!("{}", fixture_line(r, seconds));
+        })?;
     let rows: Vec<Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
     // With `--json -` the JSON is all that goes to stdout; the table goes to stderr.
     let json_to_stdout = json.as_deref() == Some(Path::new("-"));
@@ -50,11 +53,7 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
     if failed > 0 {
         eprintln!("golden images differ or are missing: look at the pending images under {}, then `vstf approve --list` and `vstf approve FIXTURE...` if the change is right", store.pending.display());
     }
-    eprintln!(
-        "checked {} fixtures in {:.1} s",
-        reports.len(),
-        started.elapsed().as_secs_f64()
-    );
+
     match json {
         Some(_) if json_to_stdout => println!("{}", vstf::report::json(&rows)),
         Some(path) => vstf::output::write_atomic(&path, vstf::report::json(&rows).as_bytes())
@@ -65,8 +64,58 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
         vstf::report::html(&dir, &reports)?;
         eprintln!("report: {}", dir.join("index.html").display());
     }
-    if rows.iter().any(|r| !r.pass) || failed > 0 {
+    let failed_rows = rows.iter().filter(|r| !r.pass).count();
+    if failed_rows > 0 || failed > 0 {
+        eprintln!("{}", failures(&reports));
+    }
+    eprintln!(
+        "check: {} fixtures, {} rows ({failed_rows} failed), {} golden images ({failed} failed) in {:.1} s",
+        reports.len(),
+        rows.len(),
+        goldens.len(),
+        started.elapsed().as_secs_f64()
+    );
+    if failed_rows > 0 || failed > 0 {
         return Err("some checks failed".into());
     }
     Ok(())
+}
+
+/// One line for a fixture as it finishes: its rows and golden images
+/// passed out of all, and its time.
+fn fixture_line(r: &FixtureReport, seconds: f64) -> String {
+    let rows = r.rows.iter().filter(|x| x.pass).count();
+    let goldens = r.goldens.iter().filter(|g| g.pass).count();
+    let verdict = if r.passed() { "pass" } else { "FAIL" };
+    format!(
+        "{verdict} {:24} rows {rows}/{}, golden images {goldens}/{}, {seconds:.1} s",
+        r.fixture,
+        r.rows.len(),
+        r.goldens.len()
+    )
+}
+
+/// The failures again, after the table, with the commands that show them.
+fn failures(reports: &[FixtureReport]) -> String {
+    let mut out = String::from("failures:");
+    for r in reports {
+        for row in r.rows.iter().filter(|x| !x.pass) {
+            out.push_str(&format!(
+                "\n  {} {}: measured {} expected {} (tolerance {} {})",
+                r.fixture, row.quantity, row.measured, row.expected, row.tolerance, row.unit
+            ));
+        }
+        for g in r.goldens.iter().filter(|g| !g.pass) {
+            out.push_str(&format!("\n  {g}"));
+            if r.declared_views.contains(&g.view) {
+                out.push_str(&format!(
+                    "\n    vstf render {} --view {:?} --out target/vstf/{}.png",
+                    r.fixture,
+                    g.view,
+                    vstf::golden::slug(&format!("{}-{}", r.fixture, g.view))
+                ));
+            }
+        }
+    }
+    out
 }
