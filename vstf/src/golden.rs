@@ -110,6 +110,54 @@ pub fn slug(s: &str) -> String {
     out.trim_matches('-').to_string()
 }
 
+/// Where a pending image differs from its golden: the bounding box of the
+/// differing pixels, their number and the largest channel difference.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Change {
+    /// Smallest and largest differing column and row: (x0, y0, x1, y1).
+    pub bounds: (u32, u32, u32, u32),
+    /// Pixels that differ at all.
+    pub pixels: u64,
+    /// The largest channel difference.
+    pub worst: u8,
+    /// The image's size.
+    pub size: (u32, u32),
+}
+
+/// The change from `expected` to `actual` (same size), `None` if none.
+pub fn change(actual: &RgbImage, expected: &RgbImage) -> Option<Change> {
+    if actual.dimensions() != expected.dimensions() {
+        return None;
+    }
+    let mut c: Option<Change> = None;
+    for (x, y, a) in actual.enumerate_pixels() {
+        let e = expected.get_pixel(x, y);
+        let d = (0..3).map(|i| a.0[i].abs_diff(e.0[i])).max().unwrap_or(0);
+        if d == 0 {
+            continue;
+        }
+        let b = c.map_or((x, y, x, y), |c| c.bounds);
+        c = Some(Change {
+            bounds: (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y)),
+            pixels: c.map_or(0, |c| c.pixels) + 1,
+            worst: c.map_or(0, |c| c.worst).max(d),
+            size: actual.dimensions(),
+        });
+    }
+    c
+}
+
+impl fmt::Display for Change {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (x0, y0, x1, y1) = self.bounds;
+        write!(
+            f,
+            "{} pixels differ (worst by {}) within x {x0}..={x1}, y {y0}..={y1} of {}x{}",
+            self.pixels, self.worst, self.size.0, self.size.1
+        )
+    }
+}
+
 /// A pending image waiting for approval.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pending {
@@ -121,6 +169,17 @@ pub struct Pending {
     pub actual: PathBuf,
     /// Whether a golden exists (then this is a change, else a new image).
     pub replaces: bool,
+}
+
+impl Pending {
+    /// Where it differs from the golden it would replace (from the pending
+    /// `actual.png` and `expected.png`); `None` for a new image.
+    pub fn change(&self) -> Option<Change> {
+        let dir = self.actual.parent()?;
+        let actual = image::open(&self.actual).ok()?.to_rgb8();
+        let expected = image::open(dir.join("expected.png")).ok()?.to_rgb8();
+        change(&actual, &expected)
+    }
 }
 
 /// Where goldens and pending images live.
@@ -243,37 +302,61 @@ impl Store {
         out
     }
 
-    /// Copies the pending images of `fixtures` (all when `None`) into the
-    /// golden folder, each write atomic, and clears them from pending.
+    /// The pending images `names` ask for (all when `None`): a name is a
+    /// fixture (all its pending views) or `FIXTURE/VIEW`; a name with
+    /// nothing pending is an error that lists what is.
+    pub fn select(&self, names: Option<&[String]>) -> Result<Vec<Pending>, String> {
+        let pending = self.list_pending();
+        let Some(names) = names else {
+            return Ok(pending);
+        };
+        let matches = |n: &str, p: &Pending| match n.split_once('/') {
+            Some((f, v)) => slug(f) == slug(&p.fixture) && slug(v) == slug(&p.view),
+            None => slug(n) == slug(&p.fixture),
+        };
+        if let Some(missing) = names
+            .iter()
+            .find(|n| !pending.iter().any(|p| matches(n, p)))
+        {
+            let what: Vec<String> = pending
+                .iter()
+                .map(|p| format!("{}/{}", p.fixture, slug(&p.view)))
+                .collect();
+            return Err(format!(
+                "nothing pending for {missing:?}; pending: {}",
+                if what.is_empty() {
+                    "nothing".into()
+                } else {
+                    what.join(", ")
+                }
+            ));
+        }
+        Ok(pending
+            .into_iter()
+            .filter(|p| names.iter().any(|n| matches(n, p)))
+            .collect())
+    }
+
+    /// Drops the pending images `names` ask for ([`Store::select`]): the
+    /// change is not wanted; the golden images stay as they are.
+    pub fn reject(&self, names: Option<&[String]>) -> Result<Vec<Pending>, String> {
+        let chosen = self.select(names)?;
+        for p in &chosen {
+            let dir = p.actual.parent().expect("pending images live in a folder");
+            std::fs::remove_dir_all(dir)
+                .map_err(|e| format!("cannot clear {}: {e}", dir.display()))?;
+        }
+        Ok(chosen)
+    }
+
+    /// Copies the pending images `names` ask for ([`Store::select`]) into
+    /// the golden folder, each write atomic, and clears them from pending.
     /// Refused when `ci` is set: CI never approves or creates goldens.
-    pub fn approve(&self, fixtures: Option<&[String]>, ci: bool) -> Result<Vec<Pending>, String> {
+    pub fn approve(&self, names: Option<&[String]>, ci: bool) -> Result<Vec<Pending>, String> {
         if ci {
             return Err("refusing to approve golden images with CI set: approve locally and commit the images".into());
         }
-        let pending = self.list_pending();
-        if let Some(names) = fixtures {
-            if let Some(missing) = names
-                .iter()
-                .find(|n| !pending.iter().any(|p| slug(&p.fixture) == slug(n)))
-            {
-                let what: Vec<String> = pending
-                    .iter()
-                    .map(|p| format!("{}/{}", p.fixture, p.view))
-                    .collect();
-                return Err(format!(
-                    "nothing pending for {missing:?}; pending: {}",
-                    if what.is_empty() {
-                        "nothing".into()
-                    } else {
-                        what.join(", ")
-                    }
-                ));
-            }
-        }
-        let chosen: Vec<Pending> = pending
-            .into_iter()
-            .filter(|p| fixtures.is_none_or(|f| f.iter().any(|n| slug(n) == slug(&p.fixture))))
-            .collect();
+        let chosen = self.select(names)?;
         for p in &chosen {
             let bytes = std::fs::read(&p.actual)
                 .map_err(|e| format!("cannot read {}: {e}", p.actual.display()))?;

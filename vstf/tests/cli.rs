@@ -994,3 +994,68 @@ fn render_view_reproduces_the_golden_image() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// One view at a time: `approve FIXTURE/VIEW` approves that view only,
+/// `reject` drops a pending change and leaves its golden, and `approve
+/// --list` says where each change is.
+#[test]
+fn approve_and_reject_one_view_at_a_time() {
+    let copy = scratch("perview");
+    for dir in ["fixtures", "golden"] {
+        copy_tree(&repo_root().join(dir), &copy.join(dir));
+    }
+    tamper(&copy.join("golden/flange/frame-920.png"));
+    tamper(&copy.join("golden/flange/frame-1151.png"));
+    let run = |args: &[&str]| {
+        vstf()
+            .current_dir(&copy)
+            .env_remove("CI")
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    assert!(!run(&["check", "flange", "--quick"]).status.success());
+    let listed = run(&["approve", "--list"]);
+    let text = String::from_utf8_lossy(&listed.stdout);
+    assert!(
+        text.contains("flange/frame-920")
+            && text.contains("1 pixels differ (worst by 1) within x 10..=10, y 10..=10 of 240x180"),
+        "{text}"
+    );
+    let before_1151 = std::fs::read(copy.join("golden/flange/frame-1151.png")).unwrap();
+    let approved = run(&["approve", "flange/frame-920"]);
+    assert!(
+        approved.status.success(),
+        "{}",
+        String::from_utf8_lossy(&approved.stderr)
+    );
+    assert_eq!(
+        std::fs::read(copy.join("golden/flange/frame-1151.png")).unwrap(),
+        before_1151
+    );
+    let rejected = run(&["reject", "flange/frame-1151"]);
+    assert!(
+        rejected.status.success(),
+        "{}",
+        String::from_utf8_lossy(&rejected.stderr)
+    );
+    assert_eq!(
+        std::fs::read(copy.join("golden/flange/frame-1151.png")).unwrap(),
+        before_1151
+    );
+    let empty = run(&["approve", "--list"]);
+    assert!(String::from_utf8_lossy(&empty.stdout).contains("nothing pending"));
+    // frame 920 now passes against its approved (rendered) image; 1151 still
+    // fails against the tampered golden that was kept.
+    let again = run(&["check", "flange", "--quick"]);
+    let text = String::from_utf8_lossy(&again.stdout);
+    assert!(
+        text.contains("golden pass fixture=flange view=frame-920"),
+        "{text}"
+    );
+    assert!(
+        text.contains("golden FAIL fixture=flange view=frame-1151"),
+        "{text}"
+    );
+    std::fs::remove_dir_all(&copy).ok();
+}

@@ -1,6 +1,8 @@
-//! `vstf approve`: pending images become golden images, or are listed.
+//! `vstf approve` and `vstf reject`: pending images become golden images
+//! (one view or all of a fixture's), are dropped, or are listed with where
+//! they differ.
 
-use super::args::ApproveArgs;
+use super::args::{ApproveArgs, RejectArgs};
 use std::path::Path;
 use vstf::golden::Store;
 use vstf::project::Project;
@@ -40,6 +42,24 @@ pub fn run(root: Option<&Path>, args: ApproveArgs) -> Result<(), String> {
     Ok(())
 }
 
+/// Drops the pending images asked for.
+pub fn reject(root: Option<&Path>, args: RejectArgs) -> Result<(), String> {
+    let store = Project::locate(root)?.store();
+    let chosen = if args.all {
+        None
+    } else {
+        Some(args.fixtures.as_slice())
+    };
+    let dropped = store.reject(chosen)?;
+    if dropped.is_empty() {
+        println!("nothing pending");
+    }
+    for p in dropped {
+        println!("rejected {} / {} (golden unchanged)", p.fixture, p.view);
+    }
+    Ok(())
+}
+
 /// Whether the `CI` variable says this runs under CI: set, non-empty and
 /// not `0` or `false`.
 fn ci_is_set(value: Option<&str>) -> bool {
@@ -57,10 +77,11 @@ fn list_pending(store: &Store) {
     }
     for p in pending {
         let what = if p.replaces { "changed" } else { "new" };
+        let change = p.change().map(|c| format!(": {c}")).unwrap_or_default();
         println!(
-            "{what:8} {} / {}  {}",
+            "{what:8} {}/{}  {}{change}",
             p.fixture,
-            p.view,
+            vstf::golden::slug(&p.view),
             p.actual.display()
         );
     }

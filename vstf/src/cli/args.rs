@@ -78,6 +78,8 @@ pub enum Command {
     /// Approve pending images (from failed or missing golden comparisons of
     /// `vstf check`) as the new golden images. Refused when CI is set.
     Approve(ApproveArgs),
+    /// Reject pending images: drop them, leaving the golden images as they are.
+    Reject(RejectArgs),
     /// Print every variable along one pixel's rays, or log a region's pixels
     /// as JSON lines.
     Debug(DebugArgs),
@@ -170,7 +172,7 @@ pub struct InitArgs {
 // `vstf approve`.
 #[derive(clap::Args)]
 pub struct ApproveArgs {
-    /// Fixtures whose pending images to approve.
+    /// What to approve: FIXTURE (all its pending views) or FIXTURE/VIEW.
     pub fixtures: Vec<String>,
     /// Approve every pending image.
     #[arg(long, conflicts_with = "fixtures")]
@@ -178,6 +180,17 @@ pub struct ApproveArgs {
     /// Only list what is pending.
     #[arg(long, conflicts_with_all = ["fixtures", "all"])]
     pub list: bool,
+}
+
+// `vstf reject`.
+#[derive(clap::Args)]
+pub struct RejectArgs {
+    /// What to reject: FIXTURE (all its pending views) or FIXTURE/VIEW.
+    #[arg(required_unless_present = "all")]
+    pub fixtures: Vec<String>,
+    /// Reject every pending image.
+    #[arg(long, conflicts_with = "fixtures")]
+    pub all: bool,
 }
 
 // `vstf debug`.
