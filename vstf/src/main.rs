@@ -19,7 +19,7 @@ fn main() -> ExitCode {
         Command::DebugDiff(args) => cli::debug::diff(args),
         Command::Animate(args) => cli::animate::run(root, args),
         Command::Bench { quick } => cli::bench::run(root, quick),
-        Command::List => cli::list::run(root),
+        Command::List { views } => cli::list::run(root, views),
         Command::Init(args) => cli::init::run(args),
         Command::Fuzz(args) => cli::fuzz::run(root, args),
     };

@@ -1059,3 +1059,16 @@ fn approve_and_reject_one_view_at_a_time() {
     );
     std::fs::remove_dir_all(&copy).ok();
 }
+
+/// `list --views` names each declared view as `--view` takes it.
+#[test]
+fn list_views_names_what_view_takes() {
+    let out = vstf().args(["list", "--views"]).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success());
+    assert!(
+        text.contains("--view \"frame 1151\"  (camera t = 1171, relativistic)"),
+        "{text}"
+    );
+    assert!(text.contains("--view \"t_c = 26\""), "{text}");
+}

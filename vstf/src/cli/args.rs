@@ -97,7 +97,11 @@ pub enum Command {
         quick: bool,
     },
     /// List the fixtures in fixtures/.
-    List,
+    List {
+        /// Also list each fixture's declared views (what `--view` takes).
+        #[arg(long)]
+        views: bool,
+    },
     /// Fuzz the fixture path (parse, validate, build, tiny render) with
     /// seeded mutations of the corpus and the project's fixtures; fails on
     /// a panic, a non-finite pixel or a hang.

@@ -1,17 +1,27 @@
-//! `vstf list`: the fixtures and what each shows.
+//! `vstf list`: the fixtures and what each shows, and with `--views` the
+//! views each declares.
 
 use std::path::Path;
 use vstf::project::Project;
 
-/// Prints each fixture's name and description (or why it does not load).
-pub fn run(root: Option<&Path>) -> Result<(), String> {
+/// Prints each fixture's name and description (or why it does not load);
+/// with `views`, each declared view's name, camera time and model under it.
+pub fn run(root: Option<&Path>, views: bool) -> Result<(), String> {
     let project = Project::locate(root)?;
     for name in project.fixture_names() {
-        let desc = project
-            .load(&name)
-            .map(|f| f.spec.description)
-            .unwrap_or_else(|e| format!("(invalid: {e})"));
-        println!("{name:24} {desc}");
+        match project.load(&name) {
+            Ok(f) => {
+                println!("{name:24} {}", f.spec.description);
+                if views {
+                    for v in &f.spec.views {
+                        let model = v.model.unwrap_or(f.spec.model).as_str();
+                        let t = v.t.unwrap_or(f.spec.camera.t);
+                        println!("    --view {:?}  (camera t = {t}, {model})", v.name);
+                    }
+                }
+            }
+            Err(e) => println!("{name:24} (invalid: {e})"),
+        }
     }
     Ok(())
 }
