@@ -52,17 +52,28 @@ pub fn render_with(db: &Database, fixture: &Fixture, view: &View) -> Result<Imag
 fn non_finite(db: &Database, fixture: &Fixture, view: &View, image: &Image, i: usize) -> String {
     let (x, y) = (i as u32 % image.width, i as u32 / image.width);
     let count = image.pixels.iter().filter(|p| !p.is_finite()).count();
-    let object = crate::debug::trace_pixel(fixture, view, db, x, y)
-        .ok()
-        .and_then(|log| {
-            log.steps.iter().find_map(|s| match s {
-                renderer::Step::Hit { object, .. } => Some(object.clone()),
-                _ => None,
-            })
+    let log = crate::debug::trace_pixel(fixture, view, db, x, y).ok();
+    let steps = log.as_ref().map_or(&[][..], |l| &l.steps[..]);
+    let object = steps
+        .iter()
+        .find_map(|s| match s {
+            renderer::Step::Hit { object, .. } => Some(format!("object {object:?}")),
+            _ => None,
         })
-        .map_or("no object".to_string(), |o| format!("object {o:?}"));
+        .unwrap_or_else(|| "no object".to_string());
+    // The first step along the pixel's rays that records a value that is not
+    // finite: where in the shading it went wrong.
+    let first = steps
+        .iter()
+        .map(|s| format!("{s:?}"))
+        .find(|d| d.contains("NaN") || d.contains("inf"))
+        .map(|d| {
+            let kind: String = d.chars().take_while(|c| c.is_alphanumeric()).collect();
+            format!(", first not finite at its {kind} step")
+        })
+        .unwrap_or_default();
     format!(
-        "{}: pixel ({x}, {y}) is {} (not a finite colour; {count} such pixels), where the ray meets {object}; \
+        "{}: pixel ({x}, {y}) is {} (not a finite colour; {count} such pixels), where the ray meets {object}{first}; \
          `vstf debug {} --pixel {x},{y} --width {} --height {} --camera-t {} --spp {}` shows how",
         fixture.file.display(),
         image.pixels[i],

@@ -413,6 +413,7 @@ fn a_non_finite_pixel_fails_the_render_and_says_where() {
     assert!(
         e.contains("not a finite colour")
             && e.contains("object \"stage floor\"")
+            && e.contains("first not finite at its")
             && e.contains("vstf debug"),
         "{e}"
     );
