@@ -899,6 +899,9 @@ fn check_json_dash_writes_only_json_to_stdout() {
         !repo_root().join("-").exists(),
         "a file named - was written"
     );
+    // Not a terminal: plain lines, no colour codes and no progress bar.
+    assert!(!out.stderr.contains(&0x1b), "escape codes off a terminal");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("pass stage "));
 }
 
 /// Small command-line errors: an unknown fixture to approve, an output that

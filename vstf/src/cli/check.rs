@@ -26,10 +26,24 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
         eprintln!("removed {} (left by an interrupted write)", p.display());
     }
     let budget = vstf::Budget::forced(force);
+    let terminal = Terminal::stderr();
+    let count = if fixtures.is_empty() {
+        project.fixture_names().len()
+    } else {
+        fixtures.len()
+    };
+    let bar = terminal.progress(count);
     let reports =
         vstf::check::run_reporting(&project, &fixtures, (&effort, &budget), &|r, seconds| {
-            eprintln!("{}", fixture_line(r, seconds));
+            let line = fixture_line(r, seconds, terminal.colour);
+            if terminal.tty {
+                bar.println(line);
+                bar.inc(1);
+            } else {
+                eprintln!("{line}");
+            }
         })?;
+    bar.finish_and_clear();
     let rows: Vec<Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
     // With `--json -` the JSON is all that goes to stdout; the table goes to stderr.
     let json_to_stdout = json.as_deref() == Some(Path::new("-"));
@@ -81,12 +95,50 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
     Ok(())
 }
 
+/// Where the progress and the fixtures' lines go: a terminal (a progress
+/// bar, and colour unless `NO_COLOR` is set) or not (plain lines).
+struct Terminal {
+    tty: bool,
+    colour: bool,
+}
+
+impl Terminal {
+    fn stderr() -> Terminal {
+        use std::io::IsTerminal;
+        let tty = std::io::stderr().is_terminal();
+        let no_colour = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
+        Terminal {
+            tty,
+            colour: tty && !no_colour,
+        }
+    }
+
+    /// A bar of `n` fixtures on a terminal; elsewhere one that only prints lines.
+    fn progress(&self, n: usize) -> indicatif::ProgressBar {
+        if !self.tty {
+            return indicatif::ProgressBar::hidden();
+        }
+        let bar = indicatif::ProgressBar::new(n as u64);
+        if let Ok(style) = indicatif::ProgressStyle::with_template(
+            "{bar:30} {pos}/{len} fixtures checked, {elapsed}",
+        ) {
+            bar.set_style(style);
+        }
+        bar
+    }
+}
+
 /// One line for a fixture as it finishes: its rows and golden images
-/// passed out of all, and its time.
-fn fixture_line(r: &FixtureReport, seconds: f64) -> String {
+/// passed out of all, and its time; the verdict in colour if asked.
+fn fixture_line(r: &FixtureReport, seconds: f64, colour: bool) -> String {
     let rows = r.rows.iter().filter(|x| x.pass).count();
     let goldens = r.goldens.iter().filter(|g| g.pass).count();
-    let verdict = if r.passed() { "pass" } else { "FAIL" };
+    let verdict = match (r.passed(), colour) {
+        (true, false) => "pass",
+        (false, false) => "FAIL",
+        (true, true) => "\x1b[32mpass\x1b[0m",
+        (false, true) => "\x1b[1;31mFAIL\x1b[0m",
+    };
     format!(
         "{verdict} {:24} rows {rows}/{}, golden images {goldens}/{}, {seconds:.1} s",
         r.fixture,
