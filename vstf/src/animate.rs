@@ -92,15 +92,36 @@ pub fn frame_path(dir: &Path, i: usize) -> PathBuf {
 /// What an animation's frames are, written beside them so that a resumed
 /// run only keeps frames of the same animation.
 pub fn manifest(f: &Fixture, view: &View, times: &[f64]) -> String {
+    use std::hash::{Hash, Hasher};
+    // Everything a frame depends on: the scene as loaded, the camera and
+    // every render setting (colour effects, shutter, seed, depth, shadows).
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    format!("{:?}{:?}{:?}", f.spec, view.camera, view.settings).hash(&mut h);
     format!(
-        "vstf animation\nfixture {}\nmodel {}\nsize {}x{}\nspp {}\ntimes {:?}\n",
+        "vstf animation\nfixture {}\nmodel {}\nsize {}x{}\nspp {}\nscene and settings {:016x}\ntimes {:?}\n",
         f.file.display(),
         view.model,
         view.camera.width,
         view.camera.height,
         view.settings.spp,
+        h.finish(),
         times
     )
+}
+
+/// Removes the frames an earlier animation left in `dir`, so that a later
+/// `--resume` can never keep one of them.
+fn remove_old_frames(dir: &Path) -> Result<(), String> {
+    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let name = e.file_name();
+        let name = name.to_string_lossy();
+        let is_frame = name.starts_with("frame-") && name.ends_with(".png");
+        if is_frame && e.file_type().is_ok_and(|t| t.is_file()) {
+            std::fs::remove_file(e.path())
+                .map_err(|err| format!("cannot remove {}: {err}", e.path().display()))?;
+        }
+    }
+    Ok(())
 }
 
 /// The manifest's file in a frames folder.
@@ -149,6 +170,9 @@ pub fn render_frames(
                 ))
             }
         }
+    }
+    if !resume {
+        remove_old_frames(&dir)?;
     }
     write_atomic(&mpath, wanted.as_bytes())
         .map_err(|e| format!("cannot write {}: {e}", mpath.display()))?;

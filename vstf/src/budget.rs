@@ -97,7 +97,8 @@ impl Budget {
 /// How many tetrahedra the scene's database will hold: three per triangle
 /// per straight stretch of its path (one stretch for uniform motion, one
 /// per keyframe interval, and for hyperbolic motion one per generated
-/// interval, h = sqrt(8 tolerance / a) long; docs/physics.md).
+/// interval, h = sqrt(8 tolerance A_min) long, A_min = 1/a less how far a
+/// V_obj reaches behind its reference point; docs/physics.md).
 pub fn tetrahedra(scene: &Scene) -> u64 {
     scene
         .objects
@@ -110,7 +111,18 @@ pub fn tetrahedra(scene: &Scene) -> u64 {
             let stretches = match &o.motion {
                 Motion::Keyframes(k) => k.len().saturating_sub(1) as u64,
                 Motion::Hyperbolic(h) => {
-                    let step = (8.0 * h.tolerance / h.acceleration).sqrt();
+                    // The smallest A = 1/a + xi over the vertices: a V_obj may
+                    // be Born-rigid, its rearmost vertex on the tightest hyperbola.
+                    let xi_min = match (&o.shape, o.kind) {
+                        (Shape::Mesh(m), renderer::ObjectKind::VObj) => m
+                            .vertices
+                            .iter()
+                            .map(|v| v.dot(h.direction))
+                            .fold(0.0, f64::min),
+                        _ => 0.0,
+                    };
+                    let a_min = 1.0 / h.acceleration + xi_min;
+                    let step = (8.0 * h.tolerance * a_min).sqrt();
                     let n = (h.duration / step).ceil();
                     if n.is_finite() && n >= 1.0 {
                         (n as u64).min(MAX_HYPERBOLIC_INTERVALS)

@@ -363,6 +363,12 @@ impl Store {
             image::load_from_memory(&bytes)
                 .map_err(|e| format!("{} is not a valid PNG: {e}", p.actual.display()))?;
             let dest = self.golden_path(&p.fixture, &p.view);
+            if std::fs::symlink_metadata(&dest).is_ok_and(|m| m.file_type().is_symlink()) {
+                return Err(format!(
+                    "{} is a symbolic link: approve writes golden images only as files of their own",
+                    dest.display()
+                ));
+            }
             crate::output::write_atomic(&dest, &bytes)
                 .map_err(|e| format!("cannot write {}: {e}", dest.display()))?;
             let dir = p.actual.parent().expect("pending images live in a folder");
@@ -517,5 +523,23 @@ mod tests {
             "{e}"
         );
         assert_eq!(std::fs::read(s.golden_path("a", "one")).unwrap(), before);
+    }
+
+    #[test]
+    fn approve_does_not_write_through_a_golden_that_is_a_link() {
+        let s = temp_store("link");
+        // A pending image (no golden yet), then a link where the golden goes.
+        assert!(
+            s.check("a", "one", &picture(), Fuzzy::default())
+                .unwrap()
+                .missing
+        );
+        std::fs::create_dir_all(s.golden.join("a")).unwrap();
+        let elsewhere = s.golden.parent().unwrap().join("elsewhere.txt");
+        std::fs::write(&elsewhere, "not an image").unwrap();
+        std::os::unix::fs::symlink(&elsewhere, s.golden_path("a", "one")).unwrap();
+        let e = s.approve(None, false).unwrap_err();
+        assert!(e.contains("is a symbolic link"), "{e}");
+        assert_eq!(std::fs::read_to_string(&elsewhere).unwrap(), "not an image");
     }
 }

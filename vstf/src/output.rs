@@ -90,25 +90,34 @@ fn describe(kind: &std::fs::FileType) -> &'static str {
     }
 }
 
-/// The temporary file beside `target` that this process writes.
+/// Writes so far by this process: each temporary file gets its own number,
+/// so that two threads writing the same target never share one.
+static WRITES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// A temporary file beside `target` for one write of this process:
+/// `.<name>.vstf-tmp-<pid>-<n>`.
 fn temp_path(target: &Path) -> PathBuf {
     let name = target.file_name().and_then(|n| n.to_str()).unwrap_or("out");
-    target.with_file_name(format!(".{name}{TEMP_MARK}{}", std::process::id()))
+    let n = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    target.with_file_name(format!(".{name}{TEMP_MARK}{}-{n}", std::process::id()))
 }
 
 /// The writer's process id of a temporary file of ours (this naming, or the
 /// `.<name>.<pid>.tmp` of earlier versions).
 fn temp_owner(name: &str) -> Option<u32> {
-    if let Some((_, pid)) = name.rsplit_once(TEMP_MARK) {
-        return pid.parse().ok();
+    if let Some((_, rest)) = name.rsplit_once(TEMP_MARK) {
+        return rest.split('-').next()?.parse().ok();
     }
     let rest = name.strip_prefix('.')?.strip_suffix(".tmp")?;
     rest.rsplit_once('.')?.1.parse().ok()
 }
 
-/// Whether a process with this id is running (Linux: `/proc/<pid>`).
+/// Whether a process with this id may be running (Linux: `/proc/<pid>`).
+/// Where `/proc` cannot tell (no `/proc/self`), every writer counts as
+/// running, so that no one's temporary file is removed.
 fn is_running(pid: u32) -> bool {
-    pid == std::process::id() || Path::new("/proc").join(pid.to_string()).exists()
+    let proc = Path::new("/proc");
+    pid == std::process::id() || !proc.join("self").exists() || proc.join(pid.to_string()).exists()
 }
 
 /// The temporary files under `dir` (recursively) left by processes that
@@ -246,7 +255,10 @@ mod tests {
         // No process has id u32::MAX - 1; this one is alive.
         let dead = dir.join(format!("flange/.frame-920.png{TEMP_MARK}{}", u32::MAX - 1));
         let old_style = dir.join(format!("flange/.frame-1151.png.{}.tmp", u32::MAX - 1));
-        let live = dir.join(format!(".view.png{TEMP_MARK}{}", std::process::id()));
+        let live = dir.join(format!(".view.png{TEMP_MARK}{}-0", std::process::id()));
+        // Another running process's temporary file is kept too (pid 1 runs).
+        let other_live = dir.join(format!(".init.png{TEMP_MARK}1-0"));
+        std::fs::write(&other_live, "x").unwrap();
         let golden = dir.join("flange/frame-920.png");
         for p in [&dead, &old_style, &live, &golden] {
             std::fs::write(p, "x").unwrap();
@@ -254,7 +266,7 @@ mod tests {
         assert_eq!(stale_temps(&dir), vec![old_style.clone(), dead.clone()]);
         assert_eq!(remove_stale(&dir).len(), 2);
         assert!(!dead.exists() && !old_style.exists());
-        assert!(live.exists() && golden.exists());
+        assert!(live.exists() && golden.exists() && other_live.exists());
         // A write cleans up after an earlier, interrupted write of the same file.
         std::fs::write(&dead, "x").unwrap();
         write_atomic(&golden, b"y").unwrap();

@@ -74,13 +74,35 @@ fn non_finite(db: &Database, fixture: &Fixture, view: &View, image: &Image, i: u
         .unwrap_or_default();
     format!(
         "{}: pixel ({x}, {y}) is {} (not a finite colour; {count} such pixels), where the ray meets {object}{first}; \
-         `vstf debug {} --pixel {x},{y} --width {} --height {} --camera-t {} --spp {}` shows how",
+         `vstf debug {} --pixel {x},{y} {}` shows how",
         fixture.file.display(),
         image.pixels[i],
         fixture.file.display(),
+        debug_flags(view)
+    )
+}
+
+/// The view flags that make `vstf debug` trace `view` (of a fixture's own
+/// camera; a probe's turned camera has none).
+fn debug_flags(view: &View) -> String {
+    let model = match (view.model.light_speed, view.model.lorentz) {
+        (renderer::LightSpeed::Infinite, false) => "--model infinite",
+        (renderer::LightSpeed::Infinite, true) => "--model infinite --lorentz",
+        (renderer::LightSpeed::Finite, false) => "--model classical",
+        (renderer::LightSpeed::Finite, true) => "--model relativistic",
+    };
+    let effects = view.settings.effects;
+    format!(
+        "--width {} --height {} --camera-t {} --spp {} {model}{}{}",
         view.camera.width,
         view.camera.height,
         view.camera_t,
-        view.settings.spp
+        view.settings.spp,
+        if effects.doppler { " --doppler" } else { "" },
+        if effects.searchlight {
+            " --searchlight"
+        } else {
+            ""
+        }
     )
 }

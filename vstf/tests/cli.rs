@@ -778,11 +778,23 @@ fn animate_resume_renders_only_missing_and_broken_frames() {
             assert_eq!(&now, when, "frame {i} was rendered again");
         }
     }
-    let other = animate(&["--resume", "--step", "2"]);
-    let err = String::from_utf8_lossy(&other.stderr);
+    for changed in [
+        &["--resume", "--step", "2"][..],
+        &["--resume", "--doppler"][..],
+    ] {
+        let other = animate(changed);
+        let err = String::from_utf8_lossy(&other.stderr);
+        assert!(
+            !other.status.success() && err.contains("belong to another animation"),
+            "{changed:?}: {err}"
+        );
+    }
+    // A new animation into the same folder (not resumed) removes the old
+    // frames, so that no later --resume can keep them.
+    assert!(animate(&["--step", "2"]).status.success());
     assert!(
-        !other.status.success() && err.contains("belong to another animation"),
-        "{err}"
+        frame(4).exists() && !frame(5).exists(),
+        "an old frame was left"
     );
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -857,8 +869,8 @@ fn a_day_long_render_is_refused_with_its_estimate() {
     assert!(!std::path::Path::new("/tmp/never.png").exists());
 }
 
-/// Output into a pipe that is closed ends quietly, not in a panic (exit
-/// code 101).
+/// Output into a pipe that is closed ends quietly with the status of a
+/// SIGPIPE death (141), not in a panic (exit code 101).
 #[test]
 fn a_closed_pipe_ends_list_quietly() {
     let mut child = vstf()
@@ -872,7 +884,7 @@ fn a_closed_pipe_ends_list_quietly() {
     let done = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&done.stderr);
     assert!(!err.contains("panicked"), "{err}");
-    assert_eq!(done.status.code(), Some(0), "{err}");
+    assert_eq!(done.status.code(), Some(141), "{err}");
 }
 
 /// `--json -` writes the JSON rows, and only them, to stdout.

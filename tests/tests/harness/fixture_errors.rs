@@ -531,3 +531,31 @@ fn inputs_the_fuzzer_found_are_handled() {
     }
     assert!(n >= 1, "no inputs in {}", dir.display());
 }
+
+/// The memory budget's estimate of the tetrahedra is never below what the
+/// database holds, for every kind of motion (uniform, keyframed, hyperbolic
+/// H_obj and Born-rigid V_obj), and not far above it.
+#[test]
+fn the_tetrahedron_estimate_bounds_the_database() {
+    for name in workspace_tests::repo().fixture_names() {
+        let f = workspace_tests::fixture(&name);
+        let estimate = vstf::budget::tetrahedra(&f.scene);
+        for lorentz in [false, true] {
+            let built = f.database(lorentz).unwrap().tetrahedra().len() as u64;
+            assert!(estimate >= built, "{name}: estimate {estimate} < {built}");
+            assert!(
+                estimate <= 2 * built.max(1),
+                "{name}: estimate {estimate} >> {built}"
+            );
+        }
+    }
+}
+
+#[test]
+fn mirror_bounces_beyond_the_recursion_limit_are_refused() {
+    let e = error_of(&flange_with(|v| v["image"]["max_depth"] = 100000.into()));
+    assert!(
+        e.contains("image.max_depth: 100000 mirror bounces: at most 64"),
+        "{e}"
+    );
+}

@@ -121,11 +121,18 @@ pub fn run_reporting(
     finished: &(dyn Fn(&FixtureReport, f64) + Sync),
 ) -> Result<Vec<FixtureReport>, String> {
     let store = &project.store();
-    let chosen: Vec<String> = if names.is_empty() {
+    let mut chosen: Vec<String> = if names.is_empty() {
         project.fixture_names()
     } else {
         names.to_vec()
     };
+    // A fixture named twice (or by name and by path) is checked once: two
+    // runs of it at once would write the same pending images.
+    let mut seen = std::collections::HashSet::new();
+    chosen.retain(|n| {
+        let file = project.resolve(n).ok().and_then(|p| p.canonicalize().ok());
+        seen.insert(file.unwrap_or_else(|| n.into()))
+    });
     if chosen.is_empty() {
         return Err(format!(
             "no fixtures in {}: write one (docs/checks.md), or start from `vstf init`",

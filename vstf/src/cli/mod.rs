@@ -18,7 +18,9 @@ pub mod view;
 /// Ends the process quietly when its output pipe is closed (`vstf list |
 /// head`), as command-line tools do, instead of a panic message and exit
 /// code 101: printing to a closed stdout panics, and this hook turns that
-/// one panic into a plain exit. Every other panic is reported as before.
+/// one panic into the exit status of a process ended by SIGPIPE (141), so
+/// that a pipeline still sees that the command did not finish. Every other
+/// panic is reported as before.
 pub fn quiet_on_closed_pipe() {
     let previous = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
@@ -29,7 +31,7 @@ pub fn quiet_on_closed_pipe() {
             .or_else(|| info.payload().downcast_ref::<&str>().copied())
             .unwrap_or("");
         if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
-            std::process::exit(0);
+            std::process::exit(141);
         }
         previous(info);
     }));
