@@ -1082,7 +1082,7 @@ fn list_views_names_what_view_takes() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success());
     assert!(
-        text.contains("--view \"frame 1151\"  (camera t = 1171, relativistic)"),
+        text.contains("--view \"frame 1151\"  (camera t = 1171, relativistic model)"),
         "{text}"
     );
     assert!(text.contains("--view \"t_c = 26\""), "{text}");

@@ -14,9 +14,15 @@ pub fn run(root: Option<&Path>, views: bool) -> Result<(), String> {
                 println!("{name:24} {}", f.spec.description);
                 if views {
                     for v in &f.spec.views {
-                        let model = v.model.unwrap_or(f.spec.model).as_str();
+                        let mut model = match v.model {
+                            Some(m) => m.model(),
+                            None => f.model(&vstf::Overrides::default()),
+                        };
+                        if let Some(l) = v.lorentz {
+                            model.lorentz = l;
+                        }
                         let t = v.t.unwrap_or(f.spec.camera.t);
-                        println!("    --view {:?}  (camera t = {t}, {model})", v.name);
+                        println!("    --view {:?}  (camera t = {t}, {model} model)", v.name);
                     }
                 }
             }
