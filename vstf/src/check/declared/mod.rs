@@ -237,39 +237,27 @@ impl<'a> Run<'a> {
             }
             MeasureSpec::Outline(o) => {
                 let v = self.view(&o.view)?;
-                let at = self
-                    .outlines
-                    .iter()
-                    .position(|(i, n, _)| *i == v.index && *n == o.object);
-                let k = match at {
-                    Some(k) => k,
-                    None => {
-                        let outline =
-                            Outline::measure(&v.measuring, &v.described, &o.object, self.effort)?;
-                        self.marks[v.index].extend(outline.marks.iter().copied());
-                        self.outlines.push((v.index, o.object.clone(), outline));
-                        self.outlines.len() - 1
-                    }
-                };
-                Ok(row(self.outlines[k].2.read(o.read)?))
+                let effort = self.effort;
+                let (outline, new) = shared(&mut self.outlines, (v.index, &o.object), || {
+                    Outline::measure(&v.measuring, &v.described, &o.object, effort)
+                })?;
+                let reading = outline.read(o.read)?;
+                if new {
+                    let marks = outline.marks.clone();
+                    self.marks[v.index].extend(marks);
+                }
+                Ok(row(reading))
             }
             MeasureSpec::Doppler(d) => {
                 let v = self.view(&d.view)?;
-                let at = self
-                    .panels
-                    .iter()
-                    .position(|(i, n, _)| *i == v.index && *n == d.object);
-                let k = match at {
-                    Some(k) => k,
-                    None => {
-                        let panel =
-                            Panel::measure(&v.measuring, &v.described, &d.object, self.effort)?;
-                        self.mark(v.index, panel.mark);
-                        self.panels.push((v.index, d.object.clone(), panel));
-                        self.panels.len() - 1
-                    }
-                };
-                let (reading, expected) = self.panels[k].2.read(d.from);
+                let effort = self.effort;
+                let (panel, new) = shared(&mut self.panels, (v.index, &d.object), || {
+                    Panel::measure(&v.measuring, &v.described, &d.object, effort)
+                })?;
+                let ((reading, expected), mark) = (panel.read(d.from), panel.mark);
+                if new {
+                    self.mark(v.index, mark);
+                }
                 Ok(row((reading, expected, Unit::Factor)))
             }
             MeasureSpec::Period(p) => {
@@ -353,6 +341,25 @@ impl<'a> Run<'a> {
         }
         Ok(views)
     }
+}
+
+/// The measurement of (`view`, `object`) in `cache`, made by `measure` the
+/// first time it is asked for and shared by every later check of it; and
+/// whether it was made just now.
+fn shared<'c, T>(
+    cache: &'c mut Vec<(usize, String, T)>,
+    (view, object): (usize, &str),
+    measure: impl FnOnce() -> Result<T, String>,
+) -> Result<(&'c T, bool), String> {
+    let found = cache.iter().position(|(i, n, _)| *i == view && n == object);
+    let (k, new) = match found {
+        Some(k) => (k, false),
+        None => {
+            cache.push((view, object.to_string(), measure()?));
+            (cache.len() - 1, true)
+        }
+    };
+    Ok((&cache[k].2, new))
 }
 
 fn same_unit(a: &Done, b: &Done) -> Result<(), String> {
