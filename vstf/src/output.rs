@@ -24,7 +24,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     if let Some(dir) = target.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;
     }
-    remove_stale_of(&target);
+    remove_stale_beside(&target);
     let tmp = temp_path(&target);
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
@@ -142,28 +142,34 @@ pub fn stale_temps(dir: &Path) -> Vec<PathBuf> {
     found
 }
 
-/// Removes the stale temporary files of writes to `target` (beside it).
-fn remove_stale_of(target: &Path) {
-    let (Some(dir), Some(name)) = (target.parent(), target.file_name().and_then(|n| n.to_str()))
-    else {
-        return;
+/// Folders already swept by this process ([`remove_stale_beside`]).
+static SWEPT: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Removes the stale temporary files beside `target` (those of writes that
+/// were interrupted, their writers gone), once per folder per process: a
+/// long animation writes many frames into one folder, and listing it for
+/// every frame would cost as much as the frames' number squared.
+fn remove_stale_beside(target: &Path) {
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
     };
-    let dir = if dir.as_os_str().is_empty() {
-        Path::new(".")
-    } else {
-        dir
-    };
-    let ours = |n: &str| {
-        let old_style = n
-            .strip_suffix(".tmp")
-            .and_then(|r| r.rsplit_once('.'))
-            .map(|(s, _)| s);
-        n.starts_with(&format!(".{name}{TEMP_MARK}")) || old_style == Some(&format!(".{name}"))
-    };
+    {
+        let mut swept = SWEPT.lock().unwrap_or_else(|e| e.into_inner());
+        if swept.iter().any(|d| d == dir) {
+            return;
+        }
+        swept.push(dir.to_path_buf());
+    }
     for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
         let n = e.file_name();
         let Some(n) = n.to_str() else { continue };
-        if ours(n) && temp_owner(n).is_some_and(|pid| !is_running(pid)) {
+        let is_file = e.file_type().is_ok_and(|t| t.is_file());
+        // Only this naming: the older `.<name>.<pid>.tmp` could be anyone's
+        // in a folder of the user's (golden/ and target/vstf/ are swept of
+        // both by `remove_stale`).
+        let ours = n.contains(TEMP_MARK) && temp_owner(n).is_some_and(|pid| !is_running(pid));
+        if is_file && ours {
             let _ = std::fs::remove_file(e.path());
         }
     }
