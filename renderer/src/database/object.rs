@@ -57,11 +57,16 @@ impl ObjectRecord {
         p.proper_start + p.clock.to_rest(event - p.worldline.start).t
     }
 
-    /// Where a lab event on the object lies in the object's frame:
-    /// comoving coordinates relative to the reference point at the start
-    /// of the stretch.
+    /// Where a lab event on the object lies in the object's frame: its
+    /// comoving position relative to the reference point, in lab axes.
+    /// The reference point is at rest at the origin of the comoving frame,
+    /// so the event is first taken relative to the reference point at the
+    /// same lab time, then boosted: x' = Boost^-1 (event - reference(t)).x,
+    /// which for a Lorentz-decoupled object is x - x_ref(t) itself. For a
+    /// V_obj the rest-frame (uncontracted) offset follows.
     pub fn local_point(&self, event: Event) -> DVec3 {
         let p = self.stretch_at(event.t);
-        p.clock.to_rest(event - p.worldline.start).x
+        let reference = Event::new(event.t, p.worldline.position_at(event.t));
+        p.clock.to_rest(event - reference).x
     }
 }

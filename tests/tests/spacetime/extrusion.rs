@@ -165,3 +165,49 @@ fn neighbouring_prisms_cut_shared_faces_alike() {
         }
     }
 }
+
+/// A point of a moving object is where it is in the object's own frame,
+/// whatever the lab time: for a vertex at rest-frame offset p of a cube at
+/// 0.6c, `local_point` of the vertex's lab event at any time is p, with and
+/// without the Lorentz transform. (Position minus start position would
+/// grow by v t: the negative control.)
+#[test]
+fn a_vertex_stays_at_its_offset_in_the_objects_frame() {
+    use renderer::{Database, Motion, ObjectKind};
+    use workspace_tests::{object, scene};
+    let v = DVec3::new(0.6, 0.0, 0.0);
+    let gamma = 1.0 / (1.0 - v.length_squared()).sqrt();
+    let start = Event::new(-10.0, DVec3::new(-4.0, 0.5, -3.0));
+    let motion = Motion::Extrusion {
+        start,
+        extrusion: FourVector::new(20.0, v * 20.0),
+    };
+    let mesh = Mesh::cuboid(DVec3::splat(-1.0), DVec3::new(1.0, 2.0, 1.5));
+    for (kind, lorentz) in [
+        (ObjectKind::HObj, true),
+        (ObjectKind::VObj, true),
+        (ObjectKind::VObj, false),
+    ] {
+        let contracted = kind == ObjectKind::VObj && lorentz;
+        let s = scene(vec![object("cube", kind, mesh.clone(), motion.clone())]);
+        let db = Database::build(&s, lorentz).unwrap();
+        let record = &db.objects()[0];
+        for &p in &mesh.vertices {
+            for t in [-8.0, 0.0, 7.5] {
+                let lab = if contracted {
+                    DVec3::new(p.x / gamma, p.y, p.z)
+                } else {
+                    p
+                };
+                let event = Event::new(t, start.x + v * (t - start.t) + lab);
+                let local = record.local_point(event);
+                assert!(
+                    (local - p).length() < 1e-12,
+                    "{kind:?} lorentz {lorentz}: vertex {p} at t = {t} shows as {local}"
+                );
+                let naive = event.x - start.x;
+                assert!((naive - p).length() > 0.5, "the control does not move");
+            }
+        }
+    }
+}
