@@ -196,6 +196,23 @@ pub enum Step {
         /// Spectral radiance leaving the surface, at those wavelengths.
         surface_radiance: Option<Vec<f64>>,
     },
+    /// A moving mirror's reflection at a hit, by the law in its rest frame.
+    Reflection {
+        /// Mirror bounces before this ray.
+        depth: u32,
+        /// Lab velocity of the mirror's surface at the hit.
+        mirror_velocity: DVec3,
+        /// Lab unit direction of the photon leaving the mirror (towards the
+        /// ray's origin), and of the one it reflected.
+        k_out: DVec3,
+        /// Lab unit direction of the incident photon.
+        k_in: DVec3,
+        /// nu_out / nu_in in the lab: the double Doppler factor.
+        frequency_ratio: f64,
+        /// In the mirror's rest frame, where it has one: the unit normal,
+        /// and the outgoing and incident directions.
+        rest_frame: Option<[DVec3; 3]>,
+    },
     /// What the camera records for the sample (with `--doppler` or
     /// `--searchlight`).
     Observed {

@@ -31,5 +31,6 @@ mod harness {
     mod declared;
     mod fixture_errors;
     mod independent_models;
+    mod mirrors;
     mod vstf_check;
 }

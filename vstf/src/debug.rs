@@ -161,6 +161,7 @@ pub fn describe(log: &PixelLog) -> String {
                 }
                 line
             }
+            Step::Reflection { .. } => reflection_line(step),
             Step::Observed { doppler, lab_nm, xyz, color } => {
                 let mut line = format!("observed: nu_cam/nu_lab {doppler:.9}; colour {}", v3(*color));
                 if let (Some(nm), Some(xyz)) = (lab_nm, xyz) {
@@ -178,6 +179,36 @@ pub fn describe(log: &PixelLog) -> String {
     }
     let _ = writeln!(out, "colour {} -> 8-bit {:?}", v3(log.color), log.rgb8);
     out
+}
+
+/// A moving mirror's reflection, with its rest-frame directions.
+fn reflection_line(step: &Step) -> String {
+    let Step::Reflection {
+        depth,
+        mirror_velocity,
+        k_out,
+        k_in,
+        frequency_ratio,
+        rest_frame,
+    } = step
+    else {
+        return String::new();
+    };
+    let mut line = format!(
+        "reflection (depth {depth}) by a mirror moving at {}: photon out along {}, in along {}; nu_out/nu_in {frequency_ratio:.9}",
+        v3(*mirror_velocity),
+        v3(*k_out),
+        v3(*k_in)
+    );
+    if let Some([n, out, inc]) = rest_frame {
+        line += &format!(
+            "; in the mirror's rest frame: normal {}, out {}, in {}",
+            v3(*n),
+            v3(*out),
+            v3(*inc)
+        );
+    }
+    line
 }
 
 /// A spectrum in brief: every 10th sample as wavelength:value (the log

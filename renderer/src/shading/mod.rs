@@ -4,6 +4,7 @@
 
 mod carried;
 mod doppler;
+mod mirror;
 mod shader;
 
 pub use doppler::{Effects, Leg};

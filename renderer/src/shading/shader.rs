@@ -6,6 +6,7 @@
 
 use super::carried::{Carried, Shaded};
 use super::doppler::{self, Effects, Leg};
+use super::mirror;
 use crate::camera::{Camera, Kinematics};
 use crate::color::{self, Spectrum, BAND_LEN};
 use crate::database::Database;
@@ -236,12 +237,40 @@ impl Shader<'_> {
     }
 
     /// The mirror ray leaving `hit`, and nu_surface / nu_lab for the light
-    /// arriving along it.
-    fn mirror_ray(&self, ray: &Ray, hit: &Hit, lit: &Lit) -> (Ray, f64) {
+    /// arriving along it. A static mirror, or any mirror under
+    /// instantaneous light, reflects by d - 2 (d.n) n; a moving one by the
+    /// law in its rest frame ([`mirror::incident`]). `None` when the mirror
+    /// moves along its normal at light speed or faster: it has no rest
+    /// frame and reflects nothing.
+    fn mirror_ray<T: Trace>(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        lit: &Lit,
+        depth: u32,
+        trace: &mut T,
+    ) -> Option<(Ray, f64)> {
         let d = ray.direction.x;
-        let reflected = Ray::backwards(hit.event, d - 2.0 * d.dot(lit.n) * lit.n, self.light_speed);
+        let towards = if lit.velocity == DVec3::ZERO || self.light_speed == LightSpeed::Infinite {
+            d - 2.0 * d.dot(lit.n) * lit.n
+        } else {
+            let k_out = -d.normalize();
+            let r = mirror::incident(k_out, lit.n, lit.velocity)?;
+            if T::ENABLED {
+                trace.record(Step::Reflection {
+                    depth,
+                    mirror_velocity: lit.velocity,
+                    k_out,
+                    k_in: r.k_in,
+                    frequency_ratio: r.frequency_ratio,
+                    rest_frame: mirror::in_rest_frame(k_out, r.k_in, lit.n, lit.velocity),
+                });
+            }
+            -r.k_in
+        };
+        let reflected = Ray::backwards(hit.event, towards, self.light_speed);
         let f = self.to_surface(lit.velocity, lit.gamma, -reflected.direction.x.normalize());
-        (reflected, f)
+        Some((reflected, f))
     }
 
     /// Lambert plus Phong at `hit`, plus the mirror term.
@@ -277,11 +306,17 @@ impl Shader<'_> {
         let mut mixed = local;
         let mut from_mirror = None;
         if m.mirror > 0.0 && depth < self.max_depth {
-            let (reflected, f) = self.mirror_ray(ray, hit, &lit);
-            from_mirror = Some(f);
-            let at = C::mirror_band(&detail, f);
-            let seen: C = self.carry(&reflected, depth + 1, RayKind::Reflection, &at, trace);
-            mixed = local.mix(seen.with_gain(gain(f, Leg::Radiance)), m.mirror);
+            let seen = match self.mirror_ray(ray, hit, &lit, depth, trace) {
+                Some((reflected, f)) => {
+                    from_mirror = Some(f);
+                    let at = C::mirror_band(&detail, f);
+                    let seen: C =
+                        self.carry(&reflected, depth + 1, RayKind::Reflection, &at, trace);
+                    seen.with_gain(gain(f, Leg::Radiance))
+                }
+                None => C::ZERO,
+            };
+            mixed = local.mix(seen, m.mirror);
         }
         let color = mixed.with_gain(gain(lit.out, Leg::Radiance));
         if T::ENABLED {

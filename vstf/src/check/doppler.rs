@@ -43,13 +43,17 @@ fn centre(img: &RgbImage, camera: &Pinhole) -> (DVec3, DVec3) {
 
 /// The factor D by which the blackbody `source` must be shifted (sampled
 /// at D lambda) to have the chromaticity of `rgb`: a scan, then golden-section refinement.
-fn factor_from_colour(source: &Blackbody, rgb: DVec3) -> Option<f64> {
+pub(super) fn factor_from_colour(
+    source: &Blackbody,
+    rgb: DVec3,
+    (lo, hi): (f64, f64),
+) -> Option<f64> {
     let target = Chromaticity::of(xyz_of_rgb(rgb))?;
     let miss = |d: f64| {
         Chromaticity::of(source.xyz_shifted(d))
             .map_or(f64::INFINITY, |c| c.distance_squared(target))
     };
-    let (lo, hi, steps) = (0.3f64, 3.0f64, 2700);
+    let steps = 2700;
     let grid = |i: usize| lo * (hi / lo).powf(i as f64 / steps as f64);
     let best = (0..=steps)
         .min_by(|a, b| miss(grid(*a)).total_cmp(&miss(grid(*b))))
@@ -68,7 +72,7 @@ fn factor_from_colour(source: &Blackbody, rgb: DVec3) -> Option<f64> {
 }
 
 /// The largest change of `f(rgb)` when each channel moves by half an 8-bit step.
-fn quantisation(rgb: DVec3, f: impl Fn(DVec3) -> Option<f64>) -> f64 {
+pub(super) fn quantisation(rgb: DVec3, f: impl Fn(DVec3) -> Option<f64>) -> f64 {
     let h = 0.5 / 255.0;
     let at = f(rgb).unwrap_or(f64::NAN);
     (0..8)
@@ -177,7 +181,7 @@ impl Panel {
     /// factor expected.
     pub fn read(&self, from: DopplerFrom) -> (Reading, f64) {
         let [plain, rgb_lit, shifted, shifted_lit] = self.pixels;
-        let from_colour = |rgb: DVec3| factor_from_colour(&self.source, rgb);
+        let from_colour = |rgb: DVec3| factor_from_colour(&self.source, rgb, (0.3, 3.0));
         let reading = match from {
             DopplerFrom::Colour => Reading {
                 value: from_colour(shifted).unwrap_or(f64::NAN),

@@ -21,6 +21,7 @@ pub mod setup;
 
 pub mod aberration;
 pub mod doppler;
+pub mod mirror;
 pub mod outline;
 pub mod period;
 pub mod relativity;

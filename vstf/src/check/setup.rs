@@ -202,12 +202,23 @@ impl Setup<'_> {
     pub fn measuring_render(
         &self,
         keep: &[&str],
+        size: (u32, u32),
+        spp: u32,
+    ) -> Result<(RgbImage, Pinhole), String> {
+        self.measuring_render_bouncing(keep, size, spp, 0)
+    }
+
+    /// [`Setup::measuring_render`] following `max_depth` mirror bounces.
+    pub fn measuring_render_bouncing(
+        &self,
+        keep: &[&str],
         (width, height): (u32, u32),
         spp: u32,
+        max_depth: u32,
     ) -> Result<(RgbImage, Pinhole), String> {
         let mut probe = self.fixture.only(keep).map_err(|e| e.to_string())?;
         let image = &mut probe.spec.image;
-        (image.shutter, image.seed, image.max_depth, image.shadows) = (0.0, 1, 0, false);
+        (image.shutter, image.seed, image.max_depth, image.shadows) = (0.0, 1, max_depth, false);
         let view = crate::run::view(
             &probe,
             &Overrides {

@@ -2,8 +2,9 @@
 //! points are seen on the camera's past light cone ([`seen`]), the
 //! kinematics of special relativity and of Galilean addition
 //! ([`kinematics`]), the quadratic solver both rest on ([`quadratic`]),
-//! extremes over a body's outline ([`extremes`]), and the point of an edge
-//! seen at a given place ([`crossing`]).
+//! extremes over a body's outline ([`extremes`]), the point of an edge
+//! seen at a given place ([`crossing`]), and light reflected by a moving
+//! mirror ([`mirror`]).
 //!
 //! Nothing here calls the ray tracer: each formula is written out so that
 //! an error in the tracer's own cannot cancel.
@@ -11,6 +12,7 @@
 pub mod crossing;
 pub mod extremes;
 pub mod kinematics;
+pub mod mirror;
 pub mod quadratic;
 pub mod seen;
 

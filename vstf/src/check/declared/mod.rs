@@ -267,6 +267,13 @@ impl<'a> Run<'a> {
                 self.mark(v.index, mark);
                 Ok(row((reading, expected, Unit::TUnits)))
             }
+            MeasureSpec::Reflection(r) => {
+                let v = self.view(&r.view)?;
+                let (reading, mark) =
+                    super::mirror::measure(&v.measuring, &v.described, r, v.spec, self.effort)?;
+                self.mark(v.index, Some(mark));
+                Ok(row(reading))
+            }
             MeasureSpec::Difference([a, b]) => {
                 let (a, b) = (self.earlier(a)?, self.earlier(b)?);
                 same_unit(a, b)?;
