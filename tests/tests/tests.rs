@@ -32,5 +32,6 @@ mod harness {
     mod fixture_errors;
     mod independent_models;
     mod mirrors;
+    mod spinning;
     mod vstf_check;
 }

@@ -136,6 +136,7 @@ impl Builder {
                 worldline,
                 clock,
                 proper_start: w[0].proper_time,
+                translation: false,
             });
         }
         Ok(stretches)
@@ -178,6 +179,7 @@ impl Builder {
             worldline,
             clock: boost,
             proper_start: 0.0,
+            translation: true,
         })
     }
 
@@ -232,6 +234,7 @@ fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
             name: obj.name.clone(),
             kind: obj.kind,
             material: obj.material.clone(),
+            contracted: lorentz && obj.kind == ObjectKind::VObj,
             stretches,
         });
     }

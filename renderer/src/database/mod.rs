@@ -94,6 +94,52 @@ impl Database {
         }
     }
 
+    /// The lab velocity of the surface point at `hit`, and the gamma of
+    /// its clock (1 unless the object is Lorentz-transformed). Over a
+    /// translation (uniform motion, and every analytic sphere) that is the
+    /// stretch's; over a keyframe interval, which may turn or deform the
+    /// mesh, each corner of the triangle moves straight between the poses,
+    /// and the point's velocity is the corners' velocities weighted by the
+    /// point's place in the triangle (the sum of the hit's barycentric
+    /// coordinates over the tetrahedron's vertices at each corner).
+    pub fn surface_motion(&self, hit: &Hit) -> (DVec3, f64) {
+        let surface = self.surface(hit);
+        let record = &self.records[surface.object as usize];
+        let stretch = record.stretch_at(hit.event.t);
+        let tet = match hit.primitive {
+            PrimitiveId::Tetrahedron(tet) if !stretch.translation => tet,
+            _ => return (stretch.worldline.velocity(), stretch.clock.gamma()),
+        };
+        let velocity = self.corner_weighted_velocity(tet, &hit.bary);
+        let gamma = if record.contracted {
+            crate::spacetime::lorentz_factor(velocity.length_squared())
+        } else {
+            1.0
+        };
+        (velocity, gamma)
+    }
+
+    /// The velocity of the point with barycentric coordinates `bary` in
+    /// tetrahedron `tet`, interpolated over its prism's corners. The
+    /// prism's pieces are (a0 b0 c0 c1), (a0 b0 b1 c1), (a0 a1 b1 c1)
+    /// ([`crate::geometry::split_between`]), so piece 0 holds the bottom
+    /// corners and c1, piece 1 holds b1 and piece 2 a1.
+    fn corner_weighted_velocity(&self, tet: u32, bary: &[f64; 4]) -> DVec3 {
+        const CORNERS: [[usize; 4]; 3] = [[0, 1, 2, 2], [0, 1, 1, 2], [0, 0, 1, 2]];
+        let t = &self.tets[tet as usize];
+        let first = 3 * t.prism as usize;
+        let piece = |k: usize| &self.tets[first + k].vertices;
+        let bottom = [piece(0)[0], piece(0)[1], piece(0)[2]];
+        let top = [piece(2)[1], piece(1)[2], piece(0)[3]];
+        let mut weights = [0.0; 3];
+        for (j, &corner) in CORNERS[t.piece as usize].iter().enumerate() {
+            weights[corner] += bary[j];
+        }
+        (0..3)
+            .map(|k| weights[k] * (top[k].x - bottom[k].x) / (top[k].t - bottom[k].t))
+            .sum()
+    }
+
     /// The number the debug log gives a primitive: tetrahedra by index,
     /// then the analytic spheres numbered after them.
     pub fn primitive_number(&self, primitive: PrimitiveId) -> u32 {

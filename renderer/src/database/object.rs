@@ -18,6 +18,10 @@ pub struct Stretch {
     pub clock: Boost,
     /// The object's proper time at the start of the stretch.
     pub proper_start: f64,
+    /// Whether every point of the object moves with the reference point
+    /// over the stretch (uniform motion); false for a keyframe interval,
+    /// which may turn or deform the mesh.
+    pub translation: bool,
 }
 
 /// An object as inserted into the database.
@@ -29,6 +33,9 @@ pub struct ObjectRecord {
     pub kind: ObjectKind,
     /// Its surface appearance.
     pub material: Material,
+    /// Whether it was inserted Lorentz-transformed (a V_obj with the
+    /// transform on): its points' clocks run at the gamma of their speed.
+    pub contracted: bool,
     /// Its path in lab-time order: one stretch for uniform motion, one per
     /// interval between poses otherwise.
     pub stretches: Vec<Stretch>,

@@ -216,8 +216,7 @@ impl Shader<'_> {
                 specular = m.specular * r.dot(view).max(0.0).powf(m.shininess);
             }
         }
-        let stretch = object.stretch_at(hit.event.t);
-        let (velocity, gamma) = (stretch.worldline.velocity(), stretch.clock.gamma());
+        let (velocity, gamma) = self.db.surface_motion(hit);
         let from_light = self.to_surface(velocity, gamma, -l);
         let out = 1.0 / self.to_surface(velocity, gamma, view.normalize());
         Lit {

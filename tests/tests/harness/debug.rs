@@ -22,7 +22,13 @@ fn setup(name: &str, w: u32, h: u32) -> (Fixture, View) {
 
 #[test]
 fn the_debugged_colour_is_the_rendered_colour() {
-    for name in ["teaser", "terrell-contracted", "flange", "doppler", "mirror-receding"] {
+    for name in [
+        "teaser",
+        "terrell-contracted",
+        "flange",
+        "doppler",
+        "mirror-receding",
+    ] {
         let (f, view) = setup(name, 64, 36);
         let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
         let image = vstf::run::render_with(&db, &f, &view).unwrap();
@@ -325,18 +331,37 @@ fn a_moving_mirrors_rest_frame_is_logged() {
                 frequency_ratio,
                 rest_frame,
                 ..
-            } => Some((*mirror_velocity, *k_out, *k_in, *frequency_ratio, *rest_frame)),
+            } => Some((
+                *mirror_velocity,
+                *k_out,
+                *k_in,
+                *frequency_ratio,
+                *rest_frame,
+            )),
             _ => None,
         })
         .expect("no reflection step on the mirror");
     let [n, out, inc] = rest.expect("a mirror at 0.5c has a rest frame");
     assert_abs_diff_eq!(out.dot(n).abs(), inc.dot(n).abs(), epsilon = 1e-12);
-    assert!((out.dot(n) * inc.dot(n)) < 0.0, "the photon does not turn back");
+    assert!(
+        (out.dot(n) * inc.dot(n)) < 0.0,
+        "the photon does not turn back"
+    );
     let lit = glam::DVec3::Z;
     let b = -u.dot(lit);
     let cos_i = -k_in.dot(lit);
-    assert_abs_diff_eq!(ratio, vstf::oracle::mirror::frequency_ratio(cos_i, b), epsilon = 1e-12);
-    assert!(k_out.dot(lit) > 0.0 && (cos_i - k_out.dot(lit)).abs() > 0.05, "{cos_i}");
+    assert_abs_diff_eq!(
+        ratio,
+        vstf::oracle::mirror::frequency_ratio(cos_i, b),
+        epsilon = 1e-12
+    );
+    assert!(
+        k_out.dot(lit) > 0.0 && (cos_i - k_out.dot(lit)).abs() > 0.05,
+        "{cos_i}"
+    );
     let text = vstf::debug::describe(&log);
-    assert!(text.contains("in the mirror's rest frame: normal"), "{text}");
+    assert!(
+        text.contains("in the mirror's rest frame: normal"),
+        "{text}"
+    );
 }

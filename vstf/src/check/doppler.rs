@@ -14,12 +14,13 @@
 //! Tolerances follow from the 8-bit quantisation of the measured pixels
 //! (half a step on each channel).
 
+use super::path::BodyPath;
 use super::{Effort, Probe, Reading, Setup};
 use crate::fixture::checks::DopplerFrom;
 use crate::fixture::Fixture;
 use crate::measure::colorimetry::{xyz_of_rgb, Blackbody, Chromaticity};
 use crate::measure::{self, Pinhole};
-use crate::oracle::{body_point, doppler_factor, retarded};
+use crate::oracle::{body_point, doppler_factor, gamma_of_squared, retarded};
 use glam::DVec3;
 use image::RgbImage;
 use renderer::Spectrum;
@@ -104,17 +105,18 @@ fn searchlight_factor(on: DVec3, off: DVec3, power: f64) -> Reading {
     }
 }
 
-/// The centre pixels of one object's probes under each variant of the
-/// colour effects (in the order of `variants`), and the lab direction they
-/// look along.
+/// The centre pixels of one object's probes, looking at `look` with the
+/// field `hfov_deg` at `size` x `size`, under each variant of the colour
+/// effects (in the order of `variants`), and the lab direction they look
+/// along.
 fn panel_pixels(
     setup: &Setup,
     variants: &[Fixture],
     name: &str,
-    effort: &Effort,
+    (look, hfov_deg): (DVec3, f64),
+    size: u32,
 ) -> Result<(Vec<DVec3>, DVec3), String> {
     let (model, tc) = (setup.model, setup.camera_t);
-    let (look, vfov) = setup.aim(&[name], 0.3)?;
     let mut seen = Vec::new();
     for v in variants {
         let s = Setup {
@@ -125,14 +127,34 @@ fn panel_pixels(
         let (img, camera) = s.probe(&Probe {
             keep: &[name],
             look_at: look,
-            hfov_deg: vfov,
-            size: (effort.probe / 4, effort.probe / 4),
+            hfov_deg,
+            size: (size, size),
             spp: 1,
         })?;
         seen.push(centre(&img, &camera));
     }
     Ok((seen.iter().map(|s| s.0).collect(), seen[0].1))
 }
+
+/// The four variants of the colour effects, in the order of [`Panel`]'s pixels.
+fn variants(f: &Fixture) -> [Fixture; 4] {
+    [(false, false), (false, true), (true, false), (true, true)].map(|(d, s)| with_effects(f, d, s))
+}
+
+/// The blackbody an object glows as.
+fn blackbody_of(f: &Fixture, name: &str) -> Result<Blackbody, String> {
+    match f.object(name)?.material.emission {
+        Some(Spectrum::Blackbody { kelvin, scale }) => Ok(Blackbody { kelvin, scale }),
+        _ => Err(format!("{name} must glow as a blackbody")),
+    }
+}
+
+/// The size of a probe aimed at one body point: odd, so that the centre
+/// pixel's centre lies on the line of sight aimed at.
+const POINT_PROBE: u32 = 9;
+
+/// The field of view of a probe aimed at one body point, degrees.
+const POINT_PROBE_FOV: f64 = 0.2;
 
 /// One object's centre pixel under the four combinations of the colour
 /// effects, measured once and read by every Doppler check of it, with the
@@ -142,8 +164,31 @@ pub struct Panel {
     pixels: [DVec3; 4],
     source: Blackbody,
     expected: f64,
+    /// How far the expectation may be off because the renderer follows the
+    /// path through keyframes (0 for uniform motion), added to every
+    /// reading's tolerance.
+    slack: f64,
     /// Where the object's reference point is seen, to mark in the report.
     pub mark: Option<DVec3>,
+}
+
+/// D = 1 / (gamma (1 - v.k)) for a source point moving with `v`, light
+/// leaving it along `k`, gamma that of |v| if `lorentzian` else 1; and
+/// |dD/dv| = D^2 |d(gamma (1 - v.k))/dv| = D^2 |gamma^3 (1 - v.k) v - gamma k|.
+fn point_factor(v: DVec3, k: DVec3, lorentzian: bool) -> (f64, f64) {
+    let g = if lorentzian {
+        gamma_of_squared(v.length_squared())
+    } else {
+        1.0
+    };
+    let approach = 1.0 - v.dot(k);
+    let d = 1.0 / (g * approach);
+    let grad = if lorentzian {
+        v * (g * g * g * approach) - k * g
+    } else {
+        -k
+    };
+    (d, d * d * grad.length())
 }
 
 impl Panel {
@@ -156,31 +201,97 @@ impl Panel {
         effort: &Effort,
     ) -> Result<Panel, String> {
         let f = described.fixture;
+        let source = blackbody_of(f, name)?;
         let obj = f.object(name)?;
-        let source = match obj.material.emission {
-            Some(Spectrum::Blackbody { kelvin, scale }) => Blackbody { kelvin, scale },
-            _ => return Err(format!("{name} must glow as a blackbody")),
-        };
         let (start, u) =
             super::uniform(&obj.motion).ok_or_else(|| format!("{name} must move uniformly"))?;
         let lorentz = described.model.lorentz;
         let middle = body_point(start.t, start.x, u, DVec3::ZERO, lorentz);
         let mark = retarded(&middle, described.camera_t, described.camera_x()).map(|r| r.direction);
-        let variants = [(false, false), (false, true), (true, false), (true, true)]
-            .map(|(d, s)| with_effects(measuring.fixture, d, s));
-        let (pixels, dir) = panel_pixels(measuring, &variants, name, effort)?;
+        let aim = measuring.aim(&[name], 0.3)?;
+        let (pixels, dir) = panel_pixels(
+            measuring,
+            &variants(measuring.fixture),
+            name,
+            aim,
+            effort.probe / 4,
+        )?;
         Ok(Panel {
             pixels: [pixels[0], pixels[1], pixels[2], pixels[3]],
             source,
             expected: doppler_factor(u, -dir),
+            slack: 0.0,
             mark,
+        })
+    }
+
+    /// Measures the body point at `r` (object coordinates) of the object
+    /// `name`, moving uniformly or through keyframes (a spinning object's
+    /// points move differently): probes aimed where the point is seen.
+    /// Expected: D = 1 / (gamma (1 - v.k)), v the point's own velocity at
+    /// the emission event and gamma that of its speed when the object's
+    /// clocks are Lorentzian (a V_obj under the Lorentz transform), else 1;
+    /// 1 with infinitely fast light. The keyframes' velocity slack
+    /// ([`BodyPath::velocity_slack`]) is carried into D by |dD/dv|.
+    pub fn at_point(
+        measuring: &Setup,
+        described: &Setup,
+        name: &str,
+        r: DVec3,
+    ) -> Result<Panel, String> {
+        let f = described.fixture;
+        let source = blackbody_of(f, name)?;
+        let model = described.model;
+        let path = BodyPath::of(f, name, model)?;
+        let camera = described.camera_x();
+        let seen = path
+            .seen(r, described.camera_t, camera, model)
+            .ok_or_else(|| format!("the point {r} of {name:?} is never seen from the camera"))?;
+        let v = path.velocity(r, seen.t).unwrap_or(DVec3::ZERO);
+        let lorentzian = model.lorentz && f.object(name)?.kind == renderer::ObjectKind::VObj;
+        let k = (camera - seen.x).normalize();
+        let (expected, slope) = if model.light_speed == renderer::LightSpeed::Infinite {
+            (1.0, 0.0)
+        } else {
+            point_factor(v, k, lorentzian)
+        };
+        let aim = (seen.x, POINT_PROBE_FOV);
+        let (pixels, _) = panel_pixels(
+            measuring,
+            &variants(measuring.fixture),
+            name,
+            aim,
+            POINT_PROBE,
+        )?;
+        Ok(Panel {
+            pixels: [pixels[0], pixels[1], pixels[2], pixels[3]],
+            source,
+            expected,
+            slack: slope * path.velocity_slack(r, &seen, camera),
+            mark: Some(seen.direction),
         })
     }
 
     /// The factor D read `from` the colour or a searchlight ratio, and the
     /// factor expected.
-    pub fn read(&self, from: DopplerFrom) -> (Reading, f64) {
+    /// A pixel with a channel at full scale (clipped) reads no factor: an
+    /// error, never a wrong value.
+    pub fn read(&self, from: DopplerFrom) -> Result<(Reading, f64), String> {
         let [plain, rgb_lit, shifted, shifted_lit] = self.pixels;
+        let used: &[DVec3] = match from {
+            DopplerFrom::Colour => &[shifted],
+            DopplerFrom::SearchlightShifted => &[shifted, shifted_lit],
+            DopplerFrom::SearchlightRgb => &[plain, rgb_lit],
+        };
+        if used.iter().any(|c| c.max_element() >= 1.0) {
+            return Err(format!(
+                "the pixel read is saturated (a channel at 255: {:?}), so its colour and \
+                 brightness are clipped; lower the emission's scale",
+                used.iter()
+                    .map(|c| (*c * 255.0).round().to_array())
+                    .collect::<Vec<_>>()
+            ));
+        }
         let from_colour = |rgb: DVec3| factor_from_colour(&self.source, rgb, (0.3, 3.0));
         let reading = match from {
             DopplerFrom::Colour => Reading {
@@ -190,6 +301,10 @@ impl Panel {
             DopplerFrom::SearchlightShifted => searchlight_factor(shifted_lit, shifted, 5.0),
             DopplerFrom::SearchlightRgb => searchlight_factor(rgb_lit, plain, 4.0),
         };
-        (reading, self.expected)
+        let reading = Reading {
+            tolerance: reading.tolerance + self.slack,
+            ..reading
+        };
+        Ok((reading, self.expected))
     }
 }

@@ -104,16 +104,86 @@ impl KeyframedMesh {
         })
     }
 
-    /// The worldline of the mesh point at rest position `r` (on a triangle side).
-    fn point(&self, r: DVec3) -> Option<PointPolyline> {
-        let (i, j, s) = self.side_of(r)?;
-        Some(PointPolyline {
-            events: self
-                .frames
-                .iter()
-                .map(|(t, v)| (*t, v[i] + (v[j] - v[i]) * s))
-                .collect(),
+    /// The triangle holding the rest point `r` (within rounding of its
+    /// plane and borders), and r's barycentric weights in it.
+    fn triangle_of(&self, r: DVec3) -> Option<([usize; 3], [f64; 3])> {
+        let m = &self.rest;
+        let scale = m
+            .vertices
+            .iter()
+            .map(|v| v.abs().max_element())
+            .fold(1e-300, f64::max);
+        m.triangles.iter().find_map(|t| {
+            let ids = t.map(|i| i as usize);
+            let [a, b, c] = ids.map(|i| m.vertices[i]);
+            let n = (b - a).cross(c - a);
+            let nn = n.length_squared();
+            if n.dot(r - a).abs() > 1e-9 * scale * nn.sqrt() {
+                return None;
+            }
+            let wa = (c - b).cross(r - b).dot(n) / nn;
+            let wb = (a - c).cross(r - c).dot(n) / nn;
+            let w = [wa, wb, 1.0 - wa - wb];
+            w.iter().all(|&x| x >= -1e-9).then_some((ids, w))
         })
+    }
+
+    /// The worldline of the mesh point at rest position `r`: on a triangle
+    /// side, interpolated along it; inside a triangle, by its weights.
+    fn point(&self, r: DVec3) -> Option<PointPolyline> {
+        let at = |v: &Vec<DVec3>| -> Option<DVec3> {
+            if let Some((i, j, s)) = self.side_of(r) {
+                return Some(v[i] + (v[j] - v[i]) * s);
+            }
+            let (ids, w) = self.triangle_of(r)?;
+            Some((0..3).map(|k| v[ids[k]] * w[k]).sum())
+        };
+        let events = self
+            .frames
+            .iter()
+            .map(|(t, v)| at(v).map(|x| (*t, x)))
+            .collect::<Option<Vec<_>>>()?;
+        Some(PointPolyline { events })
+    }
+
+    /// How far the velocity the renderer gives the surface seen where the
+    /// point `r` is seen may differ from r's own, at lab time `t`. The
+    /// renderer weights the triangle's corner velocities by the hit's
+    /// place in its tetrahedron; on a turning triangle that place lies up
+    /// to the triangle's bend (2 f (1 - f) times the largest change of a
+    /// side's vector over the interval) from r's, and the light-cone
+    /// intersection slides a further bend / (1 - v.k) along the worldline
+    /// (`approach` = 1 - v.k). The velocity over the triangle is affine with
+    /// gradient G, so the difference is at most |G|_F (bend + slide).
+    fn velocity_slack(&self, r: DVec3, t: f64, approach: f64) -> f64 {
+        let Some((ids, _)) = self.triangle_of(r) else {
+            return 0.0;
+        };
+        let Some(k) = self
+            .frames
+            .windows(2)
+            .position(|w| w[0].0 <= t && t <= w[1].0)
+        else {
+            return 0.0;
+        };
+        let ((t0, a), (t1, b)) = (&self.frames[k], &self.frames[k + 1]);
+        let f = (t - t0) / (t1 - t0);
+        let x = ids.map(|i| a[i].lerp(b[i], f));
+        let v = ids.map(|i| (b[i] - a[i]) / (t1 - t0));
+        let change =
+            |i: usize, j: usize| ((b[ids[j]] - b[ids[i]]) - (a[ids[j]] - a[ids[i]])).length();
+        let bend = 2.0 * f * (1.0 - f) * change(0, 1).max(change(1, 2)).max(change(0, 2));
+        let (e1, e2) = (x[1] - x[0], x[2] - x[0]);
+        let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
+        let gram = glam::DMat2::from_cols_array(&[e1.dot(e1), e1.dot(e2), e1.dot(e2), e2.dot(e2)]);
+        let inv = gram.inverse();
+        // G = d1 w1^T + d2 w2^T with w the dual basis of (e1, e2).
+        let w1 = e1 * inv.x_axis.x + e2 * inv.y_axis.x;
+        let w2 = e1 * inv.x_axis.y + e2 * inv.y_axis.y;
+        let g2 = d1.length_squared() * w1.length_squared()
+            + d2.length_squared() * w2.length_squared()
+            + 2.0 * d1.dot(d2) * w1.dot(w2);
+        g2.max(0.0).sqrt() * (bend + bend / approach)
     }
 
     /// How far the renderer's flat tetrahedra may put the side through `r`
@@ -222,6 +292,29 @@ impl BodyPath {
                 }
             }
         }
+    }
+
+    /// The lab velocity of the body point at `r` at lab time `t`.
+    pub fn velocity(&self, r: DVec3, t: f64) -> Option<DVec3> {
+        match self {
+            BodyPath::Uniform(m) => Some(m.velocity),
+            BodyPath::Hyperbolic { motion, born_rigid } => {
+                Some(hyperbola_of(motion, r, *born_rigid).velocity(t))
+            }
+            BodyPath::Keyframed(k) => k.point(r)?.segment_at(t).map(|(_, w)| w.v),
+        }
+    }
+
+    /// How far the renderer's velocity of the surface seen where the point
+    /// `r` is seen may differ from r's own (zero unless keyframed; see
+    /// [`KeyframedMesh::velocity_slack`]).
+    pub fn velocity_slack(&self, r: DVec3, seen: &Retarded, camera: DVec3) -> f64 {
+        let BodyPath::Keyframed(m) = self else {
+            return 0.0;
+        };
+        let k = (camera - seen.x).normalize();
+        let v = self.velocity(r, seen.t).unwrap_or(DVec3::ZERO);
+        m.velocity_slack(r, seen.t, 1.0 - v.dot(k))
     }
 
     /// How far the seen position of the point at `r` may lie from the

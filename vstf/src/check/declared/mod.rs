@@ -251,10 +251,18 @@ impl<'a> Run<'a> {
             MeasureSpec::Doppler(d) => {
                 let v = self.view(&d.view)?;
                 let effort = self.effort;
-                let (panel, new) = shared(&mut self.panels, (v.index, &d.object), || {
-                    Panel::measure(&v.measuring, &v.described, &d.object, effort)
-                })?;
-                let ((reading, expected), mark) = (panel.read(d.from), panel.mark);
+                let (panel, new) = match d.point {
+                    None => shared(&mut self.panels, (v.index, &d.object), || {
+                        Panel::measure(&v.measuring, &v.described, &d.object, effort)
+                    })?,
+                    Some(r) => {
+                        let key = format!("{} at {r:?}", d.object);
+                        shared(&mut self.panels, (v.index, &key), || {
+                            Panel::at_point(&v.measuring, &v.described, &d.object, r)
+                        })?
+                    }
+                };
+                let ((reading, expected), mark) = (panel.read(d.from)?, panel.mark);
                 if new {
                     self.mark(v.index, mark);
                 }
