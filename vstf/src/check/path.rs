@@ -307,7 +307,7 @@ impl BodyPath {
 
     /// How far the renderer's velocity of the surface seen where the point
     /// `r` is seen may differ from r's own (zero unless keyframed; see
-    /// [`KeyframedMesh::velocity_slack`]).
+    /// `KeyframedMesh::velocity_slack`).
     pub fn velocity_slack(&self, r: DVec3, seen: &Retarded, camera: DVec3) -> f64 {
         let BodyPath::Keyframed(m) = self else {
             return 0.0;
