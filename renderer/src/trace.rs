@@ -158,8 +158,11 @@ pub enum Step {
         light_vector: DVec3,
         /// Distance to the light, l.units.
         light_distance: f64,
-        /// n . l with the facing normal.
+        /// n . l with the facing normal (in the surface's frame when it moves).
         lambert: f64,
+        /// A moving surface's facing normal, and the directions towards
+        /// the light and towards the viewer, in its own frame.
+        surface_frame: Option<[DVec3; 3]>,
         /// Whether the light is hidden.
         in_shadow: bool,
         /// Lambert term.

@@ -33,5 +33,6 @@ mod harness {
     mod independent_models;
     mod mirrors;
     mod spinning;
+    mod surface_frame;
     mod vstf_check;
 }

@@ -139,15 +139,7 @@ pub fn describe(log: &PixelLog) -> String {
                 v3(*facing_normal)
             ),
             Step::Miss { kind, background } => format!("{kind:?} ray met nothing: background {}", v3(*background)),
-            Step::Shading { depth, albedo, ambient, light_vector, light_distance, lambert, in_shadow, diffuse, specular, mirror, local, color } => format!(
-                "shading (depth {depth}): albedo {}; ambient {}; light vector {} at {light_distance:.6}; n.l = {lambert:.9}; in shadow: {in_shadow}; diffuse {}; specular {specular:.9}; mirror {mirror}; local {}; colour {}",
-                v3(*albedo),
-                v3(*ambient),
-                v3(*light_vector),
-                v3(*diffuse),
-                v3(*local),
-                v3(*color)
-            ),
+            Step::Shading { .. } => shading_line(step),
             Step::Doppler { depth, surface_velocity, gamma, from_light, to_origin, from_mirror, surface_nm, surface_radiance } => {
                 let mut line = format!(
                     "doppler (depth {depth}): surface velocity {} (gamma {gamma:.9}); nu_s/nu_lab from the light {from_light:.9}; D = nu_lab/nu_s towards the ray's origin {to_origin:.9}",
@@ -179,6 +171,46 @@ pub fn describe(log: &PixelLog) -> String {
     }
     let _ = writeln!(out, "colour {} -> 8-bit {:?}", v3(log.color), log.rgb8);
     out
+}
+
+/// The shading terms at a hit; for a moving surface, the directions it
+/// shades with, in its own frame.
+fn shading_line(step: &Step) -> String {
+    let Step::Shading {
+        depth,
+        albedo,
+        ambient,
+        light_vector,
+        light_distance,
+        lambert,
+        surface_frame,
+        in_shadow,
+        diffuse,
+        specular,
+        mirror,
+        local,
+        color,
+    } = step
+    else {
+        return String::new();
+    };
+    let frame = surface_frame.map_or(String::new(), |[n, l, v]| {
+        format!(
+            " (in the surface's frame: normal {}, to the light {}, to the viewer {})",
+            v3(n),
+            v3(l),
+            v3(v)
+        )
+    });
+    format!(
+        "shading (depth {depth}): albedo {}; ambient {}; light vector {} at {light_distance:.6}; n.l = {lambert:.9}{frame}; in shadow: {in_shadow}; diffuse {}; specular {specular:.9}; mirror {mirror}; local {}; colour {}",
+        v3(*albedo),
+        v3(*ambient),
+        v3(*light_vector),
+        v3(*diffuse),
+        v3(*local),
+        v3(*color)
+    )
 }
 
 /// A moving mirror's reflection, with its rest-frame directions.

@@ -138,6 +138,7 @@ impl Carried for DVec3 {
             light_vector: s.lit.l,
             light_distance: s.lit.light_distance,
             lambert: s.lit.lambert,
+            surface_frame: s.lit.surface_frame,
             in_shadow: s.lit.shadowed,
             diffuse: s.detail.diffuse,
             specular: s.detail.specular,

@@ -4,6 +4,7 @@
 
 mod carried;
 mod doppler;
+mod frame;
 mod mirror;
 mod shader;
 

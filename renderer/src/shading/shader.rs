@@ -6,6 +6,7 @@
 
 use super::carried::{Carried, Shaded};
 use super::doppler::{self, Effects, Leg};
+use super::frame::SurfaceFrame;
 use super::mirror;
 use crate::camera::{Camera, Kinematics};
 use crate::color::{self, Spectrum, BAND_LEN};
@@ -62,7 +63,12 @@ pub(super) struct Lit {
     pub(super) n: DVec3,
     pub(super) l: DVec3,
     pub(super) light_distance: f64,
+    /// n . l, both in the surface's frame when it moves.
     pub(super) lambert: f64,
+    /// For a moving surface under light cones: its facing normal, the
+    /// direction towards the light and that towards the viewer, in its
+    /// own frame (the directions shading uses).
+    pub(super) surface_frame: Option<[DVec3; 3]>,
     pub(super) shadowed: bool,
     /// m.specular (r.v)^shininess, 0 in shadow.
     pub(super) specular: f64,
@@ -207,16 +213,23 @@ impl Shader<'_> {
         let view = -ray.direction.x;
         let to_light = self.light.position - hit.event.x;
         let l = to_light.normalize_or_zero();
-        let lambert = n.dot(l);
+        let (velocity, gamma) = self.db.surface_motion(hit);
+        let frame = match self.light_speed {
+            LightSpeed::Finite => SurfaceFrame::of(n, velocity, object.contracted),
+            LightSpeed::Infinite => None,
+        };
+        let surface_frame =
+            frame.map(|f| [f.normal(), f.towards(l), f.propagation(view.normalize())]);
+        let [n_s, l_s, view_s] = surface_frame.unwrap_or([n, l, view]);
+        let lambert = n_s.dot(l_s);
         let (mut specular, mut shadowed) = (0.0, false);
         if lambert > 0.0 {
             shadowed = self.shadows && self.in_shadow_traced(hit.event, trace);
             if !shadowed && m.specular > 0.0 {
-                let r = 2.0 * lambert * n - l;
-                specular = m.specular * r.dot(view).max(0.0).powf(m.shininess);
+                let r = 2.0 * lambert * n_s - l_s;
+                specular = m.specular * r.dot(view_s).max(0.0).powf(m.shininess);
             }
         }
-        let (velocity, gamma) = self.db.surface_motion(hit);
         let from_light = self.to_surface(velocity, gamma, -l);
         let out = 1.0 / self.to_surface(velocity, gamma, view.normalize());
         Lit {
@@ -226,6 +239,7 @@ impl Shader<'_> {
             l,
             light_distance: to_light.length(),
             lambert,
+            surface_frame,
             shadowed,
             specular,
             velocity,

@@ -21,6 +21,7 @@ pub mod setup;
 
 pub mod aberration;
 pub mod doppler;
+pub mod lambert;
 pub mod mirror;
 pub mod outline;
 pub mod period;

@@ -20,7 +20,7 @@ use super::outline::Outline;
 use super::row::{difference, Quantity, Reading, Unit};
 use super::runner::{Findings, ViewReport};
 use super::setup::{fixture_model, Effort, Setup};
-use crate::fixture::checks::{CheckSpec, MeasureSpec, ToleranceSpec, ViewSpec};
+use crate::fixture::checks::{CheckSpec, DopplerSpec, MeasureSpec, ToleranceSpec, ViewSpec};
 use crate::fixture::Fixture;
 use glam::DVec3;
 
@@ -248,32 +248,19 @@ impl<'a> Run<'a> {
                 }
                 Ok(row(reading))
             }
-            MeasureSpec::Doppler(d) => {
-                let v = self.view(&d.view)?;
-                let effort = self.effort;
-                let (panel, new) = match d.point {
-                    None => shared(&mut self.panels, (v.index, &d.object), || {
-                        Panel::measure(&v.measuring, &v.described, &d.object, effort)
-                    })?,
-                    Some(r) => {
-                        let key = format!("{} at {r:?}", d.object);
-                        shared(&mut self.panels, (v.index, &key), || {
-                            Panel::at_point(&v.measuring, &v.described, &d.object, r)
-                        })?
-                    }
-                };
-                let ((reading, expected), mark) = (panel.read(d.from)?, panel.mark);
-                if new {
-                    self.mark(v.index, mark);
-                }
-                Ok(row((reading, expected, Unit::Factor)))
-            }
+            MeasureSpec::Doppler(d) => Ok(row(self.doppler(d)?)),
             MeasureSpec::Period(p) => {
                 let v = self.view(&p.view)?;
                 let (reading, expected, mark) =
                     super::period::measure(&v.measuring, &v.described, p)?;
                 self.mark(v.index, mark);
                 Ok(row((reading, expected, Unit::TUnits)))
+            }
+            MeasureSpec::Lambert(l) => {
+                let v = self.view(&l.view)?;
+                let (reading, mark) = super::lambert::measure(&v.measuring, &v.described, l)?;
+                self.mark(v.index, Some(mark));
+                Ok(row(reading))
             }
             MeasureSpec::Reflection(r) => {
                 let v = self.view(&r.view)?;
@@ -306,6 +293,29 @@ impl<'a> Run<'a> {
             }
             MeasureSpec::Named(_) => unreachable!("named kinds are run by the caller"),
         }
+    }
+
+    /// A Doppler check's row: the object's panel (or the panel of one
+    /// point of it), measured once per view and read by every check of it.
+    fn doppler(&mut self, d: &DopplerSpec) -> Result<(Reading, f64, Unit), String> {
+        let v = self.view(&d.view)?;
+        let effort = self.effort;
+        let (panel, new) = match d.point {
+            None => shared(&mut self.panels, (v.index, &d.object), || {
+                Panel::measure(&v.measuring, &v.described, &d.object, effort)
+            })?,
+            Some(r) => {
+                let key = format!("{} at {r:?}", d.object);
+                shared(&mut self.panels, (v.index, &key), || {
+                    Panel::at_point(&v.measuring, &v.described, &d.object, r)
+                })?
+            }
+        };
+        let ((reading, expected), mark) = (panel.read(d.from)?, panel.mark);
+        if new {
+            self.mark(v.index, mark);
+        }
+        Ok((reading, expected, Unit::Factor))
     }
 
     /// The expected points to mark in view `k`: its checks', or where no
