@@ -29,6 +29,7 @@ mod rendering {
 mod harness {
     mod debug;
     mod declared;
+    mod emulator;
     mod fixture_errors;
     mod independent_models;
     mod mirrors;

@@ -3,7 +3,8 @@
 //!
 //! Data flows one way: a fixture ([`fixture`]) is rendered ([`run`]), the
 //! image is measured ([`measure`]), the measurements are compared with
-//! first-principles expectations ([`oracle`]) scene by scene ([`check`]),
+//! first-principles expectations ([`oracle`], and for whole images the
+//! slice-by-slice [`emulator`]) scene by scene ([`check`]),
 //! and the views with their approved images ([`golden`]); [`report`]
 //! presents the verdict. Beside that: [`debug`] logs the variables along a
 //! pixel's rays, [`animate`] renders frame sequences, [`mod@bench`] measures
@@ -14,6 +15,7 @@ pub mod bench;
 pub mod budget;
 pub mod check;
 pub mod debug;
+pub mod emulator;
 pub mod fixture;
 pub mod fuzz;
 pub mod golden;

@@ -65,7 +65,17 @@ fn assert_targets(rows: &[Row]) {
                 r.quantity,
                 r.tolerance
             ),
-            _ => assert!(r.tolerance > 0.0 && r.tolerance.is_finite()),
+            // An exact count (pixels disagreeing away from every edge) has
+            // no tolerance; every other row a positive, finite one.
+            "px" if r.expected == 0.0 && r.quantity.contains("away from edges") => {
+                assert_eq!(r.tolerance, 0.0, "{}", r.quantity)
+            }
+            _ => assert!(
+                r.tolerance > 0.0 && r.tolerance.is_finite(),
+                "{}: {}",
+                r.quantity,
+                r.tolerance
+            ),
         }
     }
 }

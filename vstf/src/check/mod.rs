@@ -13,6 +13,7 @@
 
 pub mod declared;
 pub mod edge;
+pub mod emulated;
 pub mod named;
 pub mod path;
 pub mod row;

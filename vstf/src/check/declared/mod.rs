@@ -256,6 +256,13 @@ impl<'a> Run<'a> {
                 self.mark(v.index, mark);
                 Ok(row((reading, expected, Unit::TUnits)))
             }
+            MeasureSpec::Emulator(e) => {
+                let v = self.view(&e.view)?;
+                let (found, marks) =
+                    super::emulated::measure(&v.measuring, &v.described, e, v.spec)?;
+                self.marks[v.index].extend(marks);
+                Ok(row(found))
+            }
             MeasureSpec::Lambert(l) => {
                 let v = self.view(&l.view)?;
                 let (reading, mark) = super::lambert::measure(&v.measuring, &v.described, l)?;
@@ -269,29 +276,50 @@ impl<'a> Run<'a> {
                 self.mark(v.index, Some(mark));
                 Ok(row(reading))
             }
+            MeasureSpec::Difference(_)
+            | MeasureSpec::Ratio(_)
+            | MeasureSpec::Atan(_)
+            | MeasureSpec::Velocity(_) => Ok(row(self.combination(&c.measure)?)),
+            MeasureSpec::Named(_) => unreachable!("named kinds are run by the caller"),
+        }
+    }
+
+    /// A combination of two earlier rows: their difference, ratio, atan of
+    /// the ratio, or the velocity between two views' times.
+    fn combination(&self, m: &MeasureSpec) -> Result<(Reading, f64, Unit), String> {
+        match m {
             MeasureSpec::Difference([a, b]) => {
                 let (a, b) = (self.earlier(a)?, self.earlier(b)?);
                 same_unit(a, b)?;
-                Ok(row((
+                Ok((
                     difference(&a.measured, &b.measured),
                     a.expected - b.expected,
                     a.unit,
-                )))
+                ))
             }
             MeasureSpec::Ratio([a, b]) => {
                 let (a, b) = (self.earlier(a)?, self.earlier(b)?);
                 same_unit(a, b)?;
-                Ok(row((
+                Ok((
                     ratio(&a.measured, &b.measured),
                     a.expected / b.expected,
                     Unit::Ratio,
-                )))
+                ))
+            }
+            MeasureSpec::Atan([a, b]) => {
+                let (a, b) = (self.earlier(a)?, self.earlier(b)?);
+                same_unit(a, b)?;
+                Ok((
+                    atan_degrees(&ratio(&a.measured, &b.measured)),
+                    (a.expected / b.expected).atan().to_degrees(),
+                    Unit::Degrees,
+                ))
             }
             MeasureSpec::Velocity([a, b]) => {
                 let (a, b) = (self.earlier(a)?, self.earlier(b)?);
-                Ok(row(velocity(a, b)?))
+                velocity(a, b)
             }
-            MeasureSpec::Named(_) => unreachable!("named kinds are run by the caller"),
+            _ => Err("not a combination of earlier rows".into()),
         }
     }
 
@@ -404,6 +432,15 @@ fn ratio(a: &Reading, b: &Reading) -> Reading {
     Reading {
         value,
         tolerance: value.abs() * (a.tolerance / a.value).hypot(b.tolerance / b.value),
+    }
+}
+
+/// atan(r) in degrees of a ratio, its tolerance carried by d atan / dr =
+/// 1 / (1 + r^2).
+fn atan_degrees(r: &Reading) -> Reading {
+    Reading {
+        value: r.value.atan().to_degrees(),
+        tolerance: (r.tolerance / (1.0 + r.value * r.value)).to_degrees(),
     }
 }
 
