@@ -31,6 +31,11 @@ pub struct Comparison {
     pub pass: bool,
     /// Where the pending actual, expected and diff images were written.
     pub pending: Option<PathBuf>,
+    /// The first pixel (column, row) with the largest difference, when
+    /// any differs.
+    pub worst_at: Option<(u32, u32)>,
+    /// The size the view was rendered at.
+    pub size: (u32, u32),
 }
 
 impl fmt::Display for Comparison {
@@ -52,6 +57,13 @@ impl fmt::Display for Comparison {
         if let Some(d) = self.max_diff {
             write!(f, " max_diff={d} differing={}", self.differing)?;
         }
+        if let (Some((x, y)), false) = (self.worst_at, self.pass) {
+            write!(
+                f,
+                " worst_pixel={x},{y} size={}x{}",
+                self.size.0, self.size.1
+            )?;
+        }
         write!(f, " allowed={}", self.allowed)?;
         if let Some(p) = &self.pending {
             write!(f, " pending={}", p.display())?;
@@ -60,20 +72,37 @@ impl fmt::Display for Comparison {
     }
 }
 
-/// The largest channel difference and the number of differing pixels.
-pub fn compare(actual: &RgbImage, expected: &RgbImage) -> Option<(u8, u64)> {
+/// How two images of one size differ.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Difference {
+    /// The largest channel difference.
+    pub max: u8,
+    /// The number of pixels that differ at all.
+    pub pixels: u64,
+    /// The first pixel (column, row) with the largest difference.
+    pub worst_at: Option<(u32, u32)>,
+}
+
+/// How `actual` differs from `expected`; `None` for images of other sizes.
+pub fn compare(actual: &RgbImage, expected: &RgbImage) -> Option<Difference> {
     if actual.dimensions() != expected.dimensions() {
         return None;
     }
-    let (mut max, mut n) = (0u8, 0u64);
-    for (a, e) in actual.pixels().zip(expected.pixels()) {
+    let mut out = Difference {
+        max: 0,
+        pixels: 0,
+        worst_at: None,
+    };
+    for ((x, y, a), e) in actual.enumerate_pixels().zip(expected.pixels()) {
         let d = (0..3).map(|i| a.0[i].abs_diff(e.0[i])).max().unwrap_or(0);
         if d > 0 {
-            n += 1;
-            max = max.max(d);
+            out.pixels += 1;
+            if d > out.max {
+                (out.max, out.worst_at) = (d, Some((x, y)));
+            }
         }
     }
-    Some((max, n))
+    Some(out)
 }
 
 /// A faded grey copy of `expected` with every differing pixel in red,
@@ -241,7 +270,8 @@ impl Store {
             None
         };
         let measured = expected.as_ref().and_then(|e| compare(actual, e));
-        let pass = measured.is_some_and(|(d, n)| d <= allowed.max_diff && n <= allowed.max_pixels);
+        let pass =
+            measured.is_some_and(|m| m.max <= allowed.max_diff && m.pixels <= allowed.max_pixels);
         let dir = self.pending_dir(fixture, view);
         let pending = if pass {
             if dir.exists() {
@@ -266,11 +296,13 @@ impl Store {
             fixture: fixture.into(),
             view: view.into(),
             allowed,
-            max_diff: measured.map(|m| m.0),
-            differing: measured.map_or(0, |m| m.1),
+            max_diff: measured.map(|m| m.max),
+            differing: measured.map_or(0, |m| m.pixels),
             missing: expected.is_none(),
             pass,
             pending,
+            worst_at: measured.and_then(|m| m.worst_at),
+            size: actual.dimensions(),
         })
     }
 

@@ -77,6 +77,38 @@ fn check_prints_the_table_and_writes_json_rows() {
         "{stdout}\n{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    // The default table: the fixture, then its rows, every line within 100
+    // columns; passing golden images only counted.
+    assert_eq!(stdout.lines().next(), Some("stage"), "{stdout}");
+    for line in stdout.lines() {
+        assert!(
+            line.chars().count() <= 100,
+            "{} columns: {line}",
+            line.chars().count()
+        );
+    }
+    assert!(!stdout.contains("golden pass"), "{stdout}");
+    assert!(
+        stdout
+            .lines()
+            .any(|l| l.starts_with("check: ") && l.ends_with(" passed, 0 failed")),
+        "{stdout}"
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let rows = report["rows"].as_array().unwrap();
+    assert!(!rows.is_empty() && rows.iter().all(|r| r["fixture"] == "stage"));
+    let goldens = report["goldens"].as_array().unwrap();
+    assert_eq!(goldens.len(), 1, "{report}");
+    assert_eq!(goldens[0]["pass"], true);
+    assert_eq!(goldens[0]["size"], serde_json::json!([240, 180]));
+    std::fs::remove_file(&json).ok();
+    // --verbose: the full table with every column, and every image's line.
+    let out = vstf()
+        .args(["check", "stage", "--quick", "--verbose"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
     let header = stdout.lines().next().unwrap();
     for col in [
         "fixture",
@@ -90,20 +122,7 @@ fn check_prints_the_table_and_writes_json_rows() {
     ] {
         assert!(header.contains(col), "{header}");
     }
-    assert!(
-        stdout
-            .lines()
-            .any(|l| l.starts_with("check: ") && l.ends_with(" passed, 0 failed")),
-        "{stdout}"
-    );
-    let rows: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    assert!(rows
-        .as_array()
-        .unwrap()
-        .iter()
-        .all(|r| r["fixture"] == "stage"));
-    std::fs::remove_file(&json).ok();
+    assert!(stdout.contains("golden pass fixture=stage"), "{stdout}");
 }
 
 #[test]
@@ -432,8 +451,8 @@ fn a_tampered_golden_in_a_copy_of_the_repository_is_caught() {
         "{text}"
     );
     assert!(
-        text.contains("golden pass fixture=flange view=frame-1151"),
-        "{text}"
+        !text.contains("golden pass fixture=flange view=frame-1151"),
+        "passing images are listed only with --verbose:\n{text}"
     );
     // Each fixture's line as it finishes, the failure again with the command
     // that renders the view, and the closing summary.
@@ -444,6 +463,19 @@ fn a_tampered_golden_in_a_copy_of_the_repository_is_caught() {
     );
     assert!(
         err.contains("vstf render flange --view \"frame 920\" --out"),
+        "{err}"
+    );
+    // The command that debugs the pixel where the image changed most, at
+    // the golden's resolution.
+    let worst = text
+        .split("worst_pixel=")
+        .nth(1)
+        .and_then(|t| t.split_whitespace().next())
+        .expect("the failing line names its worst pixel");
+    assert!(
+        err.contains(&format!(
+            "vstf debug flange --view \"frame 920\" --pixel {worst}"
+        )),
         "{err}"
     );
     assert!(
@@ -905,8 +937,9 @@ fn check_json_dash_writes_only_json_to_stdout() {
             String::from_utf8_lossy(&out.stdout)
         )
     });
-    assert_eq!(rows.as_array().unwrap().len(), 5);
-    assert!(String::from_utf8_lossy(&out.stderr).contains("golden pass fixture=stage"));
+    assert_eq!(rows["rows"].as_array().unwrap().len(), 5);
+    assert_eq!(rows["goldens"][0]["view"], "view");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("golden: 1 passed, 0 failed"));
     assert!(
         !repo_root().join("-").exists(),
         "a file named - was written"
@@ -1062,7 +1095,7 @@ fn approve_and_reject_one_view_at_a_time() {
     assert!(String::from_utf8_lossy(&empty.stdout).contains("nothing pending"));
     // frame 920 now passes against its approved (rendered) image; 1151 still
     // fails against the tampered golden that was kept.
-    let again = run(&["check", "flange", "--quick"]);
+    let again = run(&["check", "flange", "--quick", "--verbose"]);
     let text = String::from_utf8_lossy(&again.stdout);
     assert!(
         text.contains("golden pass fixture=flange view=frame-920"),

@@ -147,6 +147,10 @@ pub struct CheckArgs {
     /// Load fixtures beyond the memory budget (8 GB of database).
     #[arg(long)]
     pub force: bool,
+    /// Print the full table (fixture and paper columns, untruncated names)
+    /// and every golden image's line, not only the failing ones.
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 // `vstf fuzz`.

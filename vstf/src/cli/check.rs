@@ -17,6 +17,7 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
         report,
         quick,
         force,
+        verbose,
     } = args;
     let effort = if quick { Effort::QUICK } else { Effort::FULL };
     let started = Instant::now();
@@ -54,9 +55,14 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
             println!("{line}");
         }
     };
-    say(vstf::report::table(&rows).trim_end());
+    let table = if verbose {
+        vstf::report::table(&rows)
+    } else {
+        vstf::report::summary_table(&rows)
+    };
+    say(table.trim_end());
     let goldens: Vec<&Comparison> = reports.iter().flat_map(|r| &r.goldens).collect();
-    for g in &goldens {
+    for g in goldens.iter().filter(|g| verbose || !g.pass) {
         say(&g.to_string());
     }
     let failed = goldens.iter().filter(|g| !g.pass).count();
@@ -69,9 +75,11 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
     }
 
     match json {
-        Some(_) if json_to_stdout => println!("{}", vstf::report::json(&rows)),
-        Some(path) => vstf::output::write_atomic(&path, vstf::report::json(&rows).as_bytes())
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?,
+        Some(_) if json_to_stdout => println!("{}", vstf::report::check_json(&rows, &goldens)),
+        Some(path) => {
+            vstf::output::write_atomic(&path, vstf::report::check_json(&rows, &goldens).as_bytes())
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?
+        }
         None => {}
     }
     if let Some(dir) = report {
@@ -166,6 +174,12 @@ fn failures(reports: &[FixtureReport]) -> String {
                     g.view,
                     vstf::golden::slug(&format!("{}-{}", r.fixture, g.view))
                 ));
+                if let Some((x, y)) = g.worst_at {
+                    out.push_str(&format!(
+                        "\n    vstf debug {} --view {:?} --pixel {x},{y}   (the largest difference, at {}x{})",
+                        r.fixture, g.view, g.size.0, g.size.1
+                    ));
+                }
             }
         }
     }
