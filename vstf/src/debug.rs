@@ -32,6 +32,14 @@ pub struct PixelLog {
     pub rgb8: [u8; 3],
 }
 
+impl PixelLog {
+    /// Drops the tetrahedra tested but not kept (`candidate` steps): the
+    /// compact log, one block per sample of rays, hits and shading.
+    pub fn drop_candidates(&mut self) {
+        self.steps.retain(|s| !matches!(s, Step::Candidate { .. }));
+    }
+}
+
 /// Traces pixel (x, y) of `view`, with the database built for it.
 pub fn trace_pixel(
     f: &Fixture,
@@ -254,59 +262,152 @@ fn spectrum_line(nm: &[f64], values: &[f64]) -> String {
         .join(" ")
 }
 
-/// One field that differs between two logs.
+/// The kinds of steps a log holds (the `step` tag of each), which
+/// `debug-diff --ignore` may skip.
+pub const STEP_KINDS: [&str; 9] = [
+    "sample",
+    "ray",
+    "candidate",
+    "hit",
+    "miss",
+    "shading",
+    "doppler",
+    "reflection",
+    "observed",
+];
+
+/// The first field that differs between two logs' pixel, and how many did.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Difference {
     /// Line number (1-based) in the logs.
     pub line: usize,
     /// The pixel, as written in the log (`[x,y]`).
     pub pixel: String,
-    /// JSON path of the field, e.g. `steps[4].event.t`.
+    /// JSON path of the first differing field, with the kind of its step,
+    /// e.g. `steps[4] (hit).event.t`.
     pub path: String,
-    /// The value in the first log.
+    /// Its value in the first log.
     pub a: String,
-    /// The value in the second log.
+    /// Its value in the second log.
     pub b: String,
+    /// Every differing field of the pixel (path, first, second), the first
+    /// of them included; only the first with `first_only`.
+    pub fields: Vec<(String, String, String)>,
 }
 
-/// Compares two JSON-lines logs pixel by pixel. Numbers agree when
-/// |a - b| <= tol * max(1, |a|, |b|); steps whose kind is listed in `ignore`
-/// (e.g. `candidate`, which a change of traversal changes) are skipped.
-/// Returns the first differing field of every differing pixel.
-pub fn diff_logs(a: &str, b: &str, tol: f64, ignore: &[String]) -> Result<Vec<Difference>, String> {
-    let parse = |text: &str, which: &str| -> Result<Vec<Value>, String> {
-        text.lines()
-            .enumerate()
-            .filter(|(_, l)| !l.trim().is_empty())
-            .map(|(i, l)| {
-                serde_json::from_str(l).map_err(|e| format!("{which} line {}: {e}", i + 1))
-            })
-            .collect()
+/// How two logs compare: the differing pixels kept (the first `keep`), how
+/// many differ in all, and how many lines each log has.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Comparison {
+    /// The first differing pixels, in order.
+    pub shown: Vec<Difference>,
+    /// All differing pixels (a different number of lines counts as one).
+    pub differing: usize,
+    /// Lines in the first and the second log.
+    pub lines: (usize, usize),
+}
+
+/// How a comparison of logs treats numbers and steps: numbers agree when
+/// |a - b| <= tol * max(1, |a|, |b|); steps of the kinds in `ignore` are
+/// skipped; `first_only` keeps only each pixel's first differing field.
+pub struct DiffOptions<'a> {
+    /// The relative tolerance.
+    pub tol: f64,
+    /// Step kinds skipped (each one of [`STEP_KINDS`]).
+    pub ignore: &'a [String],
+    /// Only the first differing field of each pixel.
+    pub first_only: bool,
+    /// How many differing pixels to keep.
+    pub keep: usize,
+}
+
+/// Compares two JSON-lines logs pixel by pixel, reading both a line at a
+/// time (constant memory whatever their size).
+pub fn diff_streams(
+    a: impl std::io::BufRead,
+    b: impl std::io::BufRead,
+    o: &DiffOptions,
+) -> Result<Comparison, String> {
+    if let Some(bad) = o.ignore.iter().find(|k| !STEP_KINDS.contains(&k.as_str())) {
+        return Err(format!(
+            "--ignore {bad:?}: no such step kind (the kinds: {})",
+            STEP_KINDS.join(", ")
+        ));
+    }
+    let mut out = Comparison::default();
+    let (mut la, mut lb) = (a.lines(), b.lines());
+    let parse = |line: Option<std::io::Result<String>>,
+                 which: &str,
+                 n: usize|
+     -> Result<Option<Value>, String> {
+        match line {
+            None => Ok(None),
+            Some(Err(e)) => Err(format!("{which} line {n}: {e}")),
+            Some(Ok(l)) => serde_json::from_str(&l)
+                .map(Some)
+                .map_err(|e| format!("{which} line {n}: {e}")),
+        }
     };
-    let (la, lb) = (parse(a, "first log")?, parse(b, "second log")?);
-    let mut out = Vec::new();
-    for (i, (x, y)) in la.iter().zip(&lb).enumerate() {
-        let (x, y) = (strip(x, ignore), strip(y, ignore));
-        if let Some((path, va, vb)) = first_difference(&x, &y, "", tol) {
-            out.push(Difference {
-                line: i + 1,
-                pixel: x["pixel"].to_string(),
-                path,
-                a: va,
-                b: vb,
-            });
+    loop {
+        let n = out.lines.0.max(out.lines.1) + 1;
+        let (x, y) = (
+            parse(la.next(), "first log", n)?,
+            parse(lb.next(), "second log", n)?,
+        );
+        out.lines.0 += usize::from(x.is_some());
+        out.lines.1 += usize::from(y.is_some());
+        let (x, y) = match (x, y) {
+            (Some(x), Some(y)) => (x, y),
+            (None, None) => break,
+            _ => {
+                // One log ends: count the rest of the other.
+                out.lines.0 += la.by_ref().count();
+                out.lines.1 += lb.by_ref().count();
+                out.differing += 1;
+                if out.shown.len() < o.keep {
+                    let (a, b) = (out.lines.0.to_string(), out.lines.1.to_string());
+                    out.shown.push(Difference {
+                        line: n,
+                        pixel: "-".into(),
+                        path: "(number of pixels)".into(),
+                        fields: vec![("(number of pixels)".into(), a.clone(), b.clone())],
+                        a,
+                        b,
+                    });
+                }
+                break;
+            }
+        };
+        let (x, y) = (strip(&x, o.ignore), strip(&y, o.ignore));
+        let mut fields = Vec::new();
+        differences(&x, &y, "", o, &mut fields);
+        if let Some((path, a, b)) = fields.first().cloned() {
+            out.differing += 1;
+            if out.shown.len() < o.keep {
+                out.shown.push(Difference {
+                    line: n,
+                    pixel: x["pixel"].to_string(),
+                    path,
+                    a,
+                    b,
+                    fields,
+                });
+            }
         }
     }
-    if la.len() != lb.len() {
-        out.push(Difference {
-            line: la.len().min(lb.len()) + 1,
-            pixel: "-".into(),
-            path: "(number of pixels)".into(),
-            a: la.len().to_string(),
-            b: lb.len().to_string(),
-        });
-    }
     Ok(out)
+}
+
+/// Compares two JSON-lines logs held in memory: the first differing field
+/// of every differing pixel (see [`diff_streams`]).
+pub fn diff_logs(a: &str, b: &str, tol: f64, ignore: &[String]) -> Result<Vec<Difference>, String> {
+    let o = DiffOptions {
+        tol,
+        ignore,
+        first_only: true,
+        keep: usize::MAX,
+    };
+    Ok(diff_streams(a.as_bytes(), b.as_bytes(), &o)?.shown)
 }
 
 fn strip(v: &Value, ignore: &[String]) -> Value {
@@ -321,67 +422,92 @@ fn strip(v: &Value, ignore: &[String]) -> Value {
     v
 }
 
-fn first_difference(
+/// The most fields of one pixel listed.
+const MAX_FIELDS: usize = 64;
+
+/// Appends every field where `a` and `b` differ (only the first with
+/// `first_only`), with its path; a step's path names its kind.
+fn differences(
     a: &Value,
     b: &Value,
     path: &str,
-    tol: f64,
-) -> Option<(String, String, String)> {
-    let here = || {
-        Some((
-            if path.is_empty() {
-                ".".into()
-            } else {
-                path.to_string()
-            },
-            a.to_string(),
-            b.to_string(),
-        ))
+    o: &DiffOptions,
+    out: &mut Vec<(String, String, String)>,
+) {
+    let full = |out: &Vec<_>| out.len() >= MAX_FIELDS || (o.first_only && !out.is_empty());
+    if full(out) {
+        return;
+    }
+    let here = |out: &mut Vec<(String, String, String)>| {
+        let p = if path.is_empty() {
+            ".".into()
+        } else {
+            path.to_string()
+        };
+        out.push((p, a.to_string(), b.to_string()));
     };
     match (a, b) {
         (Value::Number(x), Value::Number(y)) => {
-            let (x, y) = (x.as_f64()?, y.as_f64()?);
-            if (x - y).abs() <= tol * 1f64.max(x.abs()).max(y.abs()) {
-                None
-            } else {
-                here()
+            let (x, y) = (
+                x.as_f64().unwrap_or(f64::NAN),
+                y.as_f64().unwrap_or(f64::NAN),
+            );
+            let agree = (x - y).abs() <= o.tol * 1f64.max(x.abs()).max(y.abs());
+            if !agree {
+                here(out);
             }
         }
         (Value::Array(x), Value::Array(y)) => {
-            if let Some(d) = x
-                .iter()
-                .zip(y)
-                .enumerate()
-                .find_map(|(i, (p, q))| first_difference(p, q, &format!("{path}[{i}]"), tol))
-            {
-                return Some(d);
+            for (i, (p, q)) in x.iter().zip(y).enumerate() {
+                let kind = match (path, p["step"].as_str(), q["step"].as_str()) {
+                    ("steps", Some(k), Some(l)) if k != l => {
+                        // Steps of different kinds: one difference, not their fields.
+                        out.push((
+                            format!("{path}[{i}] (kind of step)"),
+                            k.to_string(),
+                            l.to_string(),
+                        ));
+                        if full(out) {
+                            return;
+                        }
+                        continue;
+                    }
+                    ("steps", Some(k), _) => format!(" ({k})"),
+                    _ => String::new(),
+                };
+                differences(p, q, &format!("{path}[{i}]{kind}"), o, out);
+                if full(out) {
+                    return;
+                }
             }
             if x.len() != y.len() {
-                return Some((
+                out.push((
                     format!("{path} (length)"),
                     x.len().to_string(),
                     y.len().to_string(),
                 ));
             }
-            None
         }
         (Value::Object(x), Value::Object(y)) => {
             let mut keys: Vec<&String> = x.keys().chain(y.keys()).collect();
             keys.sort();
             keys.dedup();
-            keys.into_iter().find_map(|k| {
+            for k in keys {
                 let sub = if path.is_empty() {
                     k.clone()
                 } else {
                     format!("{path}.{k}")
                 };
                 match (x.get(k), y.get(k)) {
-                    (Some(p), Some(q)) => first_difference(p, q, &sub, tol),
-                    (p, q) => Some((sub, format!("{p:?}"), format!("{q:?}"))),
+                    (Some(p), Some(q)) => differences(p, q, &sub, o, out),
+                    (p, q) => out.push((sub, format!("{p:?}"), format!("{q:?}"))),
                 }
-            })
+                if full(out) {
+                    return;
+                }
+            }
         }
-        _ if a == b => None,
-        _ => here(),
+        _ if a == b => {}
+        _ => here(out),
     }
 }

@@ -175,6 +175,14 @@ fn debug_prints_a_pixel_and_logs_a_region_that_debug_diff_compares() {
             && text.contains("Primary ray"),
         "{text}"
     );
+    // Compact by default: the candidates tested only with --candidates.
+    assert!(!text.contains("rejected:"), "{text}");
+    let long = vstf()
+        .args(["debug", "flange", "--pixel", "300,200", "--candidates"])
+        .output()
+        .unwrap();
+    let long = String::from_utf8_lossy(&long.stdout);
+    assert!(long.contains("rejected:") && long.lines().count() > text.lines().count() + 10);
     let dir = std::env::temp_dir().join(format!("vstf-debug-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let (a, b) = (dir.join("a.jsonl"), dir.join("b.jsonl"));
@@ -189,6 +197,7 @@ fn debug_prints_a_pixel_and_logs_a_region_that_debug_diff_compares() {
             "48",
             "--region",
             "10,10,13,12",
+            "--candidates",
             "--log",
         ])
         .arg(path);
@@ -211,7 +220,19 @@ fn debug_prints_a_pixel_and_logs_a_region_that_debug_diff_compares() {
     );
     let differ = vstf().arg("debug-diff").arg(&a).arg(&b).output().unwrap();
     assert!(!differ.status.success());
-    assert!(String::from_utf8_lossy(&differ.stdout).contains("steps["));
+    assert!(String::from_utf8_lossy(&differ.stdout).contains("(kind of step): miss vs candidate"));
+    let misspelt = vstf()
+        .args(["debug-diff", "--ignore", "candidat"])
+        .arg(&a)
+        .arg(&b)
+        .output()
+        .unwrap();
+    assert!(!misspelt.status.success());
+    let err = String::from_utf8_lossy(&misspelt.stderr);
+    assert!(
+        err.contains("candidat") && err.contains("candidate"),
+        "{err}"
+    );
     let outside = vstf()
         .args(["debug", "flange", "--pixel", "5000,1"])
         .output()

@@ -217,7 +217,7 @@ fn debug_diff_reports_the_first_differing_field() {
     let d = diff_logs(&log, &edited, 1e-12, &[]).unwrap();
     assert_eq!(d.len(), 1);
     assert_eq!(d[0].line, k + 1);
-    assert_eq!(d[0].path, format!("steps[{hit}].event.t"));
+    assert_eq!(d[0].path, format!("steps[{hit}] (hit).event.t"));
     assert!(
         diff_logs(&log, &edited, 1e-3, &[]).unwrap().is_empty(),
         "within tolerance"
@@ -364,4 +364,57 @@ fn a_moving_mirrors_rest_frame_is_logged() {
         text.contains("in the mirror's rest frame: normal"),
         "{text}"
     );
+}
+
+/// The comparison reads both logs a line at a time, lists every field that
+/// differs (or the first, with `first_only`), names the step kind, keeps
+/// only the pixels asked for while counting all, and refuses an unknown
+/// step kind to ignore.
+#[test]
+fn debug_diff_streams_and_lists_every_differing_field() {
+    use vstf::debug::{diff_streams, DiffOptions};
+    let log = region_log(Traversal::Bvh);
+    let mut lines: Vec<serde_json::Value> = log
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    for l in lines.iter_mut() {
+        l["color"][0] = (l["color"][0].as_f64().unwrap() + 0.5).into();
+        l["rgb8"][0] = 7.into();
+    }
+    let edited: String = lines.iter().map(|l| format!("{l}\n")).collect();
+    let all = DiffOptions {
+        tol: 0.0,
+        ignore: &[],
+        first_only: false,
+        keep: 2,
+    };
+    let c = diff_streams(log.as_bytes(), edited.as_bytes(), &all).unwrap();
+    assert_eq!(c.differing, lines.len());
+    assert_eq!(c.shown.len(), 2);
+    let paths: Vec<&str> = c.shown[0].fields.iter().map(|f| f.0.as_str()).collect();
+    assert!(
+        paths.contains(&"color[0]") && paths.contains(&"rgb8[0]"),
+        "{paths:?}"
+    );
+    let first = DiffOptions {
+        first_only: true,
+        ..all
+    };
+    let c = diff_streams(log.as_bytes(), edited.as_bytes(), &first).unwrap();
+    assert_eq!(c.shown[0].fields.len(), 1);
+    let bad = vec!["candidat".to_string()];
+    let wrong = DiffOptions {
+        ignore: &bad,
+        ..first
+    };
+    let e = diff_streams(log.as_bytes(), log.as_bytes(), &wrong).unwrap_err();
+    assert!(
+        e.contains("no such step kind") && e.contains("candidate"),
+        "{e}"
+    );
+    // One log longer than the other: a difference, not a silent pass.
+    let short: String = log.lines().take(3).map(|l| format!("{l}\n")).collect();
+    let c = diff_streams(log.as_bytes(), short.as_bytes(), &all).unwrap();
+    assert!(c.differing >= 1 && c.lines == (lines.len(), 3), "{c:?}");
 }

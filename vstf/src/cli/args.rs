@@ -220,6 +220,10 @@ pub struct DebugArgs {
     /// Test every tetrahedron for every ray (no acceleration structure).
     #[arg(long)]
     pub brute_force: bool,
+    /// Also print and log every tetrahedron tested and why it was rejected
+    /// (long: hundreds of lines a pixel).
+    #[arg(long)]
+    pub candidates: bool,
 }
 
 // `vstf debug-diff`.
@@ -231,11 +235,14 @@ pub struct DebugDiffArgs {
     #[arg(long, default_value_t = 0.0, value_parser = parse_tolerance, allow_hyphen_values = true)]
     pub tol: f64,
     /// Skip steps of this kind (e.g. candidate, which a change of traversal changes).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(vstf::debug::STEP_KINDS))]
     pub ignore: Vec<String>,
     /// How many differing pixels to print.
     #[arg(long, default_value_t = 10)]
     pub show: usize,
+    /// Only the first differing field of each pixel.
+    #[arg(long)]
+    pub first: bool,
 }
 
 // `vstf animate`.

@@ -15,6 +15,7 @@ pub fn run(root: Option<&Path>, args: DebugArgs) -> Result<(), String> {
         log,
         view,
         brute_force,
+        candidates,
     } = args;
     let (fixture, view, db) = prepare(root, &fixture, &view, brute_force, false)?;
     let (x0, y0, x1, y1) = match (pixel, region) {
@@ -25,7 +26,10 @@ pub fn run(root: Option<&Path>, args: DebugArgs) -> Result<(), String> {
     let mut lines = String::new();
     for y in y0..=y1 {
         for x in x0..=x1 {
-            let entry = vstf::debug::trace_pixel(&fixture, &view, &db, x, y)?;
+            let mut entry = vstf::debug::trace_pixel(&fixture, &view, &db, x, y)?;
+            if !candidates {
+                entry.drop_candidates();
+            }
             if pixel.is_some() {
                 print!("{}", vstf::debug::describe(&entry));
             }
@@ -45,7 +49,8 @@ pub fn run(root: Option<&Path>, args: DebugArgs) -> Result<(), String> {
     Ok(())
 }
 
-/// Prints the first differing pixels of two logs; fails if any differ.
+/// Prints the first differing pixels of two logs, each with its differing
+/// fields; fails if any differ. Both logs are read a line at a time.
 pub fn diff(args: DebugDiffArgs) -> Result<(), String> {
     let DebugDiffArgs {
         a,
@@ -53,21 +58,44 @@ pub fn diff(args: DebugDiffArgs) -> Result<(), String> {
         tol,
         ignore,
         show,
+        first,
     } = args;
-    let read = |p: &Path| {
-        std::fs::read_to_string(p).map_err(|e| format!("cannot read {}: {e}", p.display()))
+    let open = |p: &Path| {
+        std::fs::File::open(p)
+            .map(std::io::BufReader::new)
+            .map_err(|e| format!("cannot read {}: {e}", p.display()))
     };
-    let diffs = vstf::debug::diff_logs(&read(&a)?, &read(&b)?, tol, &ignore)?;
-    for d in diffs.iter().take(show) {
+    let options = vstf::debug::DiffOptions {
+        tol,
+        ignore: &ignore,
+        first_only: first,
+        keep: show,
+    };
+    let c = vstf::debug::diff_streams(open(&a)?, open(&b)?, &options)?;
+    for d in &c.shown {
         println!(
-            "line {} pixel {}: {}: {} vs {}",
-            d.line, d.pixel, d.path, d.a, d.b
+            "line {} pixel {}: {} field(s) differ",
+            d.line,
+            d.pixel,
+            d.fields.len()
         );
+        for (path, x, y) in &d.fields {
+            println!("  {path}: {x} vs {y}");
+        }
     }
-    if diffs.is_empty() {
-        println!("the logs agree (tolerance {tol})");
+    if c.differing == 0 {
+        println!("the logs agree ({} pixels, tolerance {tol})", c.lines.0);
         Ok(())
     } else {
-        Err(format!("{} pixels differ", diffs.len()))
+        Err(format!(
+            "{} of {} pixels differ{}",
+            c.differing,
+            c.lines.0.max(c.lines.1),
+            if c.differing > c.shown.len() {
+                format!(" (the first {} shown; --show N for more)", c.shown.len())
+            } else {
+                String::new()
+            }
+        ))
     }
 }
