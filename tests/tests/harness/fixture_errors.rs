@@ -559,3 +559,31 @@ fn mirror_bounces_beyond_the_recursion_limit_are_refused() {
         "{e}"
     );
 }
+
+/// A vector or event with too many numbers is named as such, with its
+/// path (serde alone says "trailing characters"); too few says how many.
+#[test]
+fn vectors_of_the_wrong_length_say_how_long_they_should_be() {
+    let e = error_of(&flange_with(|v| {
+        v["camera"]["position"] = serde_json::json!([0.0, 9.0, 15.0, 1.0])
+    }));
+    assert!(
+        e.contains("camera.position: too many numbers: a position, direction or velocity has 3"),
+        "{e}"
+    );
+    let e = error_of(&flange_with(|v| {
+        let i = flange_index(v);
+        v["objects"][i]["worldline"]["start"] = serde_json::json!([0.0, 1.0, 2.0, 3.0, 4.0]);
+    }));
+    assert!(
+        e.contains("worldline.start: too many numbers") && e.contains("[t, x, y, z]"),
+        "{e}"
+    );
+    let e = error_of(&flange_with(|v| {
+        v["camera"]["position"] = serde_json::json!([0.0, 9.0])
+    }));
+    assert!(
+        e.contains("camera.position: invalid length 2, expected a sequence of 3"),
+        "{e}"
+    );
+}

@@ -245,8 +245,10 @@ pub struct DebugDiffArgs {
     pub first: bool,
 }
 
-// `vstf animate`.
+// `vstf animate`. Its frames set the camera time, so the view flags'
+// --camera-t is neither listed nor taken.
 #[derive(clap::Args)]
+#[command(mut_arg("camera_t", |a| a.hide(true)))]
 pub struct AnimateArgs {
     /// A fixture JSON file, or the name of one in fixtures/.
     pub fixture: String,
