@@ -10,6 +10,7 @@
 //! pixel's rays, [`animate`] renders frame sequences, [`mod@bench`] measures
 //! speed, and [`output`] writes files atomically.
 
+pub mod aim;
 pub mod animate;
 pub mod bench;
 pub mod budget;

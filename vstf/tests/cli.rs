@@ -1141,3 +1141,51 @@ fn list_views_names_what_view_takes() {
     );
     assert!(text.contains("--view \"t_c = 26\""), "{text}");
 }
+
+/// `--camera-t auto:OBJECT` picks the time the object is seen crossing
+/// the line of sight; a render in which a moving object is nowhere in view
+/// says so, with that hint; a word that is neither a time nor `auto` is
+/// refused with what is expected.
+#[test]
+fn camera_time_auto_finds_a_moving_object_and_an_empty_render_is_flagged() {
+    let out_png = std::env::temp_dir().join(format!("vstf-auto-{}.png", std::process::id()));
+    let run = |t: &str| {
+        vstf()
+            .args([
+                "render",
+                "hornof-2025",
+                "--width",
+                "64",
+                "--height",
+                "48",
+                "--spp",
+                "1",
+                "--camera-t",
+                t,
+                "--out",
+            ])
+            .arg(&out_png)
+            .output()
+            .unwrap()
+    };
+    let early = run("0");
+    let err = String::from_utf8_lossy(&early.stderr);
+    assert!(early.status.success(), "{err}");
+    assert!(
+        err.contains("warning: \"cube front\" is out of view")
+            && err.contains("try --camera-t \"auto:cube front\""),
+        "{err}"
+    );
+    let auto = run("auto:cube front");
+    let err = String::from_utf8_lossy(&auto.stderr);
+    assert!(err.contains("t_c = 5,"), "{err}");
+    assert!(
+        !err.contains("\"cube front\" is out of view")
+            && !err.contains("\"cube front\" is not in view"),
+        "{err}"
+    );
+    let bad = run("soon");
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("`auto:OBJECT`"));
+    std::fs::remove_file(&out_png).ok();
+}

@@ -37,9 +37,10 @@ pub struct ViewArgs {
     /// contracted objects as they are at t_c).
     #[arg(long)]
     pub lorentz: bool,
-    /// Camera lab time, t.units.
-    #[arg(long, allow_hyphen_values = true)]
-    pub camera_t: Option<f64>,
+    /// Camera lab time, t.units; `auto`: the light time from the looked-at
+    /// point; `auto:OBJECT`: when OBJECT is seen crossing the line of sight.
+    #[arg(long, allow_hyphen_values = true, value_parser = str::parse::<vstf::aim::CameraTime>)]
+    pub camera_t: Option<vstf::aim::CameraTime>,
     /// Image width, pixels.
     #[arg(long)]
     pub width: Option<u32>,

@@ -28,6 +28,9 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
     let (fixture, view, db) = prepare(root, &fixture, &view, brute_force, true)?;
     let image = vstf::run::render_with(&db, &fixture, &view)?;
     vstf::output::write_png(&out, &image.to_rgb8())?;
+    for warning in vstf::aim::out_of_view(&fixture, &view) {
+        eprintln!("warning: {warning}");
+    }
     eprintln!(
         "rendered {} ({} model{}, t_c = {}, {}x{}, {} spp, {} tetrahedra) in {:.2} s -> {}",
         fixture.name,

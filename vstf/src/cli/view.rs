@@ -13,7 +13,11 @@ impl ViewArgs {
     pub fn overrides(&self, fixture: &Fixture) -> Result<Overrides, String> {
         Ok(Overrides {
             model: model_of(self.model, self.lorentz, fixture),
-            camera_t: self.camera_t,
+            camera_t: self
+                .camera_t
+                .as_ref()
+                .map(|t| vstf::aim::resolve(fixture, t))
+                .transpose()?,
             width: self.width,
             height: self.height,
             spp: self.spp,
