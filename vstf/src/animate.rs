@@ -91,14 +91,14 @@ pub fn frame_path(dir: &Path, i: usize) -> PathBuf {
 
 /// What an animation's frames are, written beside them so that a resumed
 /// run only keeps frames of the same animation.
-pub fn manifest(f: &Fixture, view: &View, times: &[f64]) -> String {
+pub fn manifest(f: &Fixture, view: &View, times: &[f64], label: bool) -> String {
     use std::hash::{Hash, Hasher};
     // Everything a frame depends on: the scene as loaded, the camera and
     // every render setting (colour effects, shutter, seed, depth, shadows).
     let mut h = std::collections::hash_map::DefaultHasher::new();
     format!("{:?}{:?}{:?}", f.spec, view.camera, view.settings).hash(&mut h);
     format!(
-        "vstf animation\nfixture {}\nmodel {}\nsize {}x{}\nspp {}\nscene and settings {:016x}\ntimes {:?}\n",
+        "vstf animation\nfixture {}\nmodel {}\nsize {}x{}\nspp {}\nscene and settings {:016x}\ntimes {:?}\nlabelled {label}\n",
         f.file.display(),
         view.model,
         view.camera.width,
@@ -138,19 +138,20 @@ fn frame_is_whole(dir: &Path, i: usize, view: &View) -> bool {
 /// Renders every frame with one database, calling `done` after each; stops
 /// early (returning how many frames were finished) when `stop` is raised.
 /// With `resume`, frames already written whole by a run of the same
-/// animation (its manifest matches) are kept, not rendered again.
+/// animation (its manifest matches) are kept, not rendered again. With
+/// `label`, each frame carries its camera time ("t = 12.5") at its top left.
 pub fn render_frames(
     f: &Fixture,
     view: &View,
     db: &Database,
     times: &[f64],
     out: &Output,
-    (stop, resume): (&AtomicBool, bool),
+    (stop, resume, label): (&AtomicBool, bool, bool),
     mut done: impl FnMut(usize),
 ) -> Result<usize, String> {
     let dir = out.frames_dir();
     std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    let wanted = manifest(f, view, times);
+    let wanted = manifest(f, view, times, label);
     let mpath = manifest_path(&dir);
     if resume {
         match std::fs::read_to_string(&mpath) {
@@ -188,11 +189,21 @@ pub fn render_frames(
             camera_t: t,
             ..*view
         };
-        let img = crate::run::render_with(db, f, &frame)?.to_rgb8();
+        let mut img = crate::run::render_with(db, f, &frame)?.to_rgb8();
+        if label {
+            let scale = crate::label::scale_for(img.width());
+            crate::label::draw(&mut img, &format!("t = {}", time_label(t)), scale);
+        }
         write_png(&frame_path(&dir, i), &img)?;
         done(i + 1);
     }
     Ok(times.len())
+}
+
+/// A camera time for a frame's label: at most 4 decimals, trailing zeros dropped.
+pub fn time_label(t: f64) -> String {
+    let s = format!("{t:.4}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 fn load_frames(dir: &Path, n: usize) -> Result<Vec<RgbImage>, String> {

@@ -20,6 +20,7 @@ pub mod emulator;
 pub mod fixture;
 pub mod fuzz;
 pub mod golden;
+pub mod label;
 pub mod measure;
 pub mod oracle;
 pub mod output;

@@ -1189,3 +1189,92 @@ fn camera_time_auto_finds_a_moving_object_and_an_empty_render_is_flagged() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("`auto:OBJECT`"));
     std::fs::remove_file(&out_png).ok();
 }
+
+/// `render --models all`: the three models side by side, each panel
+/// labelled (white text at its top left) and each different.
+#[test]
+fn render_models_all_puts_three_labelled_panels_side_by_side() {
+    let out_png = std::env::temp_dir().join(format!("vstf-models-{}.png", std::process::id()));
+    let out = vstf()
+        .args([
+            "render", "teaser", "--models", "all", "--width", "96", "--height", "54", "--spp", "1",
+            "--out",
+        ])
+        .arg(&out_png)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let img = image::open(&out_png).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (3 * 96 + 8, 54));
+    let panel = |k: u32| image::imageops::crop_imm(&img, k * 100, 0, 96, 54).to_image();
+    let white = |p: &image::RgbImage| {
+        p.enumerate_pixels()
+            .filter(|(x, y, c)| *x < 80 && *y < 12 && c.0 == [255, 255, 255])
+            .count()
+    };
+    for k in 0..3 {
+        assert!(white(&panel(k)) > 30, "panel {k} has no label");
+    }
+    assert_ne!(
+        panel(0).into_raw(),
+        panel(2).into_raw(),
+        "infinite and relativistic panels alike"
+    );
+    let err = vstf()
+        .args([
+            "render",
+            "teaser",
+            "--models",
+            "all",
+            "--model",
+            "classical",
+            "--out",
+        ])
+        .arg(&out_png)
+        .output()
+        .unwrap();
+    assert!(
+        !err.status.success(),
+        "--models all with --model was accepted"
+    );
+    std::fs::remove_file(&out_png).ok();
+}
+
+/// `animate --label` writes each frame's camera time on it; the frames
+/// differ from unlabelled ones only in the label's corner.
+#[test]
+fn animate_label_marks_each_frame_with_its_time() {
+    let dir = std::env::temp_dir().join(format!("vstf-label-{}", std::process::id()));
+    let frames = |d: &std::path::Path, label: bool| {
+        let mut cmd = vstf();
+        cmd.args([
+            "animate", "flange", "--frames", "940..941", "--width", "64", "--height", "48",
+            "--spp", "1", "--out",
+        ])
+        .arg(d);
+        if label {
+            cmd.arg("--label");
+        }
+        assert!(cmd.status().unwrap().success());
+        image::open(d.join("frame-00001.png")).unwrap().to_rgb8()
+    };
+    let (plain, labelled) = (
+        frames(&dir.join("plain"), false),
+        frames(&dir.join("labelled"), true),
+    );
+    let changed: Vec<(u32, u32)> = plain
+        .enumerate_pixels()
+        .filter(|(x, y, p)| labelled.get_pixel(*x, *y) != *p)
+        .map(|(x, y, _)| (x, y))
+        .collect();
+    assert!(changed.len() > 20, "no label drawn");
+    assert!(
+        changed.iter().all(|&(x, y)| x < 64 && y < 12),
+        "{changed:?}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -19,6 +19,7 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
         out,
         fps,
         resume,
+        label,
         view,
     } = args;
     if view.camera_t.is_some() {
@@ -63,7 +64,7 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
         &db,
         &times,
         &output,
-        (&stop, resume),
+        (&stop, resume, label),
         |n| bar.set_position(n as u64),
     )?;
     bar.finish_and_clear();

@@ -19,6 +19,13 @@ pub struct Cli {
     pub command: Command,
 }
 
+// What `render --models` names.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum ModelsArg {
+    /// Infinite, classical and relativistic, side by side.
+    All,
+}
+
 // What `--model` names: the light-speed model to render with.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
 pub enum ModelArg {
@@ -123,6 +130,11 @@ pub struct RenderArgs {
     /// Output PNG.
     #[arg(long)]
     pub out: PathBuf,
+    /// `all`: the three models side by side, labelled, each at its own
+    /// camera time (infinite at the time the others' light left the
+    /// looked-at point).
+    #[arg(long, value_enum, conflicts_with_all = ["model", "view"])]
+    pub models: Option<ModelsArg>,
     #[command(flatten)]
     pub view: ViewArgs,
     /// Test every tetrahedron for every ray (no acceleration structure).
@@ -269,6 +281,9 @@ pub struct AnimateArgs {
     /// (its frames folder), and render only the rest.
     #[arg(long)]
     pub resume: bool,
+    /// Write each frame's camera time on it ("t = 12.5", top left).
+    #[arg(long)]
+    pub label: bool,
     #[command(flatten)]
     pub view: ViewArgs,
 }

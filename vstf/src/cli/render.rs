@@ -1,6 +1,6 @@
 //! `vstf render`: one view of a fixture to a PNG.
 
-use super::args::RenderArgs;
+use super::args::{ModelArg, RenderArgs, ViewArgs};
 use super::view::prepare;
 use renderer::LightSpeed;
 use std::path::Path;
@@ -11,6 +11,7 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
     let RenderArgs {
         fixture,
         out,
+        models,
         view,
         brute_force,
     } = args;
@@ -23,6 +24,9 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
             "--out {}: vstf writes PNG images; name the file .png",
             out.display()
         ));
+    }
+    if models.is_some() {
+        return all_models(root, &fixture, &view, brute_force, &out);
     }
     let started = Instant::now();
     let (fixture, view, db) = prepare(root, &fixture, &view, brute_force, true)?;
@@ -45,6 +49,62 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
         view.camera.height,
         view.settings.spp,
         db.tetrahedra().len(),
+        started.elapsed().as_secs_f64(),
+        out.display()
+    );
+    Ok(())
+}
+
+/// The three models side by side, each panel labelled with its model and
+/// camera time: classical and relativistic at the camera time asked for
+/// (or the fixture's), infinite at that time less the light time from the
+/// looked-at point, so that all three show the scene as it was when the
+/// light the finite models see left the middle of the picture.
+fn all_models(
+    root: Option<&Path>,
+    name: &str,
+    args: &ViewArgs,
+    brute_force: bool,
+    out: &Path,
+) -> Result<(), String> {
+    let started = Instant::now();
+    let (fixture, base, _) = prepare(root, name, args, brute_force, false)?;
+    let camera = &fixture.spec.camera;
+    let light_time = camera.look_at.map_or(0.0, |p| p.distance(camera.position));
+    let mut panels = Vec::new();
+    for (model, t) in [
+        (ModelArg::Infinite, base.camera_t - light_time),
+        (ModelArg::Classical, base.camera_t),
+        (ModelArg::Relativistic, base.camera_t),
+    ] {
+        let one = ViewArgs {
+            model: Some(model),
+            camera_t: Some(vstf::aim::CameraTime::At(t)),
+            ..args.clone()
+        };
+        let (fixture, view, db) = prepare(root, name, &one, brute_force, true)?;
+        let mut img = vstf::run::render_with(&db, &fixture, &view)?.to_rgb8();
+        let label = format!(
+            "{}, t = {}",
+            view.model,
+            vstf::animate::time_label(view.camera_t)
+        );
+        let scale = vstf::label::scale_for(img.width());
+        vstf::label::draw(&mut img, &label, scale);
+        panels.push(img);
+    }
+    let gap = 4;
+    let (w, h) = (panels[0].width(), panels[0].height());
+    let mut sheet = image::RgbImage::new(3 * w + 2 * gap, h);
+    for (k, p) in panels.iter().enumerate() {
+        image::imageops::replace(&mut sheet, p, i64::from(k as u32 * (w + gap)), 0);
+    }
+    vstf::output::write_png(out, &sheet)?;
+    eprintln!(
+        "rendered {} in the three models ({}x{} each) in {:.2} s -> {}",
+        fixture.name,
+        w,
+        h,
         started.elapsed().as_secs_f64(),
         out.display()
     );
