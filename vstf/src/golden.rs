@@ -479,7 +479,7 @@ mod tests {
         assert_eq!((c.max_diff, c.differing), (Some(255 - 35), 1));
         assert!(
             c.to_string().starts_with(
-                "golden FAIL fixture=stage view=view max_diff=220 differing=1 allowed=fuzzy(0,0)"
+                "golden FAIL fixture=stage view=view max_diff=220 differing=1 worst_pixel=5,6 size=32x24 allowed=fuzzy(0,0)"
             ),
             "{c}"
         );
