@@ -259,7 +259,7 @@ fn a_one_pixel_change_in_a_real_render_is_caught_without_touching_golden() {
     let line = c.to_string();
     assert!(
         line.starts_with(
-            "golden FAIL fixture=flange view=frame-920 max_diff=128 differing=1 allowed=fuzzy(0,0)"
+            "golden FAIL fixture=flange view=frame-920 max_diff=128 differing=1 worst_pixel=10,10 size=240x180 allowed=fuzzy(0,0)"
         ),
         "{line}"
     );
