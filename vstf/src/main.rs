@@ -15,6 +15,7 @@ fn main() -> ExitCode {
         Command::Check(args) => cli::check::run(root, args),
         Command::Approve(args) => cli::approve::run(root, args),
         Command::Reject(args) => cli::approve::reject(root, args),
+        Command::Review => cli::review::run(root),
         Command::Debug(args) => cli::debug::run(root, args),
         Command::DebugDiff(args) => cli::debug::diff(args),
         Command::Animate(args) => cli::animate::run(root, args),

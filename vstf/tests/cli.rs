@@ -1278,3 +1278,83 @@ fn animate_label_marks_each_frame_with_its_time() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `vstf review`: each pending image shown with its change and files, and
+/// accepted, rejected or skipped by the answer read from stdin (nonsense
+/// is asked again); CI refuses it.
+#[test]
+fn review_accepts_and_rejects_one_image_at_a_time() {
+    use std::io::Write;
+    let copy = scratch("review");
+    for dir in ["fixtures", "golden"] {
+        copy_tree(&repo_root().join(dir), &copy.join(dir));
+    }
+    for view in ["frame-920", "frame-1151"] {
+        tamper(&copy.join(format!("golden/flange/{view}.png")));
+    }
+    let check = vstf()
+        .current_dir(&copy)
+        .args(["check", "flange", "--quick"])
+        .output()
+        .unwrap();
+    assert!(!check.status.success());
+    let review = |answers: &str, ci: Option<&str>| {
+        let mut cmd = vstf();
+        cmd.current_dir(&copy).arg("review").env_remove("CI");
+        if let Some(v) = ci {
+            cmd.env("CI", v);
+        }
+        let mut child = cmd
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(answers.as_bytes())
+            .ok(); // a refusal exits before reading: the pipe may be closed
+        child.wait_with_output().unwrap()
+    };
+    let refused = review("a\na\n", Some("true"));
+    assert!(
+        !refused.status.success() && String::from_utf8_lossy(&refused.stderr).contains("CI set")
+    );
+    let out = review("maybe\na\nr\n", None);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains("[1/2] changed: flange / frame 1151"),
+        "{text}"
+    );
+    assert!(
+        text.contains("1 pixels differ (worst by 1)") && text.contains("diff.png"),
+        "{text}"
+    );
+    assert!(text.contains("\"maybe\": answer a, r, s or q"), "{text}");
+    assert!(
+        text.contains("review: 1 accepted, 1 rejected, 0 left pending"),
+        "{text}"
+    );
+    let golden = |v: &str| std::fs::read(copy.join(format!("golden/flange/{v}.png"))).unwrap();
+    let ours = |v: &str| std::fs::read(repo_root().join(format!("golden/flange/{v}.png"))).unwrap();
+    assert_eq!(
+        golden("frame-1151"),
+        ours("frame-1151"),
+        "the accepted render is the golden"
+    );
+    assert_ne!(
+        golden("frame-920"),
+        ours("frame-920"),
+        "the rejected change left the golden alone"
+    );
+    let again = review("", None);
+    assert!(String::from_utf8_lossy(&again.stdout).contains("nothing pending"));
+    std::fs::remove_dir_all(&copy).ok();
+}

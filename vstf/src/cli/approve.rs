@@ -62,7 +62,7 @@ pub fn reject(root: Option<&Path>, args: RejectArgs) -> Result<(), String> {
 
 /// Whether the `CI` variable says this runs under CI: set, non-empty and
 /// not `0` or `false`.
-fn ci_is_set(value: Option<&str>) -> bool {
+pub(super) fn ci_is_set(value: Option<&str>) -> bool {
     value.is_some_and(|v| {
         let v = v.trim();
         !(v.is_empty() || v == "0" || v.eq_ignore_ascii_case("false"))

@@ -88,6 +88,9 @@ pub enum Command {
     Approve(ApproveArgs),
     /// Reject pending images: drop them, leaving the golden images as they are.
     Reject(RejectArgs),
+    /// Review the pending images one at a time: accept, reject or skip each
+    /// (answers read from stdin). Refused when CI is set.
+    Review,
     /// Print every variable along one pixel's rays, or log a region's pixels
     /// as JSON lines.
     Debug(DebugArgs),

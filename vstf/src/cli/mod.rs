@@ -13,6 +13,7 @@ pub mod fuzz;
 pub mod init;
 pub mod list;
 pub mod render;
+pub mod review;
 pub mod view;
 
 /// Ends the process quietly when its output pipe is closed (`vstf list |
