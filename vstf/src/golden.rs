@@ -36,6 +36,8 @@ pub struct Comparison {
     pub worst_at: Option<(u32, u32)>,
     /// The size the view was rendered at.
     pub size: (u32, u32),
+    /// The golden image compared with, when there is one.
+    pub golden: Option<PathBuf>,
 }
 
 impl fmt::Display for Comparison {
@@ -303,6 +305,7 @@ impl Store {
             pending,
             worst_at: measured.and_then(|m| m.worst_at),
             size: actual.dimensions(),
+            golden: expected.is_some().then_some(path),
         })
     }
 

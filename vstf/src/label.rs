@@ -110,13 +110,18 @@ pub fn drawable(text: &str) -> bool {
 /// Draws `text` at the top left of `img`, each font pixel `scale` image
 /// pixels, white on a dark box; characters the font lacks are skipped.
 pub fn draw(img: &mut RgbImage, text: &str, scale: u32) {
+    draw_at(img, text, (0, 0), scale);
+}
+
+/// [`draw`] with the box's top left corner at `(x, y)`.
+pub fn draw_at(img: &mut RgbImage, text: &str, (bx, by): (u32, u32), scale: u32) {
     let (w, h) = img.dimensions();
     let chars: Vec<[&str; 7]> = text.chars().filter_map(glyph).collect();
     let pad = scale * 2;
-    let box_w = (chars.len() as u32 * 6 * scale + 2 * pad).min(w);
-    let box_h = (7 * scale + 2 * pad).min(h);
-    for y in 0..box_h {
-        for x in 0..box_w {
+    let box_w = chars.len() as u32 * 6 * scale + 2 * pad;
+    let box_h = 7 * scale + 2 * pad;
+    for y in by..(by + box_h).min(h) {
+        for x in bx..(bx + box_w).min(w) {
             let p = img.get_pixel_mut(x, y);
             *p = Rgb(p.0.map(|c| c / 4));
         }
@@ -127,8 +132,8 @@ pub fn draw(img: &mut RgbImage, text: &str, scale: u32) {
                 if bit != '#' {
                     continue;
                 }
-                let x0 = pad + (k as u32 * 6 + col as u32) * scale;
-                let y0 = pad + row as u32 * scale;
+                let x0 = bx + pad + (k as u32 * 6 + col as u32) * scale;
+                let y0 = by + pad + row as u32 * scale;
                 for dy in 0..scale {
                     for dx in 0..scale {
                         if x0 + dx < w && y0 + dy < h {

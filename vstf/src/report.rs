@@ -179,18 +179,49 @@ pub fn check_json(rows: &[Row], goldens: &[&crate::golden::Comparison]) -> Strin
     serde_json::to_string_pretty(&value).expect("rows serialise")
 }
 
-/// Draws small crosses at the markers on a copy of the image.
+/// Draws each marker on a copy of the image as a cross in the colour that
+/// contrasts with the pixels under it (black on light, white on dark),
+/// outlined in the other, and numbered from 1 beside it.
 pub fn with_markers(img: &image::RgbImage, markers: &[(f64, f64)]) -> image::RgbImage {
     let mut out = img.clone();
-    for &(x, y) in markers {
+    let (w, h) = (i64::from(out.width()), i64::from(out.height()));
+    let inside = |x: i64, y: i64| x >= 0 && y >= 0 && x < w && y < h;
+    for (k, &(x, y)) in markers.iter().enumerate() {
         let (cx, cy) = (x.floor() as i64, y.floor() as i64);
-        for d in -3i64..=3 {
-            for (px, py) in [(cx + d, cy), (cx, cy + d)] {
-                if px >= 0 && py >= 0 && (px as u32) < out.width() && (py as u32) < out.height() {
-                    out.put_pixel(px as u32, py as u32, image::Rgb([255, 255, 0]));
+        if !inside(cx, cy) {
+            continue;
+        }
+        let under = img.get_pixel(cx as u32, cy as u32).0;
+        let luma = 0.2126 * f64::from(under[0])
+            + 0.7152 * f64::from(under[1])
+            + 0.0722 * f64::from(under[2]);
+        let (ink, rim) = if luma > 110.0 {
+            (image::Rgb([0, 0, 0]), image::Rgb([255, 255, 255]))
+        } else {
+            (image::Rgb([255, 255, 255]), image::Rgb([0, 0, 0]))
+        };
+        let arm = |d: i64| [(cx + d, cy), (cx, cy + d)];
+        for d in -4i64..=4 {
+            for (px, py) in arm(d) {
+                for (ox, oy) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
+                    if inside(px + ox, py + oy) {
+                        out.put_pixel((px + ox) as u32, (py + oy) as u32, rim);
+                    }
                 }
             }
         }
+        for d in -3i64..=3 {
+            for (px, py) in arm(d) {
+                if inside(px, py) {
+                    out.put_pixel(px as u32, py as u32, ink);
+                }
+            }
+        }
+        let at = (
+            (cx + 5).clamp(0, w - 1) as u32,
+            (cy + 5).clamp(0, h - 1) as u32,
+        );
+        crate::label::draw_at(&mut out, &(k + 1).to_string(), at, 1);
     }
     out
 }
@@ -201,69 +232,178 @@ fn esc(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// Writes `dir/index.html` with each fixture's views (plain and with the
-/// expected points marked) and its rows, failing fixtures and rows first.
+const STYLE: &str = "body{font-family:sans-serif;margin:2em;max-width:110em}\
+table{border-collapse:collapse}td,th{padding:2px 8px;border-bottom:1px solid #ccc;text-align:left}\
+.FAIL{background:#fdd}.pass{background:#dfd}img{image-rendering:pixelated;max-width:100%}\
+figure{display:inline-block;margin:0 1em 1em 0;vertical-align:top}figcaption{font-size:90%}\
+.fixture{display:flex;flex-wrap:wrap;gap:1.5em;align-items:flex-start}.views{flex:1 1 60em}.rows{flex:1 1 30em}\
+nav li{margin:2px 0}h1.FAIL,h1.pass{padding:4px 8px}";
+
+/// Writes `index.html` and its images into `dir`: a static page that opens
+/// from disk. Its title says pass or FAIL; a summary (counts, the failing
+/// fixtures first, linked) and a table of contents come first; each
+/// fixture then shows its views, each with labelled images (the render, the
+/// render with the expected points numbered, the golden image and, where
+/// they differ, the diff), beside its rows.
 pub fn html(dir: &Path, reports: &[FixtureReport]) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let mut order: Vec<&FixtureReport> = reports.iter().collect();
     order.sort_by_key(|r| r.passed());
-    let mut h = String::from(
-        "<!doctype html><meta charset=utf-8><title>VSTF report</title><style>\
-         body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}td,th{padding:2px 8px;border-bottom:1px solid #ccc;text-align:left}\
-         .FAIL{background:#fdd}.pass{background:#dfd}img{margin:4px;image-rendering:pixelated}figure{display:inline-block;margin:0 1em 1em 0}</style>\
-         <h1>VSTF report</h1><p>Markers (yellow crosses) are where first-principles physics puts the marked points, computed without the ray tracer. \
-         A paper figure marked * differs from first principles by more than the tolerance (see docs/physics.md).</p>",
-    );
+    let mut h = String::new();
+    summary(&mut h, &order);
     for r in order {
-        let failed = r.rows.iter().filter(|x| !x.pass).count();
-        let _ = write!(
-            h,
-            "<h2>{} {}</h2><p>{}</p>",
-            esc(&r.fixture),
-            if failed > 0 {
-                format!("— {failed} failing")
-            } else {
-                String::new()
-            },
-            esc(&r.description)
-        );
-        for v in &r.views {
-            let base = format!("{}-{}", slug(&r.fixture), slug(&v.name));
-            crate::output::write_png(&dir.join(format!("{base}.png")), &v.image)?;
-            crate::output::write_png(
-                &dir.join(format!("{base}-markers.png")),
-                &with_markers(&v.image, &v.markers),
-            )?;
-            let _ = write!(
-                h,
-                "<figure><img src=\"{base}.png\" width=480><img src=\"{base}-markers.png\" width=480><figcaption>{}</figcaption></figure>",
-                esc(&v.name)
-            );
-        }
-        let _ = write!(h, "<table><tr><th>quantity<th>measured<th>expected<th>paper<th>tolerance<th>unit<th>result</tr>");
-        let mut rows: Vec<&Row> = r.rows.iter().collect();
-        rows.sort_by_key(|x| x.pass);
-        for x in rows {
-            let res = if x.pass { "pass" } else { "FAIL" };
-            let paper = x.paper.map_or("-".into(), |p| {
-                format!("{}{}", num(p), if x.paper_disagrees() { " *" } else { "" })
-            });
-            let _ = write!(
-                h,
-                "<tr class={res}><td>{}<td>{}<td>{}<td>{}<td>±{}<td>{}<td>{res}</tr>",
-                esc(&x.quantity),
-                num(x.measured),
-                num(x.expected),
-                paper,
-                num(x.tolerance),
-                esc(x.unit.as_str())
-            );
-        }
-        h.push_str("</table>");
-        golden_section(&mut h, dir, &r.goldens)?;
+        fixture_section(&mut h, dir, r)?;
     }
     crate::output::write_atomic(&dir.join("index.html"), h.as_bytes())
         .map_err(|e| format!("cannot write report: {e}"))
+}
+
+/// The page's head: the verdict in the title, the counts, the failing
+/// fixtures linked, and the table of contents.
+fn summary(h: &mut String, order: &[&FixtureReport]) {
+    let failing: Vec<&&FixtureReport> = order.iter().filter(|r| !r.passed()).collect();
+    let rows: Vec<&Row> = order.iter().flat_map(|r| &r.rows).collect();
+    let goldens: Vec<&Comparison> = order.iter().flat_map(|r| &r.goldens).collect();
+    let verdict = if failing.is_empty() {
+        "pass".to_string()
+    } else {
+        format!("FAIL ({} of {} fixtures)", failing.len(), order.len())
+    };
+    let class = if failing.is_empty() { "pass" } else { "FAIL" };
+    let _ = write!(
+        h,
+        "<!doctype html><meta charset=utf-8><title>VSTF report: {verdict}</title><style>{STYLE}</style>\
+         <h1 class={class}>VSTF report: {verdict}</h1><p>{} fixtures; rows {} passed, {} failed; golden images {} passed, {} failed.</p>",
+        order.len(),
+        rows.iter().filter(|r| r.pass).count(),
+        rows.iter().filter(|r| !r.pass).count(),
+        goldens.iter().filter(|g| g.pass).count(),
+        goldens.iter().filter(|g| !g.pass).count(),
+    );
+    if !failing.is_empty() {
+        let links: Vec<String> = failing
+            .iter()
+            .map(|r| format!("<a href=\"#{}\">{}</a>", slug(&r.fixture), esc(&r.fixture)))
+            .collect();
+        let _ = write!(h, "<p class=FAIL>Failing: {}</p>", links.join(", "));
+    }
+    h.push_str("<nav><h2>Contents</h2><ol>");
+    for r in order {
+        let ok = |n: usize, of: usize| format!("{n}/{of}");
+        let _ = write!(
+            h,
+            "<li class={}><a href=\"#{}\">{}</a>: rows {}, golden images {}</li>",
+            if r.passed() { "pass" } else { "FAIL" },
+            slug(&r.fixture),
+            esc(&r.fixture),
+            ok(r.rows.iter().filter(|x| x.pass).count(), r.rows.len()),
+            ok(r.goldens.iter().filter(|g| g.pass).count(), r.goldens.len()),
+        );
+    }
+    h.push_str("</ol></nav><p>The numbered crosses are where first-principles physics puts the points the checks read, computed without the ray tracer, drawn black on light pixels and white on dark ones. \
+        A paper figure marked * differs from first principles by more than the tolerance (see docs/physics.md).</p>");
+}
+
+/// One fixture: its views with their images, beside its rows; then the
+/// failing golden comparisons with actual and expected to swap.
+fn fixture_section(h: &mut String, dir: &Path, r: &FixtureReport) -> Result<(), String> {
+    let failed = r.rows.iter().filter(|x| !x.pass).count();
+    let _ = write!(
+        h,
+        "<section id=\"{}\"><h2 class={}>{} {}</h2><p>{}</p><div class=fixture><div class=views>",
+        slug(&r.fixture),
+        if r.passed() { "pass" } else { "FAIL" },
+        esc(&r.fixture),
+        if r.passed() {
+            "— pass".to_string()
+        } else {
+            format!("— FAIL ({failed} rows)")
+        },
+        esc(&r.description)
+    );
+    for v in &r.views {
+        view_figures(h, dir, r, v)?;
+    }
+    h.push_str("</div><div class=rows>");
+    rows_table(h, r);
+    h.push_str("</div></div>");
+    golden_section(h, dir, &r.goldens)?;
+    h.push_str("</section>");
+    Ok(())
+}
+
+/// A view's images, each captioned: the render, the expected points, the
+/// golden image it was compared with, and the diff where they differ.
+fn view_figures(
+    h: &mut String,
+    dir: &Path,
+    r: &FixtureReport,
+    v: &crate::check::ViewReport,
+) -> Result<(), String> {
+    let base = format!("{}-{}", slug(&r.fixture), slug(&v.name));
+    crate::output::write_png(&dir.join(format!("{base}.png")), &v.image)?;
+    crate::output::write_png(
+        &dir.join(format!("{base}-markers.png")),
+        &with_markers(&v.image, &v.markers),
+    )?;
+    let _ = write!(h, "<h3>view {}</h3>", esc(&v.name));
+    let mut figure = |src: &str, caption: &str| {
+        let _ = write!(
+            h,
+            "<figure><img src=\"{src}\" width=360><figcaption>{caption}</figcaption></figure>"
+        );
+    };
+    figure(&format!("{base}.png"), "render");
+    figure(
+        &format!("{base}-markers.png"),
+        &format!("render, {} expected points numbered", v.markers.len()),
+    );
+    let comparison = r.goldens.iter().find(|g| g.view == v.name);
+    if let Some(golden) = comparison.and_then(|g| g.golden.as_ref()) {
+        let name = format!("{base}-golden.png");
+        std::fs::copy(golden, dir.join(&name))
+            .map_err(|e| format!("cannot copy {}: {e}", golden.display()))?;
+        figure(&name, "golden image");
+    }
+    if let Some(diff) = comparison
+        .filter(|g| !g.pass)
+        .and_then(|g| g.pending.as_ref())
+        .map(|p| p.join("diff.png"))
+    {
+        if diff.is_file() {
+            let name = format!("{base}-diff.png");
+            std::fs::copy(&diff, dir.join(&name))
+                .map_err(|e| format!("cannot copy {}: {e}", diff.display()))?;
+            figure(&name, "diff from the golden (red: differing pixels)");
+        }
+    }
+    Ok(())
+}
+
+/// The fixture's rows, failing first, each row anchored.
+fn rows_table(h: &mut String, r: &FixtureReport) {
+    h.push_str("<table><tr><th>quantity<th>measured<th>expected<th>paper<th>tolerance<th>unit<th>result</tr>");
+    let mut rows: Vec<&Row> = r.rows.iter().collect();
+    rows.sort_by_key(|x| x.pass);
+    for (k, x) in rows.into_iter().enumerate() {
+        let res = if x.pass { "pass" } else { "FAIL" };
+        let paper = x.paper.map_or("-".into(), |p| {
+            format!("{}{}", num(p), if x.paper_disagrees() { " *" } else { "" })
+        });
+        let _ = write!(
+            h,
+            "<tr class={res} id=\"{}-row-{}\"><td>{}<td>{}<td>{}<td>{}<td>±{}<td>{}<td>{res}</tr>",
+            slug(&r.fixture),
+            k + 1,
+            esc(&x.quantity),
+            num(x.measured),
+            num(x.expected),
+            paper,
+            num(x.tolerance),
+            esc(x.unit.as_str())
+        );
+    }
+    h.push_str("</table>");
 }
 
 /// Each failing golden comparison: the actual and expected images side by
@@ -316,6 +456,24 @@ fn golden_section(h: &mut String, dir: &Path, goldens: &[Comparison]) -> Result<
 mod tests {
     use super::*;
     use crate::check::Unit;
+
+    /// A marker on a light pixel is drawn black, on a dark one white, each
+    /// outlined in the other, and numbered beside it.
+    #[test]
+    fn markers_contrast_with_what_is_under_them() {
+        let mut img = image::RgbImage::from_pixel(60, 30, image::Rgb([250, 240, 20]));
+        for y in 0..30 {
+            for x in 30..60 {
+                img.put_pixel(x, y, image::Rgb([10, 10, 40]));
+            }
+        }
+        let marked = with_markers(&img, &[(10.5, 10.5), (45.5, 10.5)]);
+        assert_eq!(marked.get_pixel(12, 10).0, [0, 0, 0], "on yellow: black");
+        assert_eq!(marked.get_pixel(12, 11).0, [255, 255, 255], "its outline: white");
+        assert_eq!(marked.get_pixel(47, 10).0, [255, 255, 255], "on dark blue: white");
+        let numbered = (15..25).any(|x| (15..25).any(|y| marked.get_pixel(x, y).0 == [255, 255, 255]));
+        assert!(numbered, "no number beside the first marker");
+    }
 
     /// Long names, negative and tiny numbers and the widest unit still fit
     /// in 100 columns; the full table keeps the name whole (the control).

@@ -137,12 +137,29 @@ fn the_report_shows_images_markers_and_rows() {
     let dir = std::env::temp_dir().join(format!("vstf-report-{}", std::process::id()));
     vstf::report::html(&dir, reports()).unwrap();
     let html = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    // A passing run says so in its title, with the counts and contents.
+    assert!(
+        html.contains("<title>VSTF report: pass</title>"),
+        "{}",
+        &html[..300]
+    );
+    assert!(html.contains("<nav><h2>Contents</h2>"));
     for r in reports() {
+        let anchor = vstf::golden::slug(&r.fixture);
         assert!(
-            html.contains(&format!("<h2>{}", r.fixture)),
-            "{} missing",
+            html.contains(&format!("<section id=\"{anchor}\">"))
+                && html.contains(&format!("href=\"#{anchor}\"")),
+            "{} missing or not in the contents",
             r.fixture
         );
+        for v in &r.views {
+            assert!(
+                html.contains(&format!("<h3>view {}</h3>", v.name)),
+                "{} {}",
+                r.fixture,
+                v.name
+            );
+        }
         for v in &r.views {
             assert!(
                 !v.markers.is_empty(),
@@ -176,7 +193,47 @@ fn the_report_shows_images_markers_and_rows() {
         })
         .count();
     assert!(pngs >= 2 * reports().iter().map(|r| r.views.len()).sum::<usize>());
+    assert!(html.contains("golden image"), "no golden images shown");
     std::fs::remove_dir_all(&dir).ok();
+    // A failing run says FAIL in its title and lists the failing fixture first.
+    let mut failing: Vec<FixtureReport> = reports().iter().take(2).map(copy_of).collect();
+    failing[1].rows[0].pass = false;
+    let dir = std::env::temp_dir().join(format!("vstf-report-fail-{}", std::process::id()));
+    vstf::report::html(&dir, &failing).unwrap();
+    let html = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    let name = &failing[1].fixture;
+    assert!(
+        html.contains("<title>VSTF report: FAIL (1 of 2 fixtures)</title>"),
+        "{}",
+        &html[..300]
+    );
+    assert!(html.contains(&format!(
+        "<p class=FAIL>Failing: <a href=\"#{}\">{name}</a></p>",
+        vstf::golden::slug(name)
+    )));
+    let first = html.find("<section id=").unwrap();
+    assert!(html[first..].starts_with(&format!("<section id=\"{}\">", vstf::golden::slug(name))));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A report's copy (reports hold images and cannot be cloned wholesale).
+fn copy_of(r: &FixtureReport) -> FixtureReport {
+    FixtureReport {
+        fixture: r.fixture.clone(),
+        description: r.description.clone(),
+        views: r
+            .views
+            .iter()
+            .map(|v| vstf::check::ViewReport {
+                name: v.name.clone(),
+                image: v.image.clone(),
+                markers: v.markers.clone(),
+            })
+            .collect(),
+        rows: r.rows.clone(),
+        goldens: r.goldens.clone(),
+        declared_views: r.declared_views.clone(),
+    }
 }
 
 /// Mutation: the flange rendered 0.01 l.units to the right of where its
