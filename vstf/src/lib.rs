@@ -27,6 +27,7 @@ pub mod output;
 pub mod project;
 pub mod report;
 pub mod run;
+pub mod serve;
 
 pub use budget::Budget;
 pub use check::{Effort, FixtureReport, Row, Unit};

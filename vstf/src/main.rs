@@ -21,6 +21,7 @@ fn main() -> ExitCode {
         Command::Animate(args) => cli::animate::run(root, args),
         Command::Bench { quick } => cli::bench::run(root, quick),
         Command::List { views } => cli::list::run(root, views),
+        Command::Serve { port } => cli::serve::run(root, port),
         Command::Init(args) => cli::init::run(args),
         Command::Fuzz(args) => cli::fuzz::run(root, args),
     };

@@ -469,9 +469,18 @@ mod tests {
         }
         let marked = with_markers(&img, &[(10.5, 10.5), (45.5, 10.5)]);
         assert_eq!(marked.get_pixel(12, 10).0, [0, 0, 0], "on yellow: black");
-        assert_eq!(marked.get_pixel(12, 11).0, [255, 255, 255], "its outline: white");
-        assert_eq!(marked.get_pixel(47, 10).0, [255, 255, 255], "on dark blue: white");
-        let numbered = (15..25).any(|x| (15..25).any(|y| marked.get_pixel(x, y).0 == [255, 255, 255]));
+        assert_eq!(
+            marked.get_pixel(12, 11).0,
+            [255, 255, 255],
+            "its outline: white"
+        );
+        assert_eq!(
+            marked.get_pixel(47, 10).0,
+            [255, 255, 255],
+            "on dark blue: white"
+        );
+        let numbered =
+            (15..25).any(|x| (15..25).any(|y| marked.get_pixel(x, y).0 == [255, 255, 255]));
         assert!(numbered, "no number beside the first marker");
     }
 

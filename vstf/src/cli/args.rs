@@ -107,6 +107,14 @@ pub enum Command {
         #[arg(long)]
         quick: bool,
     },
+    /// Serve a local page (127.0.0.1 only) for looking at every view:
+    /// render, golden and diff, flip, approve and reject, camera-time and
+    /// speed sliders, a model switch, and a pixel's debug variables on a click.
+    Serve {
+        /// The port (0: any free one; the address is printed).
+        #[arg(long, default_value_t = 8117)]
+        port: u16,
+    },
     /// List the fixtures in fixtures/.
     List {
         /// Also list each fixture's declared views (what `--view` takes).

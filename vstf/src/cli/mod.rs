@@ -14,6 +14,7 @@ pub mod init;
 pub mod list;
 pub mod render;
 pub mod review;
+pub mod serve;
 pub mod view;
 
 /// Ends the process quietly when its output pipe is closed (`vstf list |

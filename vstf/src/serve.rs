@@ -1,0 +1,361 @@
+//! `vstf serve`: a local page for looking at a project's views, bound to
+//! 127.0.0.1 only. Every view of every fixture, its golden and pending
+//! images, a flip between render and golden, approve and reject, sliders
+//! for the camera time and (with one moving object) its speed, a model
+//! switch, and a click on a pixel for its debug variables (the functions
+//! `vstf debug` runs). Frames render on demand; each scene's database is
+//! built once and kept. The page has no external assets: it works offline.
+
+use crate::fixture::{Fixture, Overrides, View};
+use crate::golden::{slug, Store};
+use crate::project::Project;
+use crate::Budget;
+use glam::DVec3;
+use renderer::{Database, Model, Motion, Traversal};
+use std::collections::HashMap;
+use std::io::Cursor;
+use std::sync::{Arc, Mutex};
+use tiny_http::{Header, Method, Request, Response, Server};
+
+/// The page (HTML, CSS and script in one file).
+const PAGE: &str = include_str!("serve.html");
+
+/// What a render request asks for: a declared view, at a camera time and
+/// in a model, with the moving object's speed scaled.
+#[derive(Clone, Debug, PartialEq)]
+struct Frame {
+    fixture: String,
+    view: String,
+    t: Option<f64>,
+    model: Option<Model>,
+    speed: f64,
+}
+
+type Cache = HashMap<(String, String, bool, u64), Arc<(Fixture, Database)>>;
+
+/// The server's state: the project and the databases built so far.
+pub struct Site {
+    project: Project,
+    databases: Mutex<Cache>,
+}
+
+fn query(url: &str) -> HashMap<String, String> {
+    let q = url.split_once('?').map_or("", |(_, q)| q);
+    q.split('&')
+        .filter_map(|kv| kv.split_once('='))
+        .map(|(k, v)| (decode(k), decode(v)))
+        .collect()
+}
+
+/// Percent-decoding of a query component (`+` is a space; a `%` not
+/// followed by two hex digits stays as it is).
+fn decode(s: &str) -> String {
+    let b = s.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let hex = b
+            .get(i + 1..i + 3)
+            .and_then(|h| std::str::from_utf8(h).ok())
+            .and_then(|h| u8::from_str_radix(h, 16).ok());
+        match (b[i], hex) {
+            (b'+', _) => out.push(b' '),
+            (b'%', Some(v)) => {
+                out.push(v);
+                i += 2;
+            }
+            (c, _) => out.push(c),
+        }
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+fn model_named(s: &str) -> Option<Model> {
+    match s {
+        "infinite" => Some(Model::INFINITE),
+        "classical" => Some(Model::CLASSICAL),
+        "relativistic" => Some(Model::RELATIVISTIC),
+        _ => None,
+    }
+}
+
+impl Frame {
+    fn of(q: &HashMap<String, String>) -> Result<Frame, String> {
+        let get = |k: &str| q.get(k).ok_or_else(|| format!("missing {k}"));
+        let number = |k: &str| -> Result<Option<f64>, String> {
+            match q.get(k).filter(|v| !v.is_empty()) {
+                None => Ok(None),
+                Some(v) => v
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|x| x.is_finite())
+                    .map(Some)
+                    .ok_or_else(|| format!("{k}={v}: not a number")),
+            }
+        };
+        let model = match q.get("model").map(String::as_str) {
+            None | Some("") | Some("view") => None,
+            Some(m) => Some(
+                model_named(m)
+                    .ok_or_else(|| format!("model={m}: infinite, classical or relativistic"))?,
+            ),
+        };
+        Ok(Frame {
+            fixture: get("fixture")?.clone(),
+            view: get("view")?.clone(),
+            t: number("t")?,
+            model,
+            speed: number("speed")?.unwrap_or(1.0),
+        })
+    }
+}
+
+/// The one uniformly moving object of a fixture, if it has exactly one.
+pub fn single_mover(f: &Fixture) -> Option<usize> {
+    let movers: Vec<usize> = f
+        .scene
+        .objects
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| o.motion.velocity().is_some_and(|v| v != DVec3::ZERO))
+        .map(|(i, _)| i)
+        .collect();
+    (movers.len() == 1).then(|| movers[0])
+}
+
+/// The fixture with its single moving object's velocity scaled by `k`
+/// (its start event kept).
+fn with_speed(f: &Fixture, k: f64) -> Result<Fixture, String> {
+    if k == 1.0 {
+        return Ok(f.clone());
+    }
+    let i =
+        single_mover(f).ok_or("the speed slider needs a fixture with exactly one moving object")?;
+    let mut f = f.clone();
+    match &mut f.scene.objects[i].motion {
+        Motion::Extrusion { extrusion, .. } => extrusion.x *= k,
+        Motion::Velocity { velocity, .. } => *velocity *= k,
+        _ => return Err("only uniform motion can be sped up".into()),
+    }
+    Ok(f)
+}
+
+impl Site {
+    /// The site of `project`.
+    pub fn new(project: Project) -> Site {
+        Site {
+            project,
+            databases: Mutex::new(HashMap::new()),
+        }
+    }
+
+    fn store(&self) -> Store {
+        self.project.store()
+    }
+
+    /// The fixture, view and database of a frame (the database built once
+    /// per fixture, view, Lorentz setting and speed).
+    fn prepare(&self, fr: &Frame) -> Result<(Arc<(Fixture, Database)>, View), String> {
+        let loaded = self
+            .project
+            .load_within(&fr.fixture, &Budget::DEFAULT)
+            .map_err(|e| e.to_string())?;
+        let (fixture, golden) = crate::check::declared::golden_view(&loaded, &fr.view)?;
+        let fixture = with_speed(&fixture, fr.speed)?;
+        let model = fr.model.unwrap_or(golden.model);
+        let overrides = Overrides {
+            model: Some(model),
+            camera_t: Some(fr.t.unwrap_or(golden.camera_t)),
+            width: Some(golden.camera.width),
+            height: Some(golden.camera.height),
+            spp: Some(golden.settings.spp),
+            doppler: golden.settings.effects.doppler,
+            searchlight: golden.settings.effects.searchlight,
+        };
+        let view = crate::run::view(&fixture, &overrides)?;
+        let key = (
+            fr.fixture.clone(),
+            fr.view.clone(),
+            model.lorentz,
+            fr.speed.to_bits(),
+        );
+        let mut cache = self
+            .databases
+            .lock()
+            .map_err(|_| "the database cache is poisoned")?;
+        let entry = match cache.get(&key) {
+            Some(e) => e.clone(),
+            None => {
+                let db = crate::run::database(&fixture, model.lorentz, Traversal::Bvh)?;
+                let e = Arc::new((fixture, db));
+                cache.insert(key, e.clone());
+                e
+            }
+        };
+        Ok((entry, view))
+    }
+
+    fn render(&self, fr: &Frame) -> Result<Vec<u8>, String> {
+        let (entry, view) = self.prepare(fr)?;
+        let img = crate::run::render_with(&entry.1, &entry.0, &view)?.to_rgb8();
+        let mut png = Vec::new();
+        img.write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png)
+            .map_err(|e| e.to_string())?;
+        Ok(png)
+    }
+
+    fn debug(&self, fr: &Frame, (x, y): (u32, u32)) -> Result<String, String> {
+        let (entry, view) = self.prepare(fr)?;
+        let mut log = crate::debug::trace_pixel(&entry.0, &view, &entry.1, x, y)?;
+        log.drop_candidates();
+        Ok(crate::debug::describe(&log))
+    }
+
+    /// Every fixture with its declared views, each with whether it has a
+    /// golden and a pending image, and the view's camera time; and whether
+    /// the fixture has one moving object (the speed slider).
+    fn fixtures(&self) -> serde_json::Value {
+        let store = self.store();
+        let list: Vec<serde_json::Value> = self
+            .project
+            .fixture_names()
+            .into_iter()
+            .filter_map(|name| {
+                let f = self.project.load_within(&name, &Budget::DEFAULT).ok()?;
+                let views: Vec<serde_json::Value> = f
+                    .spec
+                    .views
+                    .iter()
+                    .map(|v| {
+                        serde_json::json!({
+                            "name": v.name,
+                            "t": v.t.unwrap_or(f.spec.camera.t),
+                            "golden": store.golden_path(&name, &v.name).is_file(),
+                            "pending": store.pending_dir(&name, &v.name).join("actual.png").is_file(),
+                        })
+                    })
+                    .collect();
+                Some(serde_json::json!({"name": name, "views": views, "one_mover": single_mover(&f).is_some()}))
+            })
+            .collect();
+        serde_json::Value::Array(list)
+    }
+
+    /// A golden or pending image of a view, as PNG bytes.
+    fn image(&self, fixture: &str, view: &str, kind: &str) -> Result<Vec<u8>, String> {
+        let store = self.store();
+        let path = match kind {
+            "golden" => store.golden_path(fixture, view),
+            "actual" | "expected" | "diff" => {
+                store.pending_dir(fixture, view).join(format!("{kind}.png"))
+            }
+            _ => return Err(format!("kind={kind}: golden, actual, expected or diff")),
+        };
+        std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    fn decide(&self, fixture: &str, view: &str, approve: bool) -> Result<String, String> {
+        let store = self.store();
+        let name = [format!("{fixture}/{}", slug(view))];
+        if approve {
+            let ci = std::env::var("CI").is_ok_and(|v| {
+                !(v.trim().is_empty() || v == "0" || v.eq_ignore_ascii_case("false"))
+            });
+            store.approve(Some(&name), ci)?;
+            Ok(format!(
+                "approved: {}",
+                store.golden_path(fixture, view).display()
+            ))
+        } else {
+            store.reject(Some(&name))?;
+            Ok(format!("rejected {fixture} / {view}"))
+        }
+    }
+
+    /// Answers one request.
+    pub fn handle(&self, req: Request) {
+        let url = req.url().to_string();
+        let path = url.split('?').next().unwrap_or("").to_string();
+        let q = query(&url);
+        let post = *req.method() == Method::Post;
+        let text = |s: String| ("text/plain; charset=utf-8", s.into_bytes());
+        let result: Result<(&str, Vec<u8>), String> = match (path.as_str(), post) {
+            ("/", false) => Ok(("text/html; charset=utf-8", PAGE.as_bytes().to_vec())),
+            ("/api/fixtures", false) => {
+                Ok(("application/json", self.fixtures().to_string().into_bytes()))
+            }
+            ("/api/render", false) => Frame::of(&q)
+                .and_then(|fr| self.render(&fr))
+                .map(|b| ("image/png", b)),
+            ("/api/debug", false) => Frame::of(&q).and_then(|fr| {
+                let at = |k: &str| {
+                    q.get(k)
+                        .and_then(|v| v.parse::<u32>().ok())
+                        .ok_or_else(|| format!("{k}: a pixel index"))
+                };
+                self.debug(&fr, (at("x")?, at("y")?)).map(text)
+            }),
+            ("/api/image", false) => {
+                let (f, v, k) = (q.get("fixture"), q.get("view"), q.get("kind"));
+                match (f, v, k) {
+                    (Some(f), Some(v), Some(k)) => self.image(f, v, k).map(|b| ("image/png", b)),
+                    _ => Err("fixture, view and kind are needed".into()),
+                }
+            }
+            ("/api/approve" | "/api/reject", true) => match (q.get("fixture"), q.get("view")) {
+                (Some(f), Some(v)) => self.decide(f, v, path == "/api/approve").map(text),
+                _ => Err("fixture and view are needed".into()),
+            },
+            _ => Err(format!("no such page: {} {path}", req.method())),
+        };
+        let response = match result {
+            Ok((kind, body)) => Response::from_data(body).with_header(header("Content-Type", kind)),
+            Err(e) => Response::from_data(e.into_bytes())
+                .with_status_code(400)
+                .with_header(header("Content-Type", "text/plain; charset=utf-8")),
+        };
+        let _ = req.respond(response.with_header(header("Cache-Control", "no-store")));
+    }
+}
+
+fn header(k: &str, v: &str) -> Header {
+    Header::from_bytes(k.as_bytes(), v.as_bytes()).expect("ASCII header")
+}
+
+/// Serves `project` on 127.0.0.1:`port` (0: any free port), calling
+/// `ready` with the address once listening; handles requests until the
+/// process ends.
+pub fn serve(project: Project, port: u16, ready: impl FnOnce(&str)) -> Result<(), String> {
+    let server = Server::http(("127.0.0.1", port))
+        .map_err(|e| format!("cannot listen on 127.0.0.1:{port}: {e}"))?;
+    let addr = server
+        .server_addr()
+        .to_ip()
+        .map_or_else(|| "127.0.0.1".to_string(), |a| a.to_string());
+    ready(&format!("http://{addr}/"));
+    let site = Arc::new(Site::new(project));
+    for req in server.incoming_requests() {
+        let site = site.clone();
+        std::thread::spawn(move || site.handle(req));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn queries_are_decoded() {
+        let q = query("/api/render?fixture=flange&view=frame%20920&t=1171.5&model=classical");
+        assert_eq!(q["view"], "frame 920");
+        let fr = Frame::of(&q).unwrap();
+        assert_eq!(
+            (fr.t, fr.model, fr.speed),
+            (Some(1171.5), Some(Model::CLASSICAL), 1.0)
+        );
+        assert!(Frame::of(&query("/x?fixture=a&view=b&t=soon")).is_err());
+        assert_eq!(decode("a+b%2Cc%zz"), "a b,c%zz");
+    }
+}
