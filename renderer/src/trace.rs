@@ -132,8 +132,11 @@ pub enum Step {
         event: Event,
         /// The hit in the object's frame: rest-frame offset from its reference point.
         surface_point: DVec3,
-        /// The object's own time at the hit.
+        /// The object's own time at the hit, counted from its start.
         proper_time: f64,
+        /// Lab time of the object's start (its first stretch's), from which
+        /// its own time counts.
+        start_t: f64,
         /// Lab-frame unit normal of the triangle, and the same turned towards the ray's origin.
         normal: DVec3,
         /// The normal turned towards the ray's origin.

@@ -106,17 +106,27 @@ pub fn describe(log: &PixelLog) -> String {
         v3(log.camera),
         log.camera_t
     );
-    let mut indent = "";
+    // Lines are indented by mirror depth (a reflected ray and what it
+    // meets one level in, the shading of the surface it left back out),
+    // shadow rays and their blockers two further.
+    let base = |depth: u32| "  ".repeat(depth as usize + 1);
+    let mut indent = String::new();
     for step in &log.steps {
+        let own = match step {
+            Step::Shading { depth, .. }
+            | Step::Doppler { depth, .. }
+            | Step::Reflection { depth, .. } => Some(base(*depth)),
+            _ => None,
+        };
         let line = match step {
             Step::Sample { index, px, py, camera_t } => {
-                indent = "";
+                indent = String::new();
                 format!("sample {index} at image ({px:.4}, {py:.4}), camera t = {camera_t}")
             }
             Step::Ray { kind, depth, origin, direction, normalized, range } => {
                 indent = match kind {
-                    renderer::RayKind::Shadow => "      ",
-                    _ => "  ",
+                    renderer::RayKind::Shadow => base(*depth) + "    ",
+                    _ => base(*depth),
                 };
                 format!(
                     "{kind:?} ray (depth {depth}): origin {}; direction t = {}, x = {}; normalized t = {:.9}, x = {}; s in [{:e}, {:e}]",
@@ -138,8 +148,8 @@ pub fn describe(log: &PixelLog) -> String {
                 };
                 format!("  tet {tet} ({object:?} triangle {triangle}, prism {prism}, piece {piece}): {what}")
             }
-            Step::Hit { kind, tet, object, triangle, event, surface_point, proper_time, normal, facing_normal } => format!(
-                "{} {object:?} (tet {tet}, triangle {triangle}) at {}; in the object's frame {}; proper time {proper_time:.9}; normal {}, facing {}",
+            Step::Hit { kind, tet, object, triangle, event, surface_point, proper_time, start_t, normal, facing_normal } => format!(
+                "{} {object:?} (tet {tet}, triangle {triangle}) at {}; in the object's frame {}; proper time {proper_time:.9} since its start at t = {start_t}; normal {}, facing {}",
                 if *kind == renderer::RayKind::Shadow { "BLOCKED by" } else { "HIT" },
                 ev(*event),
                 v3(*surface_point),
@@ -175,7 +185,7 @@ pub fn describe(log: &PixelLog) -> String {
                 line
             }
         };
-        let _ = writeln!(out, "{indent}{line}");
+        let _ = writeln!(out, "{}{line}", own.as_deref().unwrap_or(&indent));
     }
     let _ = writeln!(out, "colour {} -> 8-bit {:?}", v3(log.color), log.rgb8);
     out

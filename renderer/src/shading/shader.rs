@@ -150,6 +150,7 @@ impl Shader<'_> {
             event: hit.event,
             surface_point: object.local_point(hit.event),
             proper_time: object.proper_time(hit.event),
+            start_t: object.lifetime().0,
             normal: surface.normal,
             facing_normal: self.facing_normal(ray, hit),
         }

@@ -418,3 +418,27 @@ fn debug_diff_streams_and_lists_every_differing_field() {
     let c = diff_streams(log.as_bytes(), short.as_bytes(), &all).unwrap();
     assert!(c.differing >= 1 && c.lines == (lines.len(), 3), "{c:?}");
 }
+
+/// The printout's indentation follows mirror depth: the reflected ray one
+/// level in, the mirror's own shading back out at its depth; a hit says
+/// from when its proper time counts.
+#[test]
+fn the_printout_is_indented_by_depth() {
+    let (f, view) = setup("teaser", 640, 360);
+    let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+    let text = vstf::debug::describe(&trace_pixel(&f, &view, &db, 300, 60).unwrap());
+    let line = |start: &str| {
+        text.lines()
+            .find(|l| l.trim_start().starts_with(start))
+            .unwrap_or_else(|| panic!("no {start:?} line in\n{text}"))
+    };
+    assert!(
+        line("Reflection ray (depth 1)").starts_with("    R"),
+        "{text}"
+    );
+    assert!(line("shading (depth 0)").starts_with("  s"), "{text}");
+    assert!(
+        line("HIT \"mirror\"").contains("since its start at t = -1000000"),
+        "{text}"
+    );
+}
