@@ -1061,6 +1061,26 @@ fn render_view_reproduces_the_golden_image() {
         !out.status.success() && err.contains("declared views: frame 920, frame 1151"),
         "{err}"
     );
+    // A named check's own views are not taken, and the error says so.
+    let out = vstf()
+        .args([
+            "render",
+            "stage",
+            "--view",
+            "view",
+            "--out",
+            "/tmp/vstf-no.png",
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success()
+            && err.contains(
+                "its named check stage renders for their golden images are not taken by --view"
+            ),
+        "{err}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -124,8 +124,27 @@ pub fn golden_view(f: &Fixture, name: &str) -> Result<(Fixture, crate::fixture::
         .find(|v| v.name == name)
         .ok_or_else(|| {
             let known: Vec<&str> = f.spec.views.iter().map(|v| v.name.as_str()).collect();
+            let named: Vec<&str> = f
+                .spec
+                .checks
+                .iter()
+                .filter_map(|c| match &c.measure {
+                    MeasureSpec::Named(n) => Some(n.kind()),
+                    _ => None,
+                })
+                .collect();
+            let also = if named.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "; the views its named check{} {} render{} for their golden images are not taken by --view",
+                    if named.len() > 1 { "s" } else { "" },
+                    named.join(", "),
+                    if named.len() > 1 { "" } else { "s" }
+                )
+            };
             format!(
-                "{}: no view named {name:?} (declared views: {})",
+                "{}: no view named {name:?} (declared views: {}){also}",
                 f.file.display(),
                 if known.is_empty() {
                     "none".into()
