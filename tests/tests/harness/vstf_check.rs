@@ -331,3 +331,33 @@ fn a_one_pixel_change_in_a_real_render_is_caught_without_touching_golden() {
     );
     std::fs::remove_dir_all(&scratch).ok();
 }
+
+/// Every view a named kind renders for its golden image is reproduced bit
+/// for bit through `--view` (`declared::golden_view`), and `list --views`
+/// has them all.
+#[test]
+fn named_kinds_views_reproduce_their_goldens() {
+    let repo = workspace_tests::repo();
+    let store = repo.store();
+    let mut checked = 0;
+    for name in repo.fixture_names() {
+        let f = repo.load(&name).unwrap();
+        for c in &f.spec.checks {
+            let vstf::fixture::checks::MeasureSpec::Named(n) = &c.measure else {
+                continue;
+            };
+            for v in vstf::check::named::views(&f, n).unwrap() {
+                let (fixture, view) = vstf::check::declared::golden_view(&f, &v.name).unwrap();
+                let img = vstf::run::render(&fixture, &view, renderer::Traversal::Bvh)
+                    .unwrap()
+                    .to_rgb8();
+                let golden = image::open(store.golden_path(&name, &v.name))
+                    .unwrap()
+                    .to_rgb8();
+                assert!(img == golden, "{name} / {}: not its golden image", v.name);
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 25, "only {checked} named views");
+}

@@ -193,6 +193,27 @@ fn expected_cube_moving(b: &Setup) -> Result<(f64, f64), String> {
     Ok(extremes_on_polygon(&SQUARE, seen))
 }
 
+/// The views [`run`] renders, for `--view`: in each model, the camera
+/// moving past the cube and the cube moving past the camera.
+pub fn views(f: &Fixture) -> Result<Vec<super::named::NamedView>, String> {
+    let t = f.spec.camera.t;
+    let mut out = Vec::new();
+    for model in [Model::RELATIVISTIC, Model::CLASSICAL] {
+        let view = |name: String, fixture: Fixture| super::named::NamedView {
+            name,
+            fixture,
+            model,
+            camera_t: t,
+        };
+        out.push(view(format!("{model}, camera moving"), f.clone()));
+        out.push(view(
+            format!("{model}, cube moving"),
+            object_moving(f, model)?,
+        ));
+    }
+    Ok(out)
+}
+
 /// For each model, the cube's horizon edges seen by the moving camera and
 /// by the camera at rest with the cube moving, each against its own first
 /// principles, and their differences (zero under relativity; the classical

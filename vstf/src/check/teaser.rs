@@ -68,6 +68,19 @@ fn bands(f: &Fixture) -> Result<[(&'static str, Model, f64); 3], String> {
     ])
 }
 
+/// The bands [`run`] renders, for `--view`.
+pub fn views(f: &Fixture) -> Result<Vec<super::named::NamedView>, String> {
+    Ok(bands(f)?
+        .into_iter()
+        .map(|(band, model, tc)| super::named::NamedView {
+            name: band.into(),
+            fixture: f.clone(),
+            model,
+            camera_t: tc,
+        })
+        .collect())
+}
+
 /// Each flange's edges on the stage in each band, against the feet of
 /// those edges: instantaneous (infinite light speed) or retarded.
 pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {

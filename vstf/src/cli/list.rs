@@ -24,6 +24,20 @@ pub fn run(root: Option<&Path>, views: bool) -> Result<(), String> {
                         let t = v.t.unwrap_or(f.spec.camera.t);
                         println!("    --view {:?}  (camera t = {t}, {model} model)", v.name);
                     }
+                    for c in &f.spec.checks {
+                        let vstf::fixture::checks::MeasureSpec::Named(n) = &c.measure else {
+                            continue;
+                        };
+                        for v in vstf::check::named::views(&f, n).unwrap_or_default() {
+                            println!(
+                                "    --view {:?}  (camera t = {}, {} model; rendered by the named check {})",
+                                v.name,
+                                v.camera_t,
+                                v.model,
+                                n.kind()
+                            );
+                        }
+                    }
                 }
             }
             Err(e) => println!("{name:24} (invalid: {e})"),

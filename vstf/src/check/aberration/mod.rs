@@ -304,6 +304,24 @@ fn view(
     Ok((table.quantities, report))
 }
 
+/// The views [`run`] renders, for `--view`: each case's fixture (the cube
+/// moving, or at rest for the control), model and camera time 0.
+pub fn views(control: &Fixture, speeds: &[f64]) -> Result<Vec<super::named::NamedView>, String> {
+    Case::all(fixture_model(control), speeds)
+        .into_iter()
+        .map(|case| {
+            let u = case.season.map_or(DVec3::ZERO, |s| -s.earth * case.beta);
+            let (fixture, _) = moving(control, u, case.model)?;
+            Ok(super::named::NamedView {
+                name: case.label(),
+                fixture,
+                model: case.model,
+                camera_t: 0.0,
+            })
+        })
+        .collect()
+}
+
 /// Every view of the cube at each of the orbital `speeds` (fractions of c):
 /// its edges against the retarded (cube moving) and aberrated (Earth
 /// moving) azimuths, and the paper's figures where it prints them.

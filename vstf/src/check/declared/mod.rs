@@ -117,6 +117,11 @@ fn with_view_effects(f: &Fixture, v: &ViewSpec) -> Option<Fixture> {
 /// view (its camera time and model, the report's size, the fixture's
 /// samples), so that `vstf render --view` reproduces the golden bit for bit.
 pub fn golden_view(f: &Fixture, name: &str) -> Result<(Fixture, crate::fixture::View), String> {
+    if !f.spec.views.iter().any(|v| v.name == name) {
+        if let Some(found) = named_view(f, name)? {
+            return Ok(found);
+        }
+    }
     let v = f
         .spec
         .views
@@ -137,7 +142,7 @@ pub fn golden_view(f: &Fixture, name: &str) -> Result<(Fixture, crate::fixture::
                 String::new()
             } else {
                 format!(
-                    "; the views its named check{} {} render{} for their golden images are not taken by --view",
+                    "; its named check{} {} render{} views of other names (vstf list --views)",
                     if named.len() > 1 { "s" } else { "" },
                     named.join(", "),
                     if named.len() > 1 { "" } else { "s" }
@@ -156,6 +161,31 @@ pub fn golden_view(f: &Fixture, name: &str) -> Result<(Fixture, crate::fixture::
     let fixture = with_view_effects(f, v).unwrap_or_else(|| f.clone());
     let view = setup_of(&fixture, v).report_view(super::setup::VIEW_WIDTH)?;
     Ok((fixture, view))
+}
+
+/// The view `name` one of `f`'s named kinds renders for its golden image,
+/// as `vstf check` renders it: the kind's fixture, model and camera time at
+/// the report's size.
+fn named_view(f: &Fixture, name: &str) -> Result<Option<(Fixture, crate::fixture::View)>, String> {
+    for c in &f.spec.checks {
+        let MeasureSpec::Named(n) = &c.measure else {
+            continue;
+        };
+        let Some(v) = super::named::views(f, n)?
+            .into_iter()
+            .find(|v| v.name == name)
+        else {
+            continue;
+        };
+        let setup = Setup {
+            fixture: &v.fixture,
+            model: v.model,
+            camera_t: v.camera_t,
+        };
+        let view = setup.report_view(super::setup::VIEW_WIDTH)?;
+        return Ok(Some((v.fixture, view)));
+    }
+    Ok(None)
 }
 
 /// The setup of a declared view of `f`: its camera time and model.
