@@ -237,7 +237,7 @@ table{border-collapse:collapse}td,th{padding:2px 8px;border-bottom:1px solid #cc
 .FAIL{background:#fdd}.pass{background:#dfd}img{image-rendering:pixelated;max-width:100%}\
 figure{display:inline-block;margin:0 1em 1em 0;vertical-align:top}figcaption{font-size:90%}\
 .fixture{display:flex;flex-wrap:wrap;gap:1.5em;align-items:flex-start}.views{flex:1 1 60em}.rows{flex:1 1 30em}\
-nav li{margin:2px 0}h1.FAIL,h1.pass{padding:4px 8px}";
+nav li{margin:2px 0}h1.FAIL,h1.pass{padding:4px 8px}ol.marks{font-size:85%;columns:2}";
 
 /// Writes `index.html` and its images into `dir`: a static page that opens
 /// from disk. Its title says pass or FAIL; a summary (counts, the failing
@@ -377,7 +377,34 @@ fn view_figures(
             figure(&name, "diff from the golden (red: differing pixels)");
         }
     }
+    marker_list(h, r, v);
     Ok(())
+}
+
+/// Which row each numbered marker belongs to, each linked to its row.
+fn marker_list(h: &mut String, r: &FixtureReport, v: &crate::check::ViewReport) {
+    if v.rows.iter().all(String::is_empty) {
+        return;
+    }
+    h.push_str("<ol class=marks>");
+    for row in &v.rows {
+        if row.is_empty() {
+            h.push_str("<li>-</li>");
+        } else {
+            let _ = write!(
+                h,
+                "<li><a href=\"#{}\">{}</a></li>",
+                row_anchor(&r.fixture, row),
+                esc(row)
+            );
+        }
+    }
+    h.push_str("</ol>");
+}
+
+/// The anchor of a fixture's row.
+fn row_anchor(fixture: &str, quantity: &str) -> String {
+    format!("{}-row-{}", slug(fixture), slug(quantity))
 }
 
 /// The fixture's rows, failing first, each row anchored.
@@ -385,16 +412,15 @@ fn rows_table(h: &mut String, r: &FixtureReport) {
     h.push_str("<table><tr><th>quantity<th>measured<th>expected<th>paper<th>tolerance<th>unit<th>result</tr>");
     let mut rows: Vec<&Row> = r.rows.iter().collect();
     rows.sort_by_key(|x| x.pass);
-    for (k, x) in rows.into_iter().enumerate() {
+    for x in rows {
         let res = if x.pass { "pass" } else { "FAIL" };
         let paper = x.paper.map_or("-".into(), |p| {
             format!("{}{}", num(p), if x.paper_disagrees() { " *" } else { "" })
         });
         let _ = write!(
             h,
-            "<tr class={res} id=\"{}-row-{}\"><td>{}<td>{}<td>{}<td>{}<td>±{}<td>{}<td>{res}</tr>",
-            slug(&r.fixture),
-            k + 1,
+            "<tr class={res} id=\"{}\"><td>{}<td>{}<td>{}<td>{}<td>±{}<td>{}<td>{res}</tr>",
+            row_anchor(&r.fixture, &x.quantity),
             esc(&x.quantity),
             num(x.measured),
             num(x.expected),

@@ -194,6 +194,16 @@ fn the_report_shows_images_markers_and_rows() {
         .count();
     assert!(pngs >= 2 * reports().iter().map(|r| r.views.len()).sum::<usize>());
     assert!(html.contains("golden image"), "no golden images shown");
+    // Numbered markers of declared checks link to their rows.
+    let flange = reports().iter().find(|r| r.fixture == "flange").unwrap();
+    let row = &flange.views[0].rows[0];
+    assert!(!row.is_empty(), "the flange's marker names no row");
+    let anchor = format!("flange-row-{}", vstf::golden::slug(row));
+    assert!(
+        html.contains(&format!("<a href=\"#{anchor}\">"))
+            && html.contains(&format!("id=\"{anchor}\"")),
+        "the marker of {row:?} is not linked to its row"
+    );
     std::fs::remove_dir_all(&dir).ok();
     // A failing run says FAIL in its title and lists the failing fixture first.
     let mut failing: Vec<FixtureReport> = reports().iter().take(2).map(copy_of).collect();
@@ -228,6 +238,7 @@ fn copy_of(r: &FixtureReport) -> FixtureReport {
                 name: v.name.clone(),
                 image: v.image.clone(),
                 markers: v.markers.clone(),
+                rows: v.rows.clone(),
             })
             .collect(),
         rows: r.rows.clone(),

@@ -28,6 +28,8 @@ pub struct ViewReport {
     pub image: RgbImage,
     /// Pixel positions where first principles put the marked points.
     pub markers: Vec<(f64, f64)>,
+    /// For each marker, the row it belongs to (empty when none names it).
+    pub rows: Vec<String>,
 }
 
 /// All results for one fixture.

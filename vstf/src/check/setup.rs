@@ -141,17 +141,29 @@ impl Setup<'_> {
     /// The full view at [`VIEW_WIDTH`], with `markers` at the pixels of
     /// the given lab directions.
     pub fn full_view(&self, name: &str, directions: &[DVec3]) -> Result<ViewReport, String> {
+        let unlabelled: Vec<(DVec3, String)> =
+            directions.iter().map(|d| (*d, String::new())).collect();
+        self.full_view_labelled(name, &unlabelled)
+    }
+
+    /// [`Setup::full_view`] with each marker's row named (empty: none).
+    pub fn full_view_labelled(
+        &self,
+        name: &str,
+        marks: &[(DVec3, String)],
+    ) -> Result<ViewReport, String> {
         let view = self.report_view(VIEW_WIDTH)?;
         let image = crate::run::render(self.fixture, &view, Traversal::Bvh)?.to_rgb8();
         let pinhole = self.pinhole(self.size(VIEW_WIDTH))?;
-        let markers = directions
+        let (markers, rows) = marks
             .iter()
-            .filter_map(|d| pinhole.pixel_of(*d))
-            .collect();
+            .filter_map(|(d, row)| pinhole.pixel_of(*d).map(|p| (p, row.clone())))
+            .unzip();
         Ok(ViewReport {
             name: name.into(),
             image,
             markers,
+            rows,
         })
     }
 

@@ -211,7 +211,8 @@ struct Run<'a> {
     described: &'a Fixture,
     effort: &'a Effort,
     done: Vec<Done>,
-    marks: Vec<Vec<DVec3>>,
+    /// Each view's marks: a direction and the row it belongs to.
+    marks: Vec<Vec<(DVec3, String)>>,
     outlines: Vec<(usize, String, Outline)>,
     panels: Vec<(usize, String, Panel)>,
 }
@@ -250,8 +251,8 @@ impl<'a> Run<'a> {
             .ok_or_else(|| format!("no earlier check named {name:?}"))
     }
 
-    fn mark(&mut self, view: usize, direction: Option<DVec3>) {
-        self.marks[view].extend(direction);
+    fn mark(&mut self, view: usize, direction: Option<DVec3>, row: &str) {
+        self.marks[view].extend(direction.map(|d| (d, row.to_string())));
     }
 
     /// Measures one general check into its row.
@@ -268,7 +269,7 @@ impl<'a> Run<'a> {
                 let v = self.view(&e.view)?;
                 let (reading, mark) =
                     edges::edge(&v.measuring, &v.described, v.spec, e, self.effort)?;
-                self.mark(v.index, Some(mark));
+                self.mark(v.index, Some(mark), &c.name);
                 Ok(Done {
                     camera_t: Some(v.measuring.camera_t),
                     ..row(reading)
@@ -278,7 +279,7 @@ impl<'a> Run<'a> {
                 let v = self.view(&k.view)?;
                 let (reading, mark) =
                     edges::corner(&v.measuring, &v.described, v.spec, k, self.effort)?;
-                self.mark(v.index, Some(mark));
+                self.mark(v.index, Some(mark), &c.name);
                 Ok(Done {
                     camera_t: Some(v.measuring.camera_t),
                     ..row(reading)
@@ -292,37 +293,37 @@ impl<'a> Run<'a> {
                 })?;
                 let reading = outline.read(o.read)?;
                 if new {
-                    let marks = outline.marks.clone();
-                    self.marks[v.index].extend(marks);
+                    let marks = outline.marks.iter().map(|m| (*m, c.name.clone()));
+                    self.marks[v.index].extend(marks.collect::<Vec<_>>());
                 }
                 Ok(row(reading))
             }
-            MeasureSpec::Doppler(d) => Ok(row(self.doppler(d)?)),
+            MeasureSpec::Doppler(d) => Ok(row(self.doppler(d, &c.name)?)),
             MeasureSpec::Period(p) => {
                 let v = self.view(&p.view)?;
                 let (reading, expected, mark) =
                     super::period::measure(&v.measuring, &v.described, p)?;
-                self.mark(v.index, mark);
+                self.mark(v.index, mark, &c.name);
                 Ok(row((reading, expected, Unit::TUnits)))
             }
             MeasureSpec::Emulator(e) => {
                 let v = self.view(&e.view)?;
                 let (found, marks) =
                     super::emulated::measure(&v.measuring, &v.described, e, v.spec)?;
-                self.marks[v.index].extend(marks);
+                self.marks[v.index].extend(marks.into_iter().map(|m| (m, c.name.clone())));
                 Ok(row(found))
             }
             MeasureSpec::Lambert(l) => {
                 let v = self.view(&l.view)?;
                 let (reading, mark) = super::lambert::measure(&v.measuring, &v.described, l)?;
-                self.mark(v.index, Some(mark));
+                self.mark(v.index, Some(mark), &c.name);
                 Ok(row(reading))
             }
             MeasureSpec::Reflection(r) => {
                 let v = self.view(&r.view)?;
                 let (reading, mark) =
                     super::mirror::measure(&v.measuring, &v.described, r, v.spec, self.effort)?;
-                self.mark(v.index, Some(mark));
+                self.mark(v.index, Some(mark), &c.name);
                 Ok(row(reading))
             }
             MeasureSpec::Difference(_)
@@ -374,7 +375,7 @@ impl<'a> Run<'a> {
 
     /// A Doppler check's row: the object's panel (or the panel of one
     /// point of it), measured once per view and read by every check of it.
-    fn doppler(&mut self, d: &DopplerSpec) -> Result<(Reading, f64, Unit), String> {
+    fn doppler(&mut self, d: &DopplerSpec, row: &str) -> Result<(Reading, f64, Unit), String> {
         let v = self.view(&d.view)?;
         let effort = self.effort;
         let (panel, new) = match d.point {
@@ -390,7 +391,7 @@ impl<'a> Run<'a> {
         };
         let ((reading, expected), mark) = (panel.read(d.from)?, panel.mark);
         if new {
-            self.mark(v.index, mark);
+            self.mark(v.index, mark, row);
         }
         Ok((reading, expected, Unit::Factor))
     }
@@ -398,7 +399,7 @@ impl<'a> Run<'a> {
     /// The expected points to mark in view `k`: its checks', or where no
     /// check measures in it, those of the views from the same camera event
     /// under the same model (they see the same events).
-    fn marks_of(&self, k: usize) -> Vec<DVec3> {
+    fn marks_of(&self, k: usize) -> Vec<(DVec3, String)> {
         if !self.marks[k].is_empty() {
             return self.marks[k].clone();
         }
@@ -411,7 +412,7 @@ impl<'a> Run<'a> {
             .iter()
             .zip(&self.marks)
             .filter(|(v, _)| event(v) == event(&views[k]))
-            .flat_map(|(_, m)| m.iter().copied())
+            .flat_map(|(_, m)| m.iter().cloned())
             .collect()
     }
 
@@ -431,7 +432,7 @@ impl<'a> Run<'a> {
                 }
                 None => self.rendered,
             };
-            views.push(setup_of(f, v).full_view(&v.name, &marks)?);
+            views.push(setup_of(f, v).full_view_labelled(&v.name, &marks)?);
         }
         if spec.views.is_empty() && spec.checks.is_empty() {
             let own = Setup {
