@@ -87,3 +87,24 @@ pub fn repo() -> vstf::Project {
 pub fn fixture(name: &str) -> vstf::Fixture {
     repo().load(name).unwrap_or_else(|e| panic!("{e}"))
 }
+
+/// One of this repository's fixtures with `edit` applied to its JSON, parsed
+/// (named by its file, so errors name it).
+pub fn fixture_with(name: &str, edit: impl FnOnce(&mut serde_json::Value)) -> vstf::Fixture {
+    let file = repo().fixtures_dir().join(format!("{name}.json"));
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    edit(&mut v);
+    vstf::Fixture::parse(&v.to_string(), &file).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The rows of the checks `described` declares, measured on renders of
+/// `rendered` (the same scene, or an altered copy) at quick effort.
+pub fn declared_rows(rendered: &vstf::Fixture, described: &vstf::Fixture) -> Vec<vstf::Row> {
+    vstf::check::declared::evaluate(rendered, described, &vstf::Effort::QUICK)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .quantities
+        .into_iter()
+        .map(|q| q.judge(&described.name))
+        .collect()
+}

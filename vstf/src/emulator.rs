@@ -65,6 +65,14 @@ pub struct Body {
 }
 
 impl Body {
+    /// The radius about the reference point that holds the body.
+    pub fn reach(&self) -> f64 {
+        match &self.form {
+            Form::Triangles(t) => t.iter().flatten().map(|p| p.length()).fold(0.0, f64::max),
+            Form::Ellipsoid { radius, .. } => *radius,
+        }
+    }
+
     /// A sphere of rest radius `radius` moving with `velocity`, contracted
     /// when `contracted`.
     pub fn sphere(radius: f64, t0: f64, x0: DVec3, velocity: DVec3, contracted: bool) -> Body {

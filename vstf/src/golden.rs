@@ -128,6 +128,15 @@ pub fn diff_image(actual: &RgbImage, expected: &RgbImage) -> RgbImage {
     })
 }
 
+/// Whether the `CI` variable says this runs under CI: set, non-empty and
+/// not `0` or `false`.
+pub fn ci_is_set(value: Option<&str>) -> bool {
+    value.is_some_and(|v| {
+        let v = v.trim();
+        !(v.is_empty() || v == "0" || v.eq_ignore_ascii_case("false"))
+    })
+}
+
 /// Makes a name safe as a file name: lowercase letters, digits and dashes.
 pub fn slug(s: &str) -> String {
     let mut out = String::new();

@@ -259,9 +259,7 @@ impl Site {
         let store = self.store();
         let name = [format!("{fixture}/{}", slug(view))];
         if approve {
-            let ci = std::env::var("CI").is_ok_and(|v| {
-                !(v.trim().is_empty() || v == "0" || v.eq_ignore_ascii_case("false"))
-            });
+            let ci = crate::golden::ci_is_set(std::env::var("CI").ok().as_deref());
             store.approve(Some(&name), ci)?;
             Ok(format!(
                 "approved: {}",

@@ -4,8 +4,9 @@
 //! rendered elsewhere than its declaration says fails its rows.
 
 use std::path::Path;
-use vstf::check::{declared, Effort, Row};
+use vstf::check::{declared, Effort};
 use vstf::fixture::Fixture;
+use workspace_tests::{declared_rows as rows, fixture_with as repo_fixture_with};
 
 /// The example of `vstf init`: a cube at 0.8c with a check of every general kind.
 fn cube_text() -> String {
@@ -22,16 +23,6 @@ fn cube_with(edit: impl FnOnce(&mut serde_json::Value)) -> String {
 
 fn parse(text: &str) -> Result<Fixture, String> {
     Fixture::parse(text, Path::new("fixtures/cube.json")).map_err(|e| e.to_string())
-}
-
-/// The rows of the declared checks of `described`, measured on `rendered`.
-fn rows(rendered: &Fixture, described: &Fixture) -> Vec<Row> {
-    declared::evaluate(rendered, described, &Effort::QUICK)
-        .unwrap_or_else(|e| panic!("{e}"))
-        .quantities
-        .into_iter()
-        .map(|q| q.judge("cube"))
-        .collect()
 }
 
 /// A change to a fixture's JSON.
@@ -341,17 +332,6 @@ fn a_keyframed_turning_plate_is_checked_and_a_faster_turn_is_caught() {
         "the corner's x missed a faster turn: {:?}",
         moved[2]
     );
-}
-
-/// The repository's fixture `name` with `edit` applied to its JSON, parsed.
-fn repo_fixture_with(name: &str, edit: impl FnOnce(&mut serde_json::Value)) -> Fixture {
-    let file = workspace_tests::repo()
-        .fixtures_dir()
-        .join(format!("{name}.json"));
-    let mut v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
-    edit(&mut v);
-    Fixture::parse(&v.to_string(), &file).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The relativity fixture's camera moves at `speed` along x; its cube's

@@ -3,43 +3,31 @@
 //! it agrees with the 4D tracer pixel by pixel on the cube, and a cube
 //! rendered slower than declared disagrees away from every edge.
 
-use vstf::check::{declared, Effort, Row};
+use vstf::check::{declared, Effort};
 use vstf::fixture::Fixture;
+use workspace_tests::declared_rows as rows;
 
 /// The hornof-2025 fixture with only its checks named in `keep`, and the
 /// cube's speed set to `speed` (its faces cross x = 0 at t = 0 whatever it).
 fn hornof(speed: f64, keep: &[&str]) -> Fixture {
-    let file = workspace_tests::repo()
-        .fixtures_dir()
-        .join("hornof-2025.json");
-    let mut v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
-    for o in v["objects"].as_array_mut().unwrap() {
-        if o["name"].as_str().unwrap().starts_with("cube") {
-            let t0 = o["worldline"]["start"][0].as_f64().unwrap();
-            o["worldline"]["start"][1] = (-speed * t0).into();
-            o["worldline"]["velocity"] = serde_json::json!([-speed, 0.0, 0.0]);
+    workspace_tests::fixture_with("hornof-2025", |v| {
+        for o in v["objects"].as_array_mut().unwrap() {
+            if o["name"].as_str().unwrap().starts_with("cube") {
+                let t0 = o["worldline"]["start"][0].as_f64().unwrap();
+                o["worldline"]["start"][1] = (-speed * t0).into();
+                o["worldline"]["velocity"] = serde_json::json!([-speed, 0.0, 0.0]);
+            }
         }
-    }
-    let checks: Vec<serde_json::Value> = v["checks"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter(|c| keep.contains(&c["name"].as_str().unwrap()))
-        .cloned()
-        .collect();
-    assert_eq!(checks.len(), keep.len());
-    v["checks"] = checks.into();
-    Fixture::parse(&v.to_string(), &file).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn rows(rendered: &Fixture, described: &Fixture) -> Vec<Row> {
-    declared::evaluate(rendered, described, &Effort::QUICK)
-        .unwrap_or_else(|e| panic!("{e}"))
-        .quantities
-        .into_iter()
-        .map(|q| q.judge("hornof-2025"))
-        .collect()
+        let checks: Vec<serde_json::Value> = v["checks"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| keep.contains(&c["name"].as_str().unwrap()))
+            .cloned()
+            .collect();
+        assert_eq!(checks.len(), keep.len());
+        v["checks"] = checks.into();
+    })
 }
 
 const PIXELS: [&str; 2] = [

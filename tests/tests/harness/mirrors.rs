@@ -4,28 +4,8 @@
 //! mirror rendered moving other than it is declared, or a scene expected
 //! by the static law, fails.
 
-use vstf::check::{declared, Effort, Row};
 use vstf::fixture::Fixture;
-
-/// The repository's fixture `name` with `edit` applied to its JSON.
-fn mirror_with(name: &str, edit: impl FnOnce(&mut serde_json::Value)) -> Fixture {
-    let file = workspace_tests::repo()
-        .fixtures_dir()
-        .join(format!("{name}.json"));
-    let mut v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
-    edit(&mut v);
-    Fixture::parse(&v.to_string(), &file).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn rows(rendered: &Fixture, described: &Fixture) -> Vec<Row> {
-    declared::evaluate(rendered, described, &Effort::QUICK)
-        .unwrap_or_else(|e| panic!("{e}"))
-        .quantities
-        .into_iter()
-        .map(|q| q.judge(&described.name))
-        .collect()
-}
+use workspace_tests::{declared_rows as rows, fixture_with as mirror_with};
 
 /// The mirror's velocity along z set to `w`, its position at t = 0 kept
 /// (z = -10).

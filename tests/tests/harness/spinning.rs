@@ -4,27 +4,12 @@
 //! velocity (at rest), as the renderer once shaded them, every row fails.
 
 use renderer::{Step, Traversal};
-use vstf::check::{declared, Effort, Row};
 use vstf::debug::trace_pixel;
 use vstf::fixture::{Fixture, Overrides};
+use workspace_tests::declared_rows as rows;
 
 fn disc_with(edit: impl FnOnce(&mut serde_json::Value)) -> Fixture {
-    let file = workspace_tests::repo()
-        .fixtures_dir()
-        .join("spinning-disc.json");
-    let mut v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
-    edit(&mut v);
-    Fixture::parse(&v.to_string(), &file).unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn rows(rendered: &Fixture, described: &Fixture) -> Vec<Row> {
-    declared::evaluate(rendered, described, &Effort::QUICK)
-        .unwrap_or_else(|e| panic!("{e}"))
-        .quantities
-        .into_iter()
-        .map(|q| q.judge("spinning-disc"))
-        .collect()
+    workspace_tests::fixture_with("spinning-disc", edit)
 }
 
 #[test]

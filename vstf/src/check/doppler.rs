@@ -151,10 +151,10 @@ fn blackbody_of(f: &Fixture, name: &str) -> Result<Blackbody, String> {
 
 /// The size of a probe aimed at one body point: odd, so that the centre
 /// pixel's centre lies on the line of sight aimed at.
-const POINT_PROBE: u32 = 9;
+pub(super) const POINT_PROBE: u32 = 9;
 
 /// The field of view of a probe aimed at one body point, degrees.
-const POINT_PROBE_FOV: f64 = 0.2;
+pub(super) const POINT_PROBE_FOV: f64 = 0.2;
 
 /// One object's centre pixel under the four combinations of the colour
 /// effects, measured once and read by every Doppler check of it, with the

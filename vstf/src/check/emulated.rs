@@ -116,7 +116,7 @@ fn gate(setup: &Setup, bodies: &[Body], slices: usize) -> Result<(Gate, f64), St
         };
         let seen =
             retarded(&p, setup.camera_t, camera).ok_or("a body is never seen from the camera")?;
-        let (rho, r) = (seen.x.distance(camera), reach(b));
+        let (rho, r) = (seen.x.distance(camera), b.reach());
         near = near.min(rho - 2.0 * r);
         far = far.max(rho + 2.0 * r);
         closest = closest.min(rho - r);
@@ -128,13 +128,6 @@ fn gate(setup: &Setup, bodies: &[Body], slices: usize) -> Result<(Gate, f64), St
         count: slices,
     };
     Ok((gate, closest.max(1e-9)))
-}
-
-fn reach(b: &Body) -> f64 {
-    match &b.form {
-        Form::Triangles(t) => t.iter().flatten().map(|p| p.length()).fold(0.0, f64::max),
-        Form::Ellipsoid { radius, .. } => *radius,
-    }
 }
 
 /// The class of each tracer pixel: the nearest palette colour, or `None`

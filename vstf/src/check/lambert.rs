@@ -23,9 +23,7 @@ use crate::oracle::{aberrate_galilean, aberrate_lorentz};
 use glam::DVec3;
 use renderer::{LightSpeed, ObjectKind, Shape};
 
-/// The size and field of a probe aimed at one point (see `doppler.rs`).
-const PROBE: u32 = 9;
-const PROBE_FOV: f64 = 0.2;
+use super::doppler::{POINT_PROBE as PROBE, POINT_PROBE_FOV as PROBE_FOV};
 
 /// A row's reading, its expectation and unit, and the lab direction to mark.
 type Found = ((Reading, f64, Unit), DVec3);

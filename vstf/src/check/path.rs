@@ -83,15 +83,20 @@ impl KeyframedMesh {
             .fold(0.0, f64::max)
     }
 
+    /// The rest mesh's largest coordinate: the scale of its rounding.
+    fn scale(&self) -> f64 {
+        self.rest
+            .vertices
+            .iter()
+            .map(|v| v.abs().max_element())
+            .fold(1e-300, f64::max)
+    }
+
     /// The triangle side (i, j) that the rest point `r` lies on, and its
     /// parameter along it.
     fn side_of(&self, r: DVec3) -> Option<(usize, usize, f64)> {
         let m = &self.rest;
-        let scale = m
-            .vertices
-            .iter()
-            .map(|v| v.abs().max_element())
-            .fold(1e-300, f64::max);
+        let scale = self.scale();
         m.triangles.iter().find_map(|t| {
             (0..3).find_map(|k| {
                 let (i, j) = (t[k] as usize, t[(k + 1) % 3] as usize);
@@ -108,11 +113,7 @@ impl KeyframedMesh {
     /// plane and borders), and r's barycentric weights in it.
     fn triangle_of(&self, r: DVec3) -> Option<([usize; 3], [f64; 3])> {
         let m = &self.rest;
-        let scale = m
-            .vertices
-            .iter()
-            .map(|v| v.abs().max_element())
-            .fold(1e-300, f64::max);
+        let scale = self.scale();
         m.triangles.iter().find_map(|t| {
             let ids = t.map(|i| i as usize);
             let [a, b, c] = ids.map(|i| m.vertices[i]);

@@ -4,6 +4,7 @@
 
 use super::args::{ApproveArgs, RejectArgs};
 use std::path::Path;
+use vstf::golden::ci_is_set;
 use vstf::golden::Store;
 use vstf::project::Project;
 
@@ -60,15 +61,6 @@ pub fn reject(root: Option<&Path>, args: RejectArgs) -> Result<(), String> {
     Ok(())
 }
 
-/// Whether the `CI` variable says this runs under CI: set, non-empty and
-/// not `0` or `false`.
-pub(super) fn ci_is_set(value: Option<&str>) -> bool {
-    value.is_some_and(|v| {
-        let v = v.trim();
-        !(v.is_empty() || v == "0" || v.eq_ignore_ascii_case("false"))
-    })
-}
-
 /// Prints each pending image: new, or changed from its golden image.
 fn list_pending(store: &Store) {
     let pending = store.list_pending();
@@ -95,7 +87,7 @@ fn list_pending(store: &Store) {
 
 #[cfg(test)]
 mod tests {
-    use super::ci_is_set;
+    use vstf::golden::ci_is_set;
 
     #[test]
     fn ci_counts_only_when_set_to_something_true() {

@@ -3,10 +3,9 @@
 //! of `cargo insta review`. Answers are read a line at a time from stdin,
 //! so a review can also be scripted.
 
-use super::approve::ci_is_set;
 use std::io::{BufRead, Write};
 use std::path::Path;
-use vstf::golden::{slug, Pending, Store};
+use vstf::golden::{ci_is_set, slug, Pending, Store};
 use vstf::project::Project;
 
 /// What the person said to one pending image.
