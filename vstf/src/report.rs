@@ -304,13 +304,15 @@ fn summary(h: &mut String, order: &[&FixtureReport]) {
         A paper figure marked * differs from first principles by more than the tolerance (see docs/physics.md).</p>");
 }
 
-/// One fixture: its views with their images, beside its rows; then the
-/// failing golden comparisons with actual and expected to swap.
+/// One fixture: its views with their images, each beside the rows
+/// measured in it (views measuring the same rows share one table); rows of
+/// no single view after them; then the failing golden comparisons with
+/// actual and expected to swap.
 fn fixture_section(h: &mut String, dir: &Path, r: &FixtureReport) -> Result<(), String> {
     let failed = r.rows.iter().filter(|x| !x.pass).count();
     let _ = write!(
         h,
-        "<section id=\"{}\"><h2 class={}>{} {}</h2><p>{}</p><div class=fixture><div class=views>",
+        "<section id=\"{}\"><h2 class={}>{} {}</h2><p>{}</p>",
         slug(&r.fixture),
         if r.passed() { "pass" } else { "FAIL" },
         esc(&r.fixture),
@@ -321,12 +323,30 @@ fn fixture_section(h: &mut String, dir: &Path, r: &FixtureReport) -> Result<(), 
         },
         esc(&r.description)
     );
-    for v in &r.views {
-        view_figures(h, dir, r, v)?;
+    let mut shown = std::collections::HashSet::new();
+    for group in r.views.chunk_by(|a, b| a.measured == b.measured) {
+        h.push_str("<div class=fixture><div class=views>");
+        for v in group {
+            view_figures(h, dir, r, v)?;
+        }
+        h.push_str("</div><div class=rows>");
+        let rows: Vec<&Row> = r
+            .rows
+            .iter()
+            .filter(|x| group[0].measured.contains(&x.quantity) && shown.insert(&x.quantity))
+            .collect();
+        rows_table(h, &r.fixture, &rows);
+        h.push_str("</div></div>");
     }
-    h.push_str("</div><div class=rows>");
-    rows_table(h, r);
-    h.push_str("</div></div>");
+    let rest: Vec<&Row> = r
+        .rows
+        .iter()
+        .filter(|x| !shown.contains(&x.quantity))
+        .collect();
+    if !rest.is_empty() {
+        h.push_str("<h3>rows of no single view</h3>");
+        rows_table(h, &r.fixture, &rest);
+    }
     golden_section(h, dir, &r.goldens)?;
     h.push_str("</section>");
     Ok(())
@@ -407,10 +427,13 @@ fn row_anchor(fixture: &str, quantity: &str) -> String {
     format!("{}-row-{}", slug(fixture), slug(quantity))
 }
 
-/// The fixture's rows, failing first, each row anchored.
-fn rows_table(h: &mut String, r: &FixtureReport) {
+/// A table of `fixture`'s `rows`, failing first, each row anchored.
+fn rows_table(h: &mut String, fixture: &str, rows: &[&Row]) {
+    if rows.is_empty() {
+        return;
+    }
     h.push_str("<table><tr><th>quantity<th>measured<th>expected<th>paper<th>tolerance<th>unit<th>result</tr>");
-    let mut rows: Vec<&Row> = r.rows.iter().collect();
+    let mut rows = rows.to_vec();
     rows.sort_by_key(|x| x.pass);
     for x in rows {
         let res = if x.pass { "pass" } else { "FAIL" };
@@ -420,7 +443,7 @@ fn rows_table(h: &mut String, r: &FixtureReport) {
         let _ = write!(
             h,
             "<tr class={res} id=\"{}\"><td>{}<td>{}<td>{}<td>{}<td>±{}<td>{}<td>{res}</tr>",
-            row_anchor(&r.fixture, &x.quantity),
+            row_anchor(fixture, &x.quantity),
             esc(&x.quantity),
             num(x.measured),
             num(x.expected),

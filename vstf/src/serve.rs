@@ -3,8 +3,10 @@
 //! images, a flip between render and golden, approve and reject, sliders
 //! for the camera time and (with one moving object) its speed, a model
 //! switch, and a click on a pixel for its debug variables (the functions
-//! `vstf debug` runs). Frames render on demand; each scene's database is
-//! built once and kept. The page has no external assets: it works offline.
+//! `vstf debug` runs), and a fixture's check run on request (its rows
+//! shown beside the view they were measured in, as `vstf check` judges
+//! them). Frames render on demand; each scene's database is built once and
+//! kept. The page has no external assets: it works offline.
 
 use crate::fixture::{Fixture, Overrides, View};
 use crate::golden::{slug, Store};
@@ -33,10 +35,12 @@ struct Frame {
 
 type Cache = HashMap<(String, String, bool, u64), Arc<(Fixture, Database)>>;
 
-/// The server's state: the project and the databases built so far.
+/// The server's state: the project, the databases built so far and each
+/// fixture's last check.
 pub struct Site {
     project: Project,
     databases: Mutex<Cache>,
+    checked: Mutex<HashMap<String, serde_json::Value>>,
 }
 
 fn query(url: &str) -> HashMap<String, String> {
@@ -147,6 +151,7 @@ impl Site {
         Site {
             project,
             databases: Mutex::new(HashMap::new()),
+            checked: Mutex::new(HashMap::new()),
         }
     }
 
@@ -212,11 +217,49 @@ impl Site {
         Ok(crate::debug::describe(&log))
     }
 
+    /// Runs `fixture`'s checks as `vstf check` does (pending images written
+    /// where a golden differs): whether all passed, each row with the views
+    /// it was measured in, and each golden comparison. Kept for the list.
+    fn check(&self, fixture: &str) -> Result<serde_json::Value, String> {
+        let reports =
+            crate::check::run(&self.project, &[fixture.to_string()], &crate::Effort::FULL)?;
+        let r = reports.first().ok_or("no report")?;
+        let rows: Vec<serde_json::Value> = r
+            .rows
+            .iter()
+            .map(|x| {
+                let views: Vec<&str> = r
+                    .views
+                    .iter()
+                    .filter(|v| v.measured.contains(&x.quantity))
+                    .map(|v| v.name.as_str())
+                    .collect();
+                serde_json::json!({
+                    "quantity": x.quantity, "measured": x.measured, "expected": x.expected,
+                    "tolerance": x.tolerance, "unit": x.unit.as_str(), "pass": x.pass, "views": views,
+                })
+            })
+            .collect();
+        let goldens: Vec<serde_json::Value> = r
+            .goldens
+            .iter()
+            .map(|g| serde_json::json!({"view": g.view, "pass": g.pass, "said": g.to_string()}))
+            .collect();
+        let value = serde_json::json!({"fixture": r.fixture, "passed": r.passed(), "rows": rows, "goldens": goldens});
+        self.checked
+            .lock()
+            .map_err(|_| "the check cache is poisoned")?
+            .insert(fixture.to_string(), value.clone());
+        Ok(value)
+    }
+
     /// Every fixture with its declared views, each with whether it has a
-    /// golden and a pending image, and the view's camera time; and whether
-    /// the fixture has one moving object (the speed slider).
+    /// golden and a pending image, and the view's camera time; whether the
+    /// fixture has one moving object (the speed slider); and its last
+    /// check on this page, if any.
     fn fixtures(&self) -> serde_json::Value {
         let store = self.store();
+        let checked = self.checked.lock().map(|c| c.clone()).unwrap_or_default();
         let list: Vec<serde_json::Value> = self
             .project
             .fixture_names()
@@ -236,7 +279,8 @@ impl Site {
                         })
                     })
                     .collect();
-                Some(serde_json::json!({"name": name, "views": views, "one_mover": single_mover(&f).is_some()}))
+                Some(serde_json::json!({"name": name, "views": views, "one_mover": single_mover(&f).is_some(),
+                    "checked": checked.get(&name)}))
             })
             .collect();
         serde_json::Value::Array(list)
@@ -301,6 +345,12 @@ impl Site {
                     _ => Err("fixture, view and kind are needed".into()),
                 }
             }
+            ("/api/check", true) => match q.get("fixture") {
+                Some(f) => self
+                    .check(f)
+                    .map(|v| ("application/json", v.to_string().into_bytes())),
+                None => Err("fixture is needed".into()),
+            },
             ("/api/approve" | "/api/reject", true) => match (q.get("fixture"), q.get("view")) {
                 (Some(f), Some(v)) => self.decide(f, v, path == "/api/approve").map(text),
                 _ => Err("fixture and view are needed".into()),

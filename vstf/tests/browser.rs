@@ -1,7 +1,8 @@
 //! `vstf serve` driven in a real browser (Debian's chromium through
 //! chromedriver, spoken to in W3C WebDriver over plain HTTP): the page
 //! loads a view, moving the time slider changes the image, a click on a
-//! pixel shows its hit, and approving a pending view writes its golden.
+//! pixel shows its hit, approving a pending view writes its golden, and
+//! checking the fixture shows its rows beside the view measured.
 //!
 //! Without chromedriver and chromium the test says so loudly and skips;
 //! with `VSTF_REQUIRE_BROWSER` set (as `.ci/run` does once it has installed
@@ -326,6 +327,36 @@ fn the_page_renders_debugs_and_approves_in_a_real_browser() {
         std::fs::read(&golden).unwrap(),
         actual,
         "the golden is not the approved render"
+    );
+    // Check the fixture: its rows appear beside the view they were
+    // measured in, and the list shows their count.
+    d.click("#check");
+    let said = d.wait_for(
+        "the check",
+        "return document.getElementById('status').textContent",
+        |v| v.as_str().is_some_and(|s| s.starts_with("flange checked")),
+    );
+    assert!(
+        said.as_str().unwrap().starts_with("flange checked: pass"),
+        "{said}"
+    );
+    let here = d.script(
+        "return [...document.querySelectorAll('#here tr.pass td:first-child')].map(c => c.textContent)",
+    );
+    let here: Vec<&str> = here
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    assert!(!here.is_empty(), "no rows shown beside frame 920");
+    let listed = d.script("return document.getElementById('fixtures').textContent");
+    assert!(
+        listed
+            .as_str()
+            .unwrap()
+            .contains(&format!("frame 920 — golden, rows {0}/{0}", here.len())),
+        "{listed}"
     );
     let _ = http(&d.addr, "DELETE", &format!("/session/{}", d.session), None);
     drop(server);

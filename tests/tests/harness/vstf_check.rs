@@ -226,6 +226,66 @@ fn the_report_shows_images_markers_and_rows() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+#[test]
+fn each_view_shows_the_rows_measured_in_it() {
+    // Every row of the suite is measured in some view, and the report
+    // shows it once, beside that view.
+    for r in reports() {
+        for row in &r.rows {
+            assert!(
+                r.views.iter().any(|v| v.measured.contains(&row.quantity)),
+                "{}: row {:?} is attributed to no view",
+                r.fixture,
+                row.quantity
+            );
+        }
+    }
+    let dir = std::env::temp_dir().join(format!("vstf-report-views-{}", std::process::id()));
+    let chosen: Vec<FixtureReport> = reports()
+        .iter()
+        .filter(|r| r.fixture == "aberration" || r.fixture == "flange")
+        .map(copy_of)
+        .collect();
+    vstf::report::html(&dir, &chosen).unwrap();
+    let html = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    for r in &chosen {
+        for row in &r.rows {
+            let id = format!(
+                "id=\"{}-row-{}\"",
+                vstf::golden::slug(&r.fixture),
+                vstf::golden::slug(&row.quantity)
+            );
+            assert_eq!(
+                html.matches(&id).count(),
+                1,
+                "{id} is not shown exactly once"
+            );
+        }
+    }
+    let view = "approaching 0.5c classical";
+    let at = html.find(&format!("<h3>view {view}</h3>")).unwrap();
+    let next = at + 4 + html[at + 4..].find("<h3>view ").unwrap();
+    let row = format!(
+        "aberration-row-{}",
+        vstf::golden::slug(&format!("{view}: left edge azimuth"))
+    );
+    let shown = html.find(&format!("id=\"{row}\"")).unwrap();
+    assert!(at < shown && shown < next, "the row is not beside its view");
+    assert!(!html.contains("rows of no single view"));
+    // Control: rows no view measured are not lost, they follow the views.
+    let mut orphans = copy_of(chosen.iter().find(|r| r.fixture == "aberration").unwrap());
+    for v in &mut orphans.views {
+        v.measured.clear();
+    }
+    vstf::report::html(&dir, &[orphans]).unwrap();
+    let html = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    let rest = html
+        .find("rows of no single view")
+        .expect("orphan rows not shown");
+    assert!(html.find(&format!("id=\"{row}\"")).unwrap() > rest);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// A report's copy (reports hold images and cannot be cloned wholesale).
 fn copy_of(r: &FixtureReport) -> FixtureReport {
     FixtureReport {
@@ -239,6 +299,7 @@ fn copy_of(r: &FixtureReport) -> FixtureReport {
                 image: v.image.clone(),
                 markers: v.markers.clone(),
                 rows: v.rows.clone(),
+                measured: v.measured.clone(),
             })
             .collect(),
         rows: r.rows.clone(),

@@ -254,6 +254,7 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
                 ea_r - eb_r,
             ),
         ];
+        let first = quantities.len();
         quantities.extend(table.map(|(q, measured, expected)| Quantity {
             name: format!("{model}: {q}"),
             measured,
@@ -261,14 +262,16 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
             paper: None,
             unit: Unit::Degrees,
         }));
-        views.push(a.full_view(
-            &format!("{model}, camera moving"),
-            &horizon_marks(&a, &[ea_l, ea_r]),
-        )?);
-        views.push(b.full_view(
-            &format!("{model}, cube moving"),
-            &horizon_marks(&b, &[eb_l, eb_r]),
-        )?);
+        let rows: Vec<String> = quantities[first..].iter().map(|q| q.name.clone()).collect();
+        for (setup, label, marks) in [
+            (&a, "camera moving", [ea_l, ea_r]),
+            (&b, "cube moving", [eb_l, eb_r]),
+        ] {
+            let mut view =
+                setup.full_view(&format!("{model}, {label}"), &horizon_marks(setup, &marks))?;
+            view.measured.clone_from(&rows);
+            views.push(view);
+        }
     }
     Ok(Findings { views, quantities })
 }

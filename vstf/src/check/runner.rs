@@ -30,6 +30,9 @@ pub struct ViewReport {
     pub markers: Vec<(f64, f64)>,
     /// For each marker, the row it belongs to (empty when none names it).
     pub rows: Vec<String>,
+    /// The rows measured in this view (by quantity name), which the report
+    /// shows beside it.
+    pub measured: Vec<String>,
 }
 
 /// All results for one fixture.

@@ -164,6 +164,7 @@ impl Setup<'_> {
             image,
             markers,
             rows,
+            measured: Vec::new(),
         })
     }
 

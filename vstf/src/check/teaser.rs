@@ -127,7 +127,14 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
                 unit: Unit::LUnits,
             }));
         }
-        views.push(setup.full_view(band, &marks)?);
+        let mut view = setup.full_view(band, &marks)?;
+        let prefix = format!("{band}: ");
+        view.measured = quantities
+            .iter()
+            .filter(|q| q.name.starts_with(&prefix))
+            .map(|q| q.name.clone())
+            .collect();
+        views.push(view);
     }
     Ok(Findings { views, quantities })
 }

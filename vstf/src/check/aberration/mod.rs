@@ -300,7 +300,8 @@ fn view(
         .iter()
         .map(|a| DVec3::new(a.to_radians().sin(), 0.0, -a.to_radians().cos()))
         .collect();
-    let report = setup.full_view(&table.label, &marks)?;
+    let mut report = setup.full_view(&table.label, &marks)?;
+    report.measured = table.quantities.iter().map(|q| q.name.clone()).collect();
     Ok((table.quantities, report))
 }
 

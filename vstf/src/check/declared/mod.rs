@@ -72,7 +72,13 @@ pub fn evaluate(
         };
         if let MeasureSpec::Named(n) = &c.measure {
             let found = super::named::run(rendered, n, effort).map_err(fail)?;
-            named_views.extend(found.views);
+            let rows: Vec<String> = found.quantities.iter().map(|q| q.name.clone()).collect();
+            named_views.extend(found.views.into_iter().map(|mut v| {
+                if v.measured.is_empty() {
+                    v.measured.clone_from(&rows);
+                }
+                v
+            }));
             findings.quantities.extend(found.quantities);
             continue;
         }
@@ -87,8 +93,40 @@ pub fn evaluate(
         run.done.push(done);
     }
     findings.views = run.full_views()?;
+    let measured = measured_in(&spec.checks);
+    for v in &mut findings.views {
+        v.measured = measured
+            .iter()
+            .filter(|(_, views)| views.contains(&v.name))
+            .map(|(row, _)| row.clone())
+            .collect();
+    }
     findings.views.extend(named_views);
     Ok(findings)
+}
+
+/// The views each declared check (not a named kind) is measured in: its
+/// own, or for a combination, those of the rows it combines.
+fn measured_in(checks: &[CheckSpec]) -> Vec<(String, Vec<String>)> {
+    let mut found: Vec<(String, Vec<String>)> = Vec::new();
+    for c in checks {
+        let views = match (c.measure.view(), c.measure.operands()) {
+            (Some(v), _) => vec![v.to_string()],
+            (None, Some(operands)) => {
+                let mut views: Vec<String> = found
+                    .iter()
+                    .filter(|(row, _)| operands.contains(row))
+                    .flat_map(|(_, v)| v.iter().cloned())
+                    .collect();
+                views.sort();
+                views.dedup();
+                views
+            }
+            (None, None) => continue,
+        };
+        found.push((c.name.clone(), views));
+    }
+    found
 }
 
 /// The tolerance after a declaration's change: at most `at_most`, plus `add`.
