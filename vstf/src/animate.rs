@@ -3,6 +3,7 @@
 
 use crate::fixture::{Fixture, View};
 use crate::output::{write_atomic, write_png};
+use crate::shard::Shard;
 use image::RgbImage;
 use renderer::Database;
 use std::path::{Path, PathBuf};
@@ -90,33 +91,40 @@ pub fn frame_path(dir: &Path, i: usize) -> PathBuf {
 }
 
 /// What an animation's frames are, written beside them so that a resumed
-/// run only keeps frames of the same animation.
+/// run only keeps frames of the same animation (and merged shards only
+/// frames of one animation).
 pub fn manifest(f: &Fixture, view: &View, times: &[f64], label: bool) -> String {
-    use std::hash::{Hash, Hasher};
     // Everything a frame depends on: the scene as loaded, the camera and
     // every render setting (colour effects, shutter, seed, depth, shadows).
-    let mut h = std::collections::hash_map::DefaultHasher::new();
-    format!("{:?}{:?}{:?}", f.spec, view.camera, view.settings).hash(&mut h);
+    let scene = format!("{:?}{:?}{:?}", f.spec, view.camera, view.settings);
     format!(
-        "vstf animation\nfixture {}\nmodel {}\nsize {}x{}\nspp {}\nscene and settings {:016x}\ntimes {:?}\nlabelled {label}\n",
+        "vstf animation\nfixture {}\nmodel {}\nsize {}x{}\nspp {}\nscene and settings {}\ntimes {:?}\nlabelled {label}\n",
         f.file.display(),
         view.model,
         view.camera.width,
         view.camera.height,
         view.settings.spp,
-        h.finish(),
+        crate::shard::hash_hex(scene.as_bytes()),
         times
     )
 }
 
-/// Removes the frames an earlier animation left in `dir`, so that a later
-/// `--resume` can never keep one of them.
-fn remove_old_frames(dir: &Path) -> Result<(), String> {
+/// The frame index of a frame file's name (`frame-00012.png`).
+fn frame_index(name: &str) -> Option<usize> {
+    name.strip_prefix("frame-")?
+        .strip_suffix(".png")?
+        .parse()
+        .ok()
+}
+
+/// Removes the frames of `shard` an earlier animation left in `dir`, so
+/// that a later `--resume` can never keep one of them (other shards'
+/// frames in a shared folder are theirs).
+fn remove_old_frames(dir: &Path, shard: Shard) -> Result<(), String> {
     for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
         let name = e.file_name();
-        let name = name.to_string_lossy();
-        let is_frame = name.starts_with("frame-") && name.ends_with(".png");
-        if is_frame && e.file_type().is_ok_and(|t| t.is_file()) {
+        let owned = frame_index(&name.to_string_lossy()).is_some_and(|i| shard.owns_frame(i));
+        if owned && e.file_type().is_ok_and(|t| t.is_file()) {
             std::fs::remove_file(e.path())
                 .map_err(|err| format!("cannot remove {}: {err}", e.path().display()))?;
         }
@@ -124,9 +132,13 @@ fn remove_old_frames(dir: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// The manifest's file in a frames folder.
-fn manifest_path(dir: &Path) -> PathBuf {
-    dir.join("animation.txt")
+/// The resume manifest's file in a frames folder (one per shard).
+fn manifest_path(dir: &Path, shard: Shard) -> PathBuf {
+    if shard == Shard::WHOLE {
+        dir.join("animation.txt")
+    } else {
+        dir.join(format!("animation-{}.txt", shard.tag()))
+    }
 }
 
 /// Whether frame `i` is already in `dir`, whole: a PNG of the view's size.
@@ -135,69 +147,159 @@ fn frame_is_whole(dir: &Path, i: usize, view: &View) -> bool {
         .is_ok_and(|im| (im.width(), im.height()) == (view.camera.width, view.camera.height))
 }
 
-/// Renders every frame with one database, calling `done` after each; stops
-/// early (returning how many frames were finished) when `stop` is raised.
-/// With `resume`, frames already written whole by a run of the same
-/// animation (its manifest matches) are kept, not rendered again. With
-/// `label`, each frame carries its camera time ("t = 12.5") at its top left.
+/// How frames are rendered: kept from an interrupted run (`resume`),
+/// labelled with their camera time, and which shard's frames.
+#[derive(Clone, Copy, Debug)]
+pub struct FrameOptions {
+    /// Keep frames already written whole by a run of the same animation.
+    pub resume: bool,
+    /// Write each frame's camera time ("t = 12.5") at its top left.
+    pub label: bool,
+    /// Render only this shard's frames, and write its manifest.
+    pub shard: Shard,
+}
+
+/// Checks that a resumed run continues the same animation in `dir`.
+fn can_resume(dir: &Path, mpath: &Path, wanted: &str) -> Result<(), String> {
+    match std::fs::read_to_string(mpath) {
+        Ok(found) if found == wanted => Ok(()),
+        Ok(_) => Err(format!(
+            "cannot resume: the frames in {} belong to another animation (see {})",
+            dir.display(),
+            mpath.display()
+        )),
+        Err(_) => Err(format!(
+            "cannot resume: {} has no animation to resume ({} is missing)",
+            dir.display(),
+            mpath.display()
+        )),
+    }
+}
+
+/// Renders every frame of `opts.shard` with one database, calling `done`
+/// with the count finished after each; stops early (returning how many
+/// were finished) when `stop` is raised. A sharded run ends by writing the
+/// shard's manifest (`shard-I-of-N.json`) beside its frames.
 pub fn render_frames(
-    f: &Fixture,
-    view: &View,
-    db: &Database,
+    (f, view, db): (&Fixture, &View, &Database),
     times: &[f64],
     out: &Output,
-    (stop, resume, label): (&AtomicBool, bool, bool),
+    stop: &AtomicBool,
+    opts: FrameOptions,
     mut done: impl FnMut(usize),
 ) -> Result<usize, String> {
     let dir = out.frames_dir();
     std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    let wanted = manifest(f, view, times, label);
-    let mpath = manifest_path(&dir);
-    if resume {
-        match std::fs::read_to_string(&mpath) {
-            Ok(found) if found == wanted => {}
-            Ok(_) => {
-                return Err(format!(
-                    "cannot resume: the frames in {} belong to another animation (see {})",
-                    dir.display(),
-                    mpath.display()
-                ))
-            }
-            Err(_) => {
-                return Err(format!(
-                    "cannot resume: {} has no animation to resume ({} is missing)",
-                    dir.display(),
-                    mpath.display()
-                ))
-            }
-        }
-    }
-    if !resume {
-        remove_old_frames(&dir)?;
+    let wanted = manifest(f, view, times, opts.label);
+    let mpath = manifest_path(&dir, opts.shard);
+    if opts.resume {
+        can_resume(&dir, &mpath, &wanted)?;
+    } else {
+        remove_old_frames(&dir, opts.shard)?;
     }
     write_atomic(&mpath, wanted.as_bytes())
         .map_err(|e| format!("cannot write {}: {e}", mpath.display()))?;
-    for (i, &t) in times.iter().enumerate() {
+    let owned: Vec<usize> = (0..times.len())
+        .filter(|&i| opts.shard.owns_frame(i))
+        .collect();
+    for (k, &i) in owned.iter().enumerate() {
         if stop.load(Ordering::SeqCst) {
-            return Ok(i);
+            return Ok(k);
         }
-        if resume && frame_is_whole(&dir, i, view) {
-            done(i + 1);
-            continue;
+        if !(opts.resume && frame_is_whole(&dir, i, view)) {
+            render_frame((f, view, db), times[i], opts.label, &frame_path(&dir, i))?;
         }
-        let frame = View {
-            camera_t: t,
-            ..*view
-        };
-        let mut img = crate::run::render_with(db, f, &frame)?.to_rgb8();
-        if label {
-            let scale = crate::label::scale_for(img.width());
-            crate::label::draw(&mut img, &format!("t = {}", time_label(t)), scale);
-        }
-        write_png(&frame_path(&dir, i), &img)?;
-        done(i + 1);
+        done(k + 1);
     }
-    Ok(times.len())
+    if opts.shard != Shard::WHOLE {
+        let scene = crate::shard::hash_hex(wanted.as_bytes());
+        let mut m = crate::shard::Manifest::new("animation", scene, opts.shard, times.len());
+        for &i in &owned {
+            let file = frame_path(Path::new(""), i);
+            m.add(&dir, i.to_string(), &file.to_string_lossy())?;
+        }
+        m.write(&dir)?;
+    }
+    Ok(owned.len())
+}
+
+/// Renders one frame at camera time `t` into `path`.
+fn render_frame(
+    (f, view, db): (&Fixture, &View, &Database),
+    t: f64,
+    label: bool,
+    path: &Path,
+) -> Result<(), String> {
+    let frame = View {
+        camera_t: t,
+        ..*view
+    };
+    let mut img = crate::run::render_with(db, f, &frame)?.to_rgb8();
+    if label {
+        let scale = crate::label::scale_for(img.width());
+        crate::label::draw(&mut img, &format!("t = {}", time_label(t)), scale);
+    }
+    write_png(path, &img)
+}
+
+/// Assembles the frames of a sharded animation, found through the shards'
+/// manifests in `dirs`, into `out` (a folder of frames, a GIF or an APNG),
+/// once every shard is there, of one animation and unchanged; returns the
+/// number of frames.
+pub fn merge(dirs: &[PathBuf], out: &Output, fps: u32) -> Result<usize, String> {
+    let shards = crate::shard::complete(crate::shard::read_manifests(dirs)?, "animation")?;
+    let n = shards[0].manifest.items;
+    let mut files: Vec<Option<PathBuf>> = vec![None; n];
+    for s in &shards {
+        for w in &s.manifest.outputs {
+            let i: usize = w
+                .item
+                .parse()
+                .ok()
+                .filter(|&i| i < n && s.manifest.shard.owns_frame(i))
+                .ok_or_else(|| {
+                    format!(
+                        "shard {}: frame {:?} is not one of its frames",
+                        s.manifest.shard, w.item
+                    )
+                })?;
+            files[i] = Some(s.dir.join(&w.file));
+        }
+    }
+    if let Some(gap) = files.iter().position(Option::is_none) {
+        return Err(format!("frame {gap} is in no shard's manifest"));
+    }
+    let files: Vec<PathBuf> = files.into_iter().flatten().collect();
+    let frames = || -> Result<Vec<RgbImage>, String> {
+        files
+            .iter()
+            .map(|p| {
+                image::open(p)
+                    .map(|im| im.to_rgb8())
+                    .map_err(|e| format!("cannot read {}: {e}", p.display()))
+            })
+            .collect()
+    };
+    let (file, bytes) = match out {
+        Output::Sequence(d) => {
+            std::fs::create_dir_all(d)
+                .map_err(|e| format!("cannot create {}: {e}", d.display()))?;
+            for (i, p) in files.iter().enumerate() {
+                let to = frame_path(d, i);
+                if to.canonicalize().ok() != p.canonicalize().ok() {
+                    let bytes = std::fs::read(p)
+                        .map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+                    write_atomic(&to, &bytes)
+                        .map_err(|e| format!("cannot write {}: {e}", to.display()))?;
+                }
+            }
+            return Ok(n);
+        }
+        Output::Gif(file) => (file, encode_gif(&frames()?, fps)?),
+        Output::Apng(file) => (file, encode_apng(&frames()?, fps)?),
+    };
+    write_atomic(file, &bytes).map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+    Ok(n)
 }
 
 /// A camera time for a frame's label: at most 4 decimals, trailing zeros dropped.

@@ -7,8 +7,9 @@
 //! slice-by-slice [`emulator`]) scene by scene ([`check`]),
 //! and the views with their approved images ([`golden`]); [`report`]
 //! presents the verdict. Beside that: [`debug`] logs the variables along a
-//! pixel's rays, [`animate`] renders frame sequences, [`mod@bench`] measures
-//! speed, and [`output`] writes files atomically.
+//! pixel's rays, [`animate`] renders frame sequences, [`shard`] splits
+//! animations and check suites over a batch engine's array jobs,
+//! [`mod@bench`] measures speed, and [`output`] writes files atomically.
 
 pub mod aim;
 pub mod animate;
@@ -28,6 +29,7 @@ pub mod project;
 pub mod report;
 pub mod run;
 pub mod serve;
+pub mod shard;
 
 pub use budget::Budget;
 pub use check::{Effort, FixtureReport, Row, Unit};

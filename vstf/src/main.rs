@@ -19,6 +19,7 @@ fn main() -> ExitCode {
         Command::Debug(args) => cli::debug::run(root, args),
         Command::DebugDiff(args) => cli::debug::diff(args),
         Command::Animate(args) => cli::animate::run(root, args),
+        Command::Merge(args) => cli::merge::run(args),
         Command::Bench { quick } => cli::bench::run(root, quick),
         Command::List { views } => cli::list::run(root, views),
         Command::Serve { port } => cli::serve::run(root, port),

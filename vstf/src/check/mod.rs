@@ -8,6 +8,7 @@
 //! - [`row`]: readings, quantities and the judged rows of the check table;
 //! - [`runner`]: loading each fixture, running the checks concurrently,
 //!   comparing views with the golden images;
+//! - [`sharded`]: one shard's reports stored for `vstf merge`, and merged;
 //! - one module per scene, each a table of quantity, measurement,
 //!   expectation and the paper's figure.
 
@@ -19,6 +20,7 @@ pub mod path;
 pub mod row;
 pub mod runner;
 pub mod setup;
+pub mod sharded;
 
 pub mod aberration;
 pub mod doppler;

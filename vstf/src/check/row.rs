@@ -2,7 +2,7 @@
 //! first-principles value it is held against and the paper's printed
 //! figure, judged into a row of the check table.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// A value read off the images, with its 3-sigma uncertainty.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -61,6 +61,31 @@ impl Unit {
     }
 }
 
+impl Unit {
+    /// Every unit.
+    pub const ALL: [Unit; 9] = [
+        Unit::LUnits,
+        Unit::TUnits,
+        Unit::LUnitsPerTUnit,
+        Unit::Degrees,
+        Unit::GridMarks,
+        Unit::Ratio,
+        Unit::Factor,
+        Unit::Pixels,
+        Unit::PixelsPerTUnit,
+    ];
+}
+
+impl<'de> Deserialize<'de> for Unit {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Unit, D::Error> {
+        let s = String::deserialize(d)?;
+        Unit::ALL
+            .into_iter()
+            .find(|u| u.as_str() == s)
+            .ok_or_else(|| serde::de::Error::custom(format!("unknown unit {s:?}")))
+    }
+}
+
 impl Serialize for Unit {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.serialize_str(self.as_str())
@@ -111,7 +136,7 @@ impl Quantity {
 }
 
 /// One checked quantity, as the table and the JSON rows show it.
-#[derive(Clone, Debug, Serialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct Row {
     /// The fixture checked.
     pub fixture: String,

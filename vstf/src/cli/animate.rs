@@ -20,8 +20,13 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
         fps,
         resume,
         label,
+        shard,
         view,
     } = args;
+    let shard = match shard {
+        Some(s) => vstf::shard::Shard::parse(&s, |v| std::env::var(v).ok())?,
+        None => vstf::shard::Shard::WHOLE,
+    };
     if view.camera_t.is_some() {
         return Err("animate takes its camera times from --frames, not --camera-t".into());
     }
@@ -57,24 +62,34 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
     let started = Instant::now();
     let db = vstf::run::database(&fixture, view.model.lorentz, Traversal::Bvh)?;
     let build = started.elapsed().as_secs_f64();
-    let bar = progress_bar(times.len());
-    let done = vstf::animate::render_frames(
-        &fixture,
-        &view,
-        &db,
-        &times,
-        &output,
-        (&stop, resume, label),
-        |n| bar.set_position(n as u64),
-    )?;
+    let owned = (0..times.len()).filter(|&i| shard.owns_frame(i)).count();
+    let bar = progress_bar(owned);
+    let opts = vstf::animate::FrameOptions {
+        resume,
+        label,
+        shard,
+    };
+    let done =
+        vstf::animate::render_frames((&fixture, &view, &db), &times, &output, &stop, opts, |n| {
+            bar.set_position(n as u64)
+        })?;
     bar.finish_and_clear();
     let dir = output.frames_dir();
-    if done < times.len() {
+    if done < owned {
         return Err(format!(
-            "interrupted: {done} of {} frames finished, in {}",
-            times.len(),
+            "interrupted: {done} of {owned} frames finished, in {}",
             dir.display()
         ));
+    }
+    if shard != vstf::shard::Shard::WHOLE {
+        eprintln!(
+            "shard {shard}: {done} of {} frames in {} ({:.2} s); once every shard is done: vstf merge --out {} FOLDER...",
+            times.len(),
+            dir.display(),
+            started.elapsed().as_secs_f64(),
+            out.display()
+        );
+        return Ok(());
     }
     vstf::animate::finish(&output, done, fps)?;
     eprintln!(

@@ -99,6 +99,10 @@ pub enum Command {
     /// Render an animation: frames differ only by the camera's t, and the 4D
     /// database is built once.
     Animate(AnimateArgs),
+    /// Assemble the outputs of sharded runs (`animate --shard`, `check
+    /// --shard`) once every shard is there: refuses gaps, duplicates and
+    /// shards of another scene or version.
+    Merge(MergeArgs),
     /// Measure rendering speed: rays per second, relativistic against
     /// infinite light speed, BVH against brute force, growth with scene size,
     /// build time and memory.
@@ -175,6 +179,15 @@ pub struct CheckArgs {
     /// and every golden image's line, not only the failing ones.
     #[arg(long, short)]
     pub verbose: bool,
+    /// Check only shard I of N (the fixtures whose name hashes to I-1
+    /// modulo N) and store its results for `vstf merge`; `N` alone takes I
+    /// from SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX or
+    /// AWS_BATCH_JOB_ARRAY_INDEX.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// Where a shard stores its results (in check-I-of-N/).
+    #[arg(long, default_value = "target/vstf/shards", requires = "shard")]
+    pub shard_dir: PathBuf,
 }
 
 // `vstf fuzz`.
@@ -295,8 +308,40 @@ pub struct AnimateArgs {
     /// Write each frame's camera time on it ("t = 12.5", top left).
     #[arg(long)]
     pub label: bool,
+    /// Render only shard I of N (frames whose index is I-1 modulo N) into
+    /// the frames folder, with its manifest, for `vstf merge`; `N` alone
+    /// takes I from SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX or
+    /// AWS_BATCH_JOB_ARRAY_INDEX.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
     #[command(flatten)]
     pub view: ViewArgs,
+}
+
+// `vstf merge`.
+#[derive(clap::Args)]
+pub struct MergeArgs {
+    /// Folders the shards wrote (their manifests, shard-I-of-N.json, are
+    /// found in them or, for checks, in their check-I-of-N subfolders).
+    #[arg(required = true)]
+    pub dirs: Vec<PathBuf>,
+    /// The assembled animation: a folder (PNG sequence), FILE.gif or
+    /// FILE.png (APNG). Needed for animations.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Frames per second of the GIF or APNG.
+    #[arg(long, default_value_t = 10)]
+    pub fps: u32,
+    /// For checks: also write the merged rows and golden results as JSON
+    /// (`-`: to stdout).
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// For checks: also write the merged HTML report into this folder.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// For checks: the full table and every golden image's line.
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 /// Parses `--tol`: a finite, non-negative number.

@@ -7,9 +7,11 @@ use std::time::Instant;
 use vstf::check::{Effort, FixtureReport, Row};
 use vstf::golden::Comparison;
 use vstf::project::Project;
+use vstf::shard::Shard;
 
 /// Prints the table of rows and the golden comparisons, writes the JSON and
-/// HTML reports asked for, and fails if any row or image fails.
+/// HTML reports asked for, and fails if any row or image fails. A shard
+/// checks its fixtures and stores its results for `vstf merge`.
 pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
     let CheckArgs {
         fixtures,
@@ -18,6 +20,8 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
         quick,
         force,
         verbose,
+        shard,
+        shard_dir,
     } = args;
     let effort = if quick { Effort::QUICK } else { Effort::FULL };
     let started = Instant::now();
@@ -27,27 +31,94 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
         eprintln!("removed {} (left by an interrupted write)", p.display());
     }
     let budget = vstf::Budget::forced(force);
+    let shard = match shard {
+        Some(s) => Some(Shard::parse(&s, |v| std::env::var(v).ok())?),
+        None => None,
+    };
+    let chosen = vstf::check::sharded::chosen(&project, &fixtures);
+    let mine: Vec<String> = match shard {
+        Some(s) => chosen
+            .iter()
+            .filter(|n| s.owns_fixture(n))
+            .cloned()
+            .collect(),
+        None => fixtures.clone(),
+    };
+    let reports = if shard.is_some() && mine.is_empty() {
+        Vec::new()
+    } else {
+        checked(&project, &mine, (&effort, &budget))?
+    };
+    if let Some(s) = shard {
+        let dir = project.root().join(&shard_dir);
+        let scene = vstf::check::sharded::scene_hash(&project, &chosen);
+        let at = vstf::check::sharded::store(&reports, &dir, (s, scene, chosen.len()))?;
+        eprintln!(
+            "shard {s}: {} of {} fixtures stored in {}; once every shard is done: vstf merge {}",
+            reports.len(),
+            chosen.len(),
+            at.parent().unwrap_or(&dir).display(),
+            dir.display()
+        );
+    }
+    let asked = Asked {
+        json,
+        report,
+        verbose,
+    };
+    conclude(&reports, &asked, &store.pending, started)
+}
+
+/// The fixtures `names` checked, each fixture's line printed as it finishes
+/// (under a progress bar on a terminal).
+fn checked(
+    project: &Project,
+    names: &[String],
+    (effort, budget): (&Effort, &vstf::Budget),
+) -> Result<Vec<FixtureReport>, String> {
     let terminal = Terminal::stderr();
-    let count = if fixtures.is_empty() {
+    let count = if names.is_empty() {
         project.fixture_names().len()
     } else {
-        fixtures.len()
+        names.len()
     };
     let bar = terminal.progress(count);
-    let reports =
-        vstf::check::run_reporting(&project, &fixtures, (&effort, &budget), &|r, seconds| {
-            let line = fixture_line(r, seconds, terminal.colour);
-            if terminal.tty {
-                bar.println(line);
-                bar.inc(1);
-            } else {
-                eprintln!("{line}");
-            }
-        })?;
+    let reports = vstf::check::run_reporting(project, names, (effort, budget), &|r, seconds| {
+        let line = fixture_line(r, seconds, terminal.colour);
+        if terminal.tty {
+            bar.println(line);
+            bar.inc(1);
+        } else {
+            eprintln!("{line}");
+        }
+    })?;
     bar.finish_and_clear();
+    Ok(reports)
+}
+
+/// What the user asked to be written besides the table.
+pub struct Asked {
+    /// The JSON's file (`-`: stdout).
+    pub json: Option<std::path::PathBuf>,
+    /// The HTML report's folder.
+    pub report: Option<std::path::PathBuf>,
+    /// The full table and every golden line.
+    pub verbose: bool,
+}
+
+/// The table, the golden lines, the JSON and report asked for, the
+/// failures with the commands that show them and the closing line; an
+/// error when any row or golden image failed. `pending` is where the
+/// pending images are.
+pub fn conclude(
+    reports: &[FixtureReport],
+    asked: &Asked,
+    pending: &Path,
+    started: Instant,
+) -> Result<(), String> {
     let rows: Vec<Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
     // With `--json -` the JSON is all that goes to stdout; the table goes to stderr.
-    let json_to_stdout = json.as_deref() == Some(Path::new("-"));
+    let json_to_stdout = asked.json.as_deref() == Some(Path::new("-"));
     let say = |line: &str| {
         if json_to_stdout {
             eprintln!("{line}");
@@ -55,14 +126,14 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
             println!("{line}");
         }
     };
-    let table = if verbose {
+    let table = if asked.verbose {
         vstf::report::table(&rows)
     } else {
         vstf::report::summary_table(&rows)
     };
     say(table.trim_end());
     let goldens: Vec<&Comparison> = reports.iter().flat_map(|r| &r.goldens).collect();
-    for g in goldens.iter().filter(|g| verbose || !g.pass) {
+    for g in goldens.iter().filter(|g| asked.verbose || !g.pass) {
         say(&g.to_string());
     }
     let failed = goldens.iter().filter(|g| !g.pass).count();
@@ -71,24 +142,23 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
         goldens.len() - failed
     ));
     if failed > 0 {
-        eprintln!("golden images differ or are missing: look at the pending images under {}, then `vstf approve --list` and `vstf approve FIXTURE...` if the change is right", store.pending.display());
+        eprintln!("golden images differ or are missing: look at the pending images under {}, then `vstf approve --list` and `vstf approve FIXTURE...` if the change is right", pending.display());
     }
-
-    match json {
+    match &asked.json {
         Some(_) if json_to_stdout => println!("{}", vstf::report::check_json(&rows, &goldens)),
         Some(path) => {
-            vstf::output::write_atomic(&path, vstf::report::check_json(&rows, &goldens).as_bytes())
+            vstf::output::write_atomic(path, vstf::report::check_json(&rows, &goldens).as_bytes())
                 .map_err(|e| format!("cannot write {}: {e}", path.display()))?
         }
         None => {}
     }
-    if let Some(dir) = report {
-        vstf::report::html(&dir, &reports)?;
+    if let Some(dir) = &asked.report {
+        vstf::report::html(dir, reports)?;
         eprintln!("report: {}", dir.join("index.html").display());
     }
     let failed_rows = rows.iter().filter(|r| !r.pass).count();
     if failed_rows > 0 || failed > 0 {
-        eprintln!("{}", failures(&reports));
+        eprintln!("{}", failures(reports));
     }
     eprintln!(
         "check: {} fixtures, {} rows ({failed_rows} failed), {} golden images ({failed} failed) in {:.1} s",

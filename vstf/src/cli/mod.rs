@@ -1,7 +1,8 @@
 //! The `vstf` command line: [`args`] is its grammar, [`view`] turns the view
 //! flags into a fixture's view and database, and each subcommand has its
 //! module: [`render`], [`check`], [`approve`], [`debug`] (with
-//! `debug-diff`), [`animate`], [`bench`], [`list`], [`init`] and [`fuzz`].
+//! `debug-diff`), [`animate`], [`merge`] (of sharded runs), [`bench`],
+//! [`list`], [`init`] and [`fuzz`].
 
 pub mod animate;
 pub mod approve;
@@ -12,6 +13,7 @@ pub mod debug;
 pub mod fuzz;
 pub mod init;
 pub mod list;
+pub mod merge;
 pub mod render;
 pub mod review;
 pub mod serve;

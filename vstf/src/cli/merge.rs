@@ -1,0 +1,54 @@
+//! `vstf merge`: the outputs of sharded runs assembled, once every shard
+//! is there: an animation's frames into its folder, GIF or APNG; a check
+//! suite's results into the table, the JSON and the report an unsharded
+//! run gives (and its verdict).
+
+use super::args::MergeArgs;
+use super::check::{conclude, Asked};
+use std::time::Instant;
+
+/// Merges the shards found in `args.dirs`, by the kind their manifests
+/// name.
+pub fn run(args: MergeArgs) -> Result<(), String> {
+    let started = Instant::now();
+    let found = vstf::shard::read_manifests(&vstf::check::sharded::with_shard_folders(&args.dirs))?;
+    let kind = found
+        .first()
+        .map(|f| f.manifest.kind.clone())
+        .ok_or("no shard manifests (shard-I-of-N.json) in the folders given")?;
+    match kind.as_str() {
+        "animation" => {
+            let out = args
+                .out
+                .ok_or("merging an animation needs --out (a folder, FILE.gif or FILE.png)")?;
+            let output = vstf::animate::Output::from_path(&out);
+            let n = vstf::animate::merge(&args.dirs, &output, args.fps)?;
+            eprintln!(
+                "merged {n} frames from {} shards -> {}",
+                found.first().map_or(0, |f| f.manifest.shard.count),
+                out.display()
+            );
+            Ok(())
+        }
+        "check" => {
+            if args.out.is_some() {
+                return Err(
+                    "--out is for animations; a check suite takes --json and --report".into(),
+                );
+            }
+            let reports = vstf::check::sharded::merge(&args.dirs)?;
+            let asked = Asked {
+                json: args.json,
+                report: args.report,
+                verbose: args.verbose,
+            };
+            conclude(
+                &reports,
+                &asked,
+                std::path::Path::new("the shards' folders"),
+                started,
+            )
+        }
+        other => Err(format!("shard manifests of an unknown kind {other:?}")),
+    }
+}
