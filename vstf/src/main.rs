@@ -20,7 +20,14 @@ fn main() -> ExitCode {
         Command::DebugDiff(args) => cli::debug::diff(args),
         Command::Animate(args) => cli::animate::run(root, args),
         Command::Merge(args) => cli::merge::run(args),
-        Command::Bench { quick } => cli::bench::run(root, quick),
+        Command::Bench {
+            quick,
+            measure,
+            frames,
+        } => match measure {
+            Some(fixture) => cli::bench::measure(&fixture, frames),
+            None => cli::bench::run(root, quick),
+        },
         Command::List { views } => cli::list::run(root, views),
         Command::Serve { port } => cli::serve::run(root, port),
         Command::Init(args) => cli::init::run(args),

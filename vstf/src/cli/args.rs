@@ -110,6 +110,13 @@ pub enum Command {
         /// Small images and scenes (a smoke test, not figures to quote).
         #[arg(long)]
         quick: bool,
+        /// (Internal) measure one fixture's load, build, frames and peak
+        /// memory in this process and print them as JSON.
+        #[arg(long, hide = true)]
+        measure: Option<PathBuf>,
+        /// (Internal) frames rendered by --measure.
+        #[arg(long, hide = true, default_value_t = 1)]
+        frames: usize,
     },
     /// Serve a local page (127.0.0.1 only) for looking at every view:
     /// render, golden and diff, flip, approve and reject, camera-time and

@@ -1,6 +1,11 @@
 //! `vstf bench`: the speed figures of the README, measured side by side in
 //! one run. Times are the best of several runs of the same work, on this
-//! machine; what is quoted elsewhere are ratios between them.
+//! machine; what is quoted elsewhere are ratios between them. Section 7
+//! ([`embree`]) runs Intel Embree on the same triangles ([`tori`]) when it
+//! is installed.
+
+pub mod embree;
+pub mod tori;
 
 use crate::fixture::{Fixture, Overrides, View};
 use crate::project::Project;
@@ -180,6 +185,7 @@ fn render_boxes(db: &Database, scene: &Scene, cam: &Camera) -> renderer::Image {
 }
 
 /// Resident and peak memory of this process, bytes (Linux; zero elsewhere).
+/// This process's resident memory and its peak, bytes.
 fn memory() -> (u64, u64) {
     let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
     let field = |name: &str| {
@@ -230,6 +236,13 @@ pub fn run(project: &Project, quick: bool) -> Result<String, String> {
     against_brute_force(&plan, &mut out)?;
     growth(&plan, &mut out)?;
     teaser_frame(&plan, &mut out)?;
+    let dir = plan
+        .project
+        .root()
+        .join("target")
+        .join("vstf")
+        .join("bench");
+    embree::section(&dir, quick, &mut out)?;
     Ok(out)
 }
 

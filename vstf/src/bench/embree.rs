@@ -1,0 +1,340 @@
+//! Section 7 of `vstf bench`: this renderer against Intel Embree 3 (the
+//! CPU ray-tracing limit) on the same triangles, camera and rays, measured
+//! in the same run. Each side runs in a fresh process, alternately, and the
+//! ratio is taken per round: CPU seconds per frame (primary rays only, one
+//! ray at each pixel's centre), the build, peak memory, and the time from
+//! nothing loaded to the first frame.
+//!
+//! Embree's side is `ebench.c`, compiled here against Debian's
+//! `libembree-dev` when it is installed; without it the section prints this
+//! renderer's own figures and how to install Embree.
+
+use super::tori;
+use crate::fixture::{Fixture, Overrides};
+use renderer::Traversal;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+/// Embree's side of the benchmark, as C.
+const EBENCH: &str = include_str!("ebench.c");
+
+/// What one side measured on one scene.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct Measured {
+    /// Reading the scene from disk (and validating it), wall seconds.
+    pub load: f64,
+    /// Building the acceleration structure, CPU seconds.
+    pub build_cpu: f64,
+    /// From the start to the first finished frame, wall seconds.
+    pub first_frame: f64,
+    /// The best frame's CPU seconds.
+    pub frame_cpu: f64,
+    /// The process's peak resident memory, bytes.
+    pub peak: u64,
+    /// Pixels whose ray hit a triangle.
+    pub hits: u64,
+}
+
+/// CPU seconds this process has used (user and system, from /proc).
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // Fields after the command name (which may hold spaces) in parentheses.
+    let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let ticks = |k: usize| {
+        fields
+            .get(k)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    // utime and stime are fields 14 and 15 of the file, 12 and 13 here.
+    (ticks(11) + ticks(12)) / 100.0
+}
+
+/// This renderer's side, run in this process: load the fixture at `path`,
+/// build its database, render `frames` frames.
+pub fn measure(path: &Path, frames: usize) -> Result<Measured, String> {
+    let start = Instant::now();
+    let f = Fixture::load(path).map_err(|e| e.to_string())?;
+    let view = crate::run::view(&f, &Overrides::default())?;
+    let load = start.elapsed().as_secs_f64();
+    let c0 = cpu_seconds();
+    let db = crate::run::database(&f, false, Traversal::Bvh)?;
+    let build_cpu = cpu_seconds() - c0;
+    let mut m = Measured {
+        load,
+        build_cpu,
+        frame_cpu: f64::INFINITY,
+        ..Measured::default()
+    };
+    for k in 0..frames.max(1) {
+        let c = cpu_seconds();
+        let img = crate::run::render_with(&db, &f, &view)?.to_rgb8();
+        m.frame_cpu = m.frame_cpu.min(cpu_seconds() - c);
+        if k == 0 {
+            m.first_frame = start.elapsed().as_secs_f64();
+            m.hits = img.pixels().filter(|p| p.0 != [0, 0, 0]).count() as u64;
+        }
+    }
+    m.peak = super::memory().1;
+    Ok(m)
+}
+
+/// [`measure`] in a fresh `vstf` process (so that its peak memory is this
+/// scene's alone).
+fn measure_in_child(path: &Path, frames: usize) -> Result<Measured, String> {
+    let exe = std::env::current_exe().map_err(|e| format!("cannot find vstf itself: {e}"))?;
+    let out = Command::new(exe)
+        .args(["bench", "--measure"])
+        .arg(path)
+        .args(["--frames", &frames.to_string()])
+        .output()
+        .map_err(|e| format!("cannot run vstf bench --measure: {e}"))?;
+    if !out.status.success() {
+        return Err(format!(
+            "vstf bench --measure {} failed: {}",
+            path.display(),
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    serde_json::from_slice(&out.stdout).map_err(|e| format!("vstf bench --measure: {e}"))
+}
+
+/// Compiles Embree's side into `dir`, or says why it cannot.
+fn compile(dir: &Path) -> Result<PathBuf, String> {
+    if !Path::new("/usr/include/embree3/rtcore.h").is_file() {
+        return Err("Embree 3 is not installed (Debian: apt-get install libembree-dev)".into());
+    }
+    let src = dir.join("ebench.c");
+    let exe = dir.join("ebench");
+    crate::output::write_atomic(&src, EBENCH.as_bytes())
+        .map_err(|e| format!("cannot write {}: {e}", src.display()))?;
+    let out = Command::new("cc")
+        .args(["-O2", "-o"])
+        .arg(&exe)
+        .arg(&src)
+        .args(["-lembree3", "-lpthread", "-lm"])
+        .output()
+        .map_err(|e| format!("cannot run cc (apt-get install gcc): {e}"))?;
+    if !out.status.success() {
+        return Err(format!(
+            "cannot compile {}: {}",
+            src.display(),
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    Ok(exe)
+}
+
+/// The value of `key=` in Embree's output (the first, or with `best` the
+/// smallest over its frames), seconds' `s` suffix dropped.
+fn field(text: &str, key: &str, best: bool) -> Result<f64, String> {
+    let values: Vec<f64> = text
+        .split_whitespace()
+        .filter_map(|w| w.strip_prefix(key)?.strip_prefix('='))
+        .filter_map(|v| v.trim_end_matches('s').parse().ok())
+        .collect();
+    let v = if best {
+        values.iter().copied().reduce(f64::min)
+    } else {
+        values.first().copied()
+    };
+    v.ok_or_else(|| format!("Embree's output has no {key}: {text}"))
+}
+
+/// Embree's side on `obj` at `w` x `h`, tracing with rtcIntersect`mode`.
+fn embree(
+    exe: &Path,
+    obj: &Path,
+    (w, h): (u32, u32),
+    mode: u32,
+    frames: usize,
+) -> Result<Measured, String> {
+    let threads = rayon::current_num_threads();
+    let start = Instant::now();
+    let out = Command::new(exe)
+        .arg(obj)
+        .args([w, h].map(|x| x.to_string()))
+        .args([frames.to_string(), mode.to_string(), threads.to_string()])
+        .output()
+        .map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
+    let wall = start.elapsed().as_secs_f64();
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    if !out.status.success() {
+        return Err(format!("{} failed: {text}", exe.display()));
+    }
+    let (load, build) = (field(&text, "load", false)?, field(&text, "build", false)?);
+    let trace = field(&text, "trace", false)?;
+    Ok(Measured {
+        load,
+        build_cpu: field(&text, "build_cpu", false)?,
+        first_frame: (load + build + trace).min(wall),
+        frame_cpu: field(&text, "cpu", true)?,
+        peak: field(&text, "peak_rss_kb", false)? as u64 * 1024,
+        hits: field(&text, "hits", false)? as u64,
+    })
+}
+
+/// The sizes measured and how often.
+struct Sizes {
+    triangles: &'static [usize],
+    image: (u32, u32),
+    rounds: usize,
+    frames: usize,
+}
+
+/// One scene's measurements, each side per round.
+struct Scene {
+    triangles: usize,
+    ours: Vec<Measured>,
+    single: Vec<Measured>,
+    packets: Vec<Measured>,
+}
+
+/// Section 7, appended to `out`.
+pub fn section(dir: &Path, quick: bool, out: &mut String) -> Result<(), String> {
+    let sizes = if quick {
+        Sizes {
+            triangles: &[10_000, 30_000],
+            image: (480, 270),
+            rounds: 1,
+            frames: 1,
+        }
+    } else {
+        Sizes {
+            triangles: &[10_000, 1_000_000, 3_000_000],
+            image: (1920, 1080),
+            rounds: 2,
+            frames: 3,
+        }
+    };
+    let (w, h) = sizes.image;
+    let _ = writeln!(out, "\n7. against Embree 3: the same tilted tori, camera and {w}x{h} primary rays (one at each pixel's centre), no shadows; CPU seconds per frame, best of {} frames; each side in a fresh process, alternately, {} round(s), ratios per round", sizes.frames, sizes.rounds);
+    let exe = compile(dir);
+    if let Err(why) = &exe {
+        let _ = writeln!(out, "   {why}: this renderer's figures only");
+    }
+    let mut scenes = Vec::new();
+    for &n in sizes.triangles {
+        let (obj, fixture, triangles) = tori::write(dir, n, sizes.image)?;
+        let mut s = Scene {
+            triangles,
+            ours: Vec::new(),
+            single: Vec::new(),
+            packets: Vec::new(),
+        };
+        for _ in 0..sizes.rounds {
+            s.ours.push(measure_in_child(&fixture, sizes.frames)?);
+            if let Ok(exe) = &exe {
+                s.single
+                    .push(embree(exe, &obj, sizes.image, 1, sizes.frames)?);
+                s.packets
+                    .push(embree(exe, &obj, sizes.image, 16, sizes.frames)?);
+            }
+        }
+        scenes.push(s);
+    }
+    print_scenes(&scenes, out);
+    Ok(())
+}
+
+/// The smallest and largest of the per-round ratios `ours / theirs` of `f`.
+fn ratios(ours: &[Measured], theirs: &[Measured], f: impl Fn(&Measured) -> f64) -> String {
+    let r: Vec<f64> = ours.iter().zip(theirs).map(|(a, b)| f(a) / f(b)).collect();
+    let (lo, hi) = r
+        .iter()
+        .fold((f64::INFINITY, 0.0_f64), |(l, h), &x| (l.min(x), h.max(x)));
+    if r.is_empty() {
+        "-".into()
+    } else if (hi - lo) < 0.005 {
+        format!("{lo:.2}x")
+    } else {
+        format!("{lo:.2}-{hi:.2}x")
+    }
+}
+
+/// The best of a side's rounds for `f`.
+fn best(m: &[Measured], f: impl Fn(&Measured) -> f64) -> f64 {
+    m.iter().map(f).fold(f64::INFINITY, f64::min)
+}
+
+/// The table of section 7.
+fn print_scenes(scenes: &[Scene], out: &mut String) {
+    let _ = writeln!(
+        out,
+        "   {:>10} {:>9} {:>10} {:>10} {:>10} {:>10} {:>12} {:>12}",
+        "triangles",
+        "vstf (s)",
+        "x1 (s)",
+        "vstf/x1",
+        "x16 (s)",
+        "vstf/x16",
+        "hits vstf",
+        "hits embree"
+    );
+    for s in scenes {
+        let cpu = |m: &Measured| m.frame_cpu;
+        let hits = s.single.first().map_or("-".into(), |m| m.hits.to_string());
+        let _ = writeln!(
+            out,
+            "   {:>10} {:>9.3} {:>10} {:>10} {:>10} {:>10} {:>12} {:>12}",
+            s.triangles,
+            best(&s.ours, cpu),
+            if s.single.is_empty() {
+                "-".into()
+            } else {
+                format!("{:.3}", best(&s.single, cpu))
+            },
+            ratios(&s.ours, &s.single, cpu),
+            if s.packets.is_empty() {
+                "-".into()
+            } else {
+                format!("{:.3}", best(&s.packets, cpu))
+            },
+            ratios(&s.ours, &s.packets, cpu),
+            s.ours.first().map_or(0, |m| m.hits),
+            hits
+        );
+    }
+    let Some(large) = scenes.last() else { return };
+    let theirs = !large.single.is_empty();
+    let pair = |ours: f64, their: f64, unit: &str| {
+        if theirs {
+            format!(
+                "vstf {ours:.2} {unit}, Embree {their:.2} {unit} ({:.1}x)",
+                ours / their
+            )
+        } else {
+            format!("vstf {ours:.2} {unit}")
+        }
+    };
+    let build = |m: &Measured| m.build_cpu;
+    let first = |m: &Measured| m.first_frame;
+    let _ = writeln!(
+        out,
+        "   at {} triangles: build {}; first frame (load, build, one frame) {}",
+        large.triangles,
+        pair(
+            best(&large.ours, build),
+            best(&large.single, build),
+            "CPU s"
+        ),
+        pair(best(&large.ours, first), best(&large.single, first), "s"),
+    );
+    if let [.., a, b] = scenes {
+        let slope = |ma: &[Measured], mb: &[Measured]| {
+            let peak = |m: &[Measured]| m.iter().map(|x| x.peak as f64).fold(0.0, f64::max);
+            (peak(mb) - peak(ma)) / (b.triangles - a.triangles) as f64
+        };
+        let _ = writeln!(
+            out,
+            "   peak memory per triangle ({} -> {} triangles): {}",
+            a.triangles,
+            b.triangles,
+            pair(slope(&a.ours, &b.ours), slope(&a.single, &b.single), "B")
+        );
+    }
+}
