@@ -6,6 +6,7 @@
 //! hierarchy of the lab-frame 4D bounds of their time slices.
 
 use super::bvh::{rounding_margin, Bounds4, Bvh};
+use super::wide::WideBvh;
 use crate::geometry::{Hit, Tetrahedron};
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
@@ -35,7 +36,8 @@ struct StretchBvh {
     origin: Event,
     velocity: DVec3,
     first_prism: u32,
-    bvh: Bvh,
+    /// Over comoving x, y, z only: every prism spans the stretch's times.
+    bvh: WideBvh<3>,
 }
 
 impl StretchBvh {
@@ -76,7 +78,7 @@ impl TimeSlice {
 /// comoving bounds; over all stretches, a hierarchy of the lab-frame 4D
 /// bounds of their time slices.
 pub(crate) struct TwoLevel {
-    top: Bvh,
+    top: WideBvh<4>,
     stretches: Vec<StretchBvh>,
     slices: Vec<TimeSlice>,
 }
@@ -167,11 +169,11 @@ impl TwoLevel {
                 origin: g.origin,
                 velocity: g.velocity,
                 first_prism: g.prisms.start as u32,
-                bvh: Bvh::build(&comoving),
+                bvh: WideBvh::collapse(&Bvh::build(&comoving)),
             });
         }
         TwoLevel {
-            top: Bvh::build(&slice_bounds),
+            top: WideBvh::collapse(&Bvh::build(&slice_bounds)),
             stretches: built,
             slices: all_slices,
         }
