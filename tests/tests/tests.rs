@@ -14,6 +14,7 @@ mod spacetime {
     mod keyframes;
     mod lightcone;
     mod sphere;
+    mod watertight;
 }
 
 /// Whole images and the shading of their pixels: light-speed models,

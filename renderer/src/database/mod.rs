@@ -156,7 +156,8 @@ impl Database {
 
     /// One tetrahedron's barycentric solve, with the reason for a miss.
     pub fn test(&self, ray: &Ray, tet: u32, range: (f64, f64)) -> Result<Hit, Miss> {
-        self.prepared[tet as usize].intersect(ray, tet, range)
+        let corners = &self.tets[tet as usize].vertices;
+        self.prepared[tet as usize].intersect(ray, (tet, corners), range)
     }
 
     /// The solve of `tet`, recorded as a candidate.
