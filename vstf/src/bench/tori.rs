@@ -58,7 +58,7 @@ fn tilted([x, y, z]: [f64; 3], ax: f64, ay: f64) -> [f64; 3] {
     [x, y, z]
 }
 
-/// The OBJ file and fixture [`write`] writes, for `total` triangles at
+/// The OBJ file and fixture [`fn@write`] writes, for `total` triangles at
 /// `w` x `h`.
 pub fn paths(dir: &Path, total: usize, (w, h): (u32, u32)) -> (PathBuf, PathBuf) {
     (
