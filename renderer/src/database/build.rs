@@ -228,8 +228,11 @@ struct Inserted {
 fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
     let mut b = Builder::default();
     let mut records = Vec::new();
+    let mut prepared = Vec::new();
     for (i, obj) in scene.objects.iter().enumerate() {
+        let first = b.tets.len();
         let stretches = b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
+        prepare(&b, first, &mut prepared).map_err(|f| f.of(i, &obj.name))?;
         records.push(ObjectRecord {
             name: obj.name.clone(),
             kind: obj.kind,
@@ -238,26 +241,30 @@ fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
             stretches,
         });
     }
-    let mut prepared = Vec::with_capacity(b.tets.len());
-    for t in &b.tets {
+    Ok(Inserted {
+        builder: b,
+        records,
+        prepared,
+    })
+}
+
+/// Prepares the solves of the builder's tetrahedra from `first` on (one
+/// object's), or the fault of the first with no 3-volume.
+fn prepare(b: &Builder, first: usize, prepared: &mut Vec<PreparedTet>) -> Result<(), Fault> {
+    prepared.reserve(b.tets.len() - first);
+    for t in &b.tets[first..] {
         let p = PreparedTet::new(t).ok_or_else(|| {
             let prism = b.prisms[t.prism as usize];
-            let object = prism.object as usize;
             Fault::new(
                 F::Shape,
                 K::FlatTetrahedron {
                     triangle: prism.triangle,
                 },
             )
-            .of(object, &records[object].name)
         })?;
         prepared.push(p);
     }
-    Ok(Inserted {
-        builder: b,
-        records,
-        prepared,
-    })
+    Ok(())
 }
 
 impl Database {
@@ -283,8 +290,22 @@ impl Database {
     }
 
     /// Whether [`Database::build`] would accept `scene`: the same insertion
-    /// and the same errors, without building the acceleration structure.
+    /// and the same errors (object by object, in order), without building
+    /// the acceleration structure and holding one object's prisms at a
+    /// time. `lorentz` only matters for V_obj objects.
     pub fn validate(scene: &Scene, lorentz: bool) -> Result<(), SceneError> {
-        insert_all(scene, lorentz).map(drop)
+        for (i, obj) in scene.objects.iter().enumerate() {
+            let mut b = Builder::default();
+            b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
+            for t in &b.tets {
+                if PreparedTet::new(t).is_none() {
+                    let triangle = b.prisms[t.prism as usize].triangle;
+                    return Err(
+                        Fault::new(F::Shape, K::FlatTetrahedron { triangle }).of(i, &obj.name)
+                    );
+                }
+            }
+        }
+        Ok(())
     }
 }
