@@ -39,10 +39,16 @@ impl Bounds4 {
 }
 
 /// How far a box is widened for the rounding of coordinates computed inside
-/// it: 1e-9 of its extent plus 1e-12 of its coordinates' magnitude, per axis.
+/// it: 1e-9 of its extent plus 1e-12 of its coordinates' magnitude, the
+/// largest over the three space axes on each of them, and its own on t.
+/// Space is padded alike so that a flat box (a sheet in z = 0) is as wide
+/// across as a rounding off its plane: a point computed there at z = -1e-15
+/// would otherwise fall outside it.
 #[inline]
 pub(crate) fn rounding_margin(min: DVec4, max: DVec4) -> DVec4 {
-    (max - min) * 1e-9 + (max.abs() + min.abs()) * 1e-12
+    let per_axis = (max - min) * 1e-9 + (max.abs() + min.abs()) * 1e-12;
+    let space = per_axis.x.max(per_axis.y).max(per_axis.z);
+    DVec4::new(space, space, space, per_axis.w)
 }
 
 #[derive(Clone, Copy, Debug)]

@@ -62,14 +62,21 @@ struct TimeSlice {
 
 impl TimeSlice {
     /// The part of `range` where the ray `o + s d` is within the slice's
-    /// lab times; `None` if it never is.
+    /// lab times, widened by a billionth of its ends for the rounding of
+    /// both it and the solves (a hit exactly at the time two slices or two
+    /// stretches meet is then tested on both sides, as brute force would);
+    /// `None` if it never is.
     #[inline]
     fn window(&self, o: DVec4, d: DVec4, range: (f64, f64)) -> Option<(f64, f64)> {
         if d.w == 0.0 {
             return (self.t0 <= o.w && o.w <= self.t1).then_some(range);
         }
         let (a, b) = ((self.t0 - o.w) / d.w, (self.t1 - o.w) / d.w);
-        let (lo, hi) = (range.0.max(a.min(b)), range.1.min(a.max(b)));
+        let margin = (a.abs() + b.abs()) * 1e-9;
+        let (lo, hi) = (
+            range.0.max(a.min(b) - margin),
+            range.1.min(a.max(b) + margin),
+        );
         (lo <= hi).then_some((lo, hi))
     }
 }

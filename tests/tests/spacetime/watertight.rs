@@ -2,23 +2,25 @@
 //! that neighbouring tetrahedra share (inside one prism and between the
 //! prisms of neighbouring triangles) never slip through, and the BVH finds
 //! what brute force finds, for a sheet of triangles at rest, moving as an
-//! H_obj, and Lorentz-contracted as a V_obj along an axis and diagonally,
-//! at 1x and at 100x coordinates: 10^7 rays in all.
+//! H_obj, Lorentz-contracted as a V_obj along an axis and diagonally, and
+//! keyframed (changing velocity, so that corners at the middle keyframe are
+//! shared by the prisms of both intervals), at 1x and at 100x coordinates:
+//! 10^7 rays in all, at faces, edges and (keyframed) corners.
 //!
 //! The sheet is a flat grid moving slower than light, so each ray, which
 //! crosses its world-volume once, must hit it at the aimed point.
 
 use glam::DVec3;
 use rayon::prelude::*;
-use renderer::{Database, Event, FourVector, LightSpeed, Mesh, Motion, ObjectKind, Ray};
+use renderer::{Database, Event, FourVector, Keyframe, LightSpeed, Mesh, Motion, ObjectKind, Ray};
 use renderer::{SplitMix64, Tetrahedron, Traversal};
 use std::collections::HashMap;
 use workspace_tests::{object, scene, unit};
 
 /// Grid cells per side of the sheet.
 const CELLS: u32 = 6;
-/// Rays per configuration (8 configurations: 10^7 in all).
-const RAYS: usize = 1_250_000;
+/// Rays per configuration (10 configurations: 10^7 in all).
+const RAYS: usize = 1_000_000;
 /// Every this many rays is also traced by brute force.
 const BRUTE_EVERY: usize = 10;
 
@@ -52,11 +54,11 @@ fn touches_rim(mesh: &Mesh, t: usize, scale: f64) -> bool {
 /// A face or edge shared by tetrahedra: its corners.
 type Shared = Vec<Event>;
 
-/// The faces shared by two tetrahedra and the edges shared by two or more,
-/// of prisms of triangles away from the rim, joining the prisms' bottoms
-/// to their tops (the others lie in the world-volume's first or last
-/// instant, its boundary).
-fn shared_elements(db: &Database, mesh: &Mesh, scale: f64) -> Vec<Shared> {
+/// The faces shared by two tetrahedra and the edges and corners shared by
+/// two or more, of prisms of triangles away from the rim, that do not lie
+/// in the world-volume's first or last instant (its boundary): joining a
+/// prism's bottom to its top, or at a keyframe time strictly inside `life`.
+fn shared_elements(db: &Database, mesh: &Mesh, scale: f64, life: (f64, f64)) -> Vec<Shared> {
     let key = |e: &Event| [e.t, e.x.x, e.x.y, e.x.z].map(f64::to_bits);
     let mut count: HashMap<Vec<[u64; 4]>, (usize, Shared)> = HashMap::new();
     for tet in db.tetrahedra() {
@@ -64,7 +66,11 @@ fn shared_elements(db: &Database, mesh: &Mesh, scale: f64) -> Vec<Shared> {
         if touches_rim(mesh, prism.triangle as usize, scale) {
             continue;
         }
-        for part in parts(tet).into_iter().filter(|p| spans_time(tet, p)) {
+        let inside = |p: &Shared| p.iter().all(|e| e.t > life.0 && e.t < life.1);
+        for part in parts(tet)
+            .into_iter()
+            .filter(|p| spans_time(tet, p) || inside(p))
+        {
             let mut k: Vec<[u64; 4]> = part.iter().map(key).collect();
             k.sort_unstable();
             count.entry(k).or_insert((0, part)).0 += 1;
@@ -72,7 +78,7 @@ fn shared_elements(db: &Database, mesh: &Mesh, scale: f64) -> Vec<Shared> {
     }
     let mut shared: Vec<Shared> = count
         .into_values()
-        .filter(|(n, part)| *n >= 2 && (part.len() == 3 || part.len() == 2))
+        .filter(|(n, part)| *n >= 2 && part.len() <= 3)
         .map(|(_, part)| part)
         .collect();
     shared.sort_by(|a, b| {
@@ -100,10 +106,10 @@ fn spans_time(tet: &Tetrahedron, part: &Shared) -> bool {
     b > 0 && b < part.len()
 }
 
-/// A tetrahedron's four faces and six edges.
+/// A tetrahedron's four faces, six edges and four corners.
 fn parts(tet: &Tetrahedron) -> Vec<Shared> {
     let v = tet.vertices;
-    let mut out = Vec::new();
+    let mut out: Vec<Shared> = v.iter().map(|e| vec![*e]).collect();
     for skip in 0..4 {
         out.push((0..4).filter(|&i| i != skip).map(|i| v[i]).collect());
     }
@@ -147,11 +153,16 @@ fn shoot(
     seed: u64,
 ) -> (usize, usize, usize) {
     let mesh = sheet(scale);
+    let life = match &motion {
+        Motion::Extrusion { start, extrusion } => (start.t, start.t + extrusion.t),
+        Motion::Keyframes(k) => (k[0].t, k[k.len() - 1].t),
+        _ => unreachable!(),
+    };
     let s = scene(vec![object("sheet", kind, mesh.clone(), motion)]);
     let db = Database::build(&s, lorentz).unwrap();
     let mut brute = Database::build(&s, lorentz).unwrap();
     brute.set_traversal(Traversal::BruteForce);
-    let shared = shared_elements(&db, &mesh, scale);
+    let shared = shared_elements(&db, &mesh, scale, life);
     assert!(shared.len() > 100, "only {} shared elements", shared.len());
     let chunks = 64;
     let per = RAYS / chunks;
@@ -183,33 +194,62 @@ fn shoot(
         .reduce(|| (0, 0, 0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2))
 }
 
-/// The motions tried: (label, kind, velocity, Lorentz-transformed).
-fn motions() -> Vec<(&'static str, ObjectKind, DVec3, bool)> {
-    let diagonal = DVec3::ONE.normalize() * 0.9;
-    vec![
-        ("static", ObjectKind::HObj, DVec3::ZERO, false),
-        (
-            "H_obj 0.9c along x",
-            ObjectKind::HObj,
-            DVec3::X * 0.9,
-            false,
-        ),
-        ("V_obj 0.9c along x", ObjectKind::VObj, DVec3::X * 0.9, true),
-        ("V_obj 0.9c diagonal", ObjectKind::VObj, diagonal, true),
-    ]
+/// The sheet's motion at `scale`: uniform with velocity `v` over 40
+/// scaled t.units, or (`None`) keyframed, at 0.5c along x and then at 0.8c
+/// along y.
+fn motion_at(v: Option<DVec3>, scale: f64) -> Motion {
+    let life = 40.0 * scale;
+    match v {
+        Some(v) => Motion::Extrusion {
+            start: Event::new(-life / 2.0, -v * life / 2.0),
+            extrusion: FourVector::new(life, v * life),
+        },
+        None => {
+            let half = life / 2.0;
+            let at = |t: f64, x: DVec3| Keyframe {
+                t,
+                position: x,
+                offsets: None,
+            };
+            Motion::Keyframes(vec![
+                at(-half, DVec3::new(-0.5 * half, 0.0, 0.0)),
+                at(0.0, DVec3::ZERO),
+                at(half, DVec3::new(0.0, 0.8 * half, 0.0)),
+            ])
+        }
+    }
 }
 
 #[test]
-fn rays_at_shared_faces_and_edges_never_leak_and_bvh_equals_brute_force() {
+fn rays_at_shared_faces_edges_and_corners_never_leak_and_bvh_equals_brute_force() {
     let mut report = Vec::new();
     let mut total = 0;
+    let diagonal = DVec3::ONE.normalize() * 0.9;
+    let motions = [
+        ("static", ObjectKind::HObj, Some(DVec3::ZERO), false),
+        (
+            "H_obj 0.9c along x",
+            ObjectKind::HObj,
+            Some(DVec3::X * 0.9),
+            false,
+        ),
+        (
+            "V_obj 0.9c along x",
+            ObjectKind::VObj,
+            Some(DVec3::X * 0.9),
+            true,
+        ),
+        (
+            "V_obj 0.9c diagonal",
+            ObjectKind::VObj,
+            Some(diagonal),
+            true,
+        ),
+        ("keyframed H_obj", ObjectKind::HObj, None, false),
+    ];
     for (k, scale) in [1.0, 100.0].into_iter().enumerate() {
-        for (m, (label, kind, v, lorentz)) in motions().into_iter().enumerate() {
-            let life = 40.0 * scale;
-            let motion = Motion::Extrusion {
-                start: Event::new(-life / 2.0, -v * life / 2.0),
-                extrusion: FourVector::new(life, v * life),
-            };
+        for (m, (label, kind, v, lorentz)) in motions.into_iter().enumerate() {
+            let motion = motion_at(v, scale);
             let (leaks, disagree, shot) =
                 shoot((kind, motion, lorentz), scale, (10 * k + m) as u64 + 1);
             total += shot;
