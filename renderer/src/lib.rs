@@ -44,8 +44,8 @@ pub use color::{
 };
 pub use database::{Database, ObjectRecord, Stretch, Surface, Traversal};
 pub use geometry::{
-    corner_order, extrude, extrude_between, split_between, split_prism, tetrahedron_volume, Hit,
-    Miss, Pose, PrimitiveId, Prism, Tetrahedron,
+    corner_order, corners_between, extrude, extrude_between, piece, split_between, split_prism,
+    tetrahedron_volume, Hit, Miss, Pose, PrimitiveId, Prism, PrismCorners, Tetrahedron,
 };
 pub use render::{pixel, pixel_traced, render, shader, Frame, Image, RenderSettings};
 pub use rng::SplitMix64;

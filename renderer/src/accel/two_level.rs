@@ -7,7 +7,7 @@
 
 use super::bvh::{rounding_margin, Bounds4, Bvh};
 use super::wide::WideBvh;
-use crate::geometry::{Hit, Tetrahedron};
+use crate::geometry::{Hit, PrismCorners};
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
 
@@ -92,20 +92,16 @@ pub(crate) struct TwoLevel {
 
 /// A prism's box in its stretch's comoving coordinates (the box of all six
 /// corners, which holds the prism since comoving coordinates are affine in
-/// the event). A translated prism's box is that of its start corners, which
-/// its first tetrahedron holds; a keyframe interval's takes all six corners,
-/// which the three tetrahedra hold, padded for the rounding of the comoving
-/// transform.
-fn comoving_box(g: &StretchPrisms, p: usize, tets: &[Tetrahedron]) -> (DVec3, DVec3) {
+/// the event). A translated prism's box is that of its start corners; a
+/// keyframe interval's takes all six corners, padded for the rounding of the
+/// comoving transform.
+fn comoving_box(g: &StretchPrisms, corners: &PrismCorners) -> (DVec3, DVec3) {
     let (t0, v) = (g.span.0, g.velocity);
     let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-    let tets_needed = if g.translation { 1 } else { 3 };
-    for tet in &tets[3 * p..3 * p + tets_needed] {
-        for e in &tet.vertices[..if g.translation { 3 } else { 4 }] {
-            let x = e.x - v * (e.t - t0) - g.origin.x;
-            a = a.min(x);
-            b = b.max(x);
-        }
+    for e in &corners[..if g.translation { 3 } else { 6 }] {
+        let x = e.x - v * (e.t - t0) - g.origin.x;
+        a = a.min(x);
+        b = b.max(x);
     }
     if !g.translation {
         let pad = rounding_margin(a.extend(0.0), b.extend(0.0)).truncate();
@@ -148,9 +144,9 @@ fn slices(g: &StretchPrisms, lo: DVec3, hi: DVec3) -> Vec<(f64, f64, Bounds4)> {
 }
 
 impl TwoLevel {
-    /// Builds both levels over the prisms of `stretches` (tetrahedra three
-    /// per prism, in prism order).
-    pub(crate) fn build(stretches: &[StretchPrisms], tets: &[Tetrahedron]) -> TwoLevel {
+    /// Builds both levels over the prisms of `stretches`, given every
+    /// prism's corners.
+    pub(crate) fn build(stretches: &[StretchPrisms], corners: &[PrismCorners]) -> TwoLevel {
         let mut built = Vec::new();
         let mut all_slices = Vec::new();
         let mut slice_bounds = Vec::new();
@@ -159,7 +155,7 @@ impl TwoLevel {
             let mut comoving = Vec::with_capacity(g.prisms.len());
             let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
             for p in g.prisms.clone() {
-                let (a, b) = comoving_box(g, p, tets);
+                let (a, b) = comoving_box(g, &corners[p]);
                 comoving.push(Bounds4::new(a.extend(t0), b.extend(t1)));
                 lo = lo.min(a);
                 hi = hi.max(b);

@@ -4,7 +4,7 @@
 use super::{Database, ObjectRecord, Stretch, Traversal};
 use crate::accel::{StretchPrisms, TwoLevel};
 use crate::geometry::{
-    self, extrude, extrude_between, Pose, PreparedTet, Prism, Sphere, Tetrahedron,
+    self, extrude, extrude_between, piece, Pose, PreparedTet, Prism, PrismCorners, Sphere,
 };
 use crate::scene::{
     Fault, Mesh, Motion, ObjectKind, Scene, SceneError, SceneErrorKind as K, SceneField as F,
@@ -24,7 +24,8 @@ fn mesh_of(obj: &SceneObject) -> &Mesh {
 #[derive(Default)]
 struct Builder {
     prisms: Vec<Prism>,
-    tets: Vec<Tetrahedron>,
+    /// Each prism's corners, from which its three tetrahedra are read.
+    corners: Vec<PrismCorners>,
     spheres: Vec<Sphere>,
     stretch_prisms: Vec<StretchPrisms>,
 }
@@ -124,7 +125,14 @@ impl Builder {
                 Boost::identity()
             };
             let first = self.prisms.len();
-            extrude_between(mesh, &w[0], &w[1], object, &mut self.prisms, &mut self.tets);
+            extrude_between(
+                mesh,
+                &w[0],
+                &w[1],
+                object,
+                &mut self.prisms,
+                &mut self.corners,
+            );
             self.stretch_prisms.push(StretchPrisms {
                 origin: worldline.start,
                 velocity: v,
@@ -165,7 +173,7 @@ impl Builder {
                 &worldline,
                 i as u32,
                 &mut self.prisms,
-                &mut self.tets,
+                &mut self.corners,
             );
             self.stretch_prisms.push(StretchPrisms {
                 origin: worldline.start,
@@ -230,7 +238,7 @@ fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
     let mut records = Vec::new();
     let mut prepared = Vec::new();
     for (i, obj) in scene.objects.iter().enumerate() {
-        let first = b.tets.len();
+        let first = b.prisms.len();
         let stretches = b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
         prepare(&b, first, &mut prepared).map_err(|f| f.of(i, &obj.name))?;
         records.push(ObjectRecord {
@@ -248,21 +256,22 @@ fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
     })
 }
 
-/// Prepares the solves of the builder's tetrahedra from `first` on (one
-/// object's), or the fault of the first with no 3-volume.
+/// Prepares the solves of the tetrahedra of the builder's prisms from
+/// `first` on (one object's), or the fault of the first with no 3-volume.
 fn prepare(b: &Builder, first: usize, prepared: &mut Vec<PreparedTet>) -> Result<(), Fault> {
-    prepared.reserve(b.tets.len() - first);
-    for t in &b.tets[first..] {
-        let p = PreparedTet::new(t).ok_or_else(|| {
-            let prism = b.prisms[t.prism as usize];
-            Fault::new(
-                F::Shape,
-                K::FlatTetrahedron {
-                    triangle: prism.triangle,
-                },
-            )
-        })?;
-        prepared.push(p);
+    prepared.reserve(3 * (b.prisms.len() - first));
+    for (p, corners) in b.corners.iter().enumerate().skip(first) {
+        for k in 0..3 {
+            let solve = PreparedTet::new(&piece(corners, k)).ok_or_else(|| {
+                Fault::new(
+                    F::Shape,
+                    K::FlatTetrahedron {
+                        triangle: b.prisms[p].triangle,
+                    },
+                )
+            })?;
+            prepared.push(solve);
+        }
     }
     Ok(())
 }
@@ -277,11 +286,11 @@ impl Database {
             records,
             prepared,
         } = insert_all(scene, lorentz)?;
-        let accel = TwoLevel::build(&b.stretch_prisms, &b.tets);
+        let accel = TwoLevel::build(&b.stretch_prisms, &b.corners);
         Ok(Database {
             records,
             prisms: b.prisms,
-            tets: b.tets,
+            corners: b.corners,
             prepared,
             accel,
             spheres: b.spheres,
@@ -297,9 +306,9 @@ impl Database {
         for (i, obj) in scene.objects.iter().enumerate() {
             let mut b = Builder::default();
             b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
-            for t in &b.tets {
-                if PreparedTet::new(t).is_none() {
-                    let triangle = b.prisms[t.prism as usize].triangle;
+            for (p, corners) in b.corners.iter().enumerate() {
+                if (0..3).any(|k| PreparedTet::new(&piece(corners, k)).is_none()) {
+                    let triangle = b.prisms[p].triangle;
                     return Err(
                         Fault::new(F::Shape, K::FlatTetrahedron { triangle }).of(i, &obj.name)
                     );

@@ -7,7 +7,9 @@ mod object;
 pub use object::{ObjectRecord, Stretch};
 
 use crate::accel::TwoLevel;
-use crate::geometry::{nearer, Hit, Miss, PreparedTet, PrimitiveId, Prism, Sphere, Tetrahedron};
+use crate::geometry::{
+    nearer, piece, Hit, Miss, PreparedTet, PrimitiveId, Prism, PrismCorners, Sphere, Tetrahedron,
+};
 use crate::spacetime::Ray;
 use crate::trace::{NoTrace, Outcome, Step, Trace};
 use glam::DVec3;
@@ -25,7 +27,10 @@ pub enum Traversal {
 pub struct Database {
     records: Vec<ObjectRecord>,
     prisms: Vec<Prism>,
-    tets: Vec<Tetrahedron>,
+    /// Each prism's corners; its tetrahedra 3p, 3p + 1, 3p + 2 are read off
+    /// them (the events are kept once, not once per tetrahedron).
+    corners: Vec<PrismCorners>,
+    /// Each tetrahedron's prepared solve, three per prism in prism order.
     prepared: Vec<PreparedTet>,
     /// The two-level hierarchy over the prisms.
     accel: TwoLevel,
@@ -67,9 +72,24 @@ impl Database {
         &self.prisms
     }
 
+    /// How many tetrahedra there are: three per prism.
+    pub fn tetrahedron_count(&self) -> usize {
+        self.prepared.len()
+    }
+
+    /// Tetrahedron `i`: piece `i % 3` of prism `i / 3`.
+    pub fn tetrahedron(&self, i: u32) -> Tetrahedron {
+        let (prism, k) = (i / 3, (i % 3) as usize);
+        Tetrahedron {
+            vertices: piece(&self.corners[prism as usize], k),
+            prism,
+            piece: k as u8,
+        }
+    }
+
     /// Every tetrahedron, three per prism in prism order.
-    pub fn tetrahedra(&self) -> &[Tetrahedron] {
-        &self.tets
+    pub fn tetrahedra(&self) -> impl ExactSizeIterator<Item = Tetrahedron> + '_ {
+        (0..self.tetrahedron_count() as u32).map(|i| self.tetrahedron(i))
     }
 
     /// The surface a hit lies on: a triangle's prism, or an analytic sphere.
@@ -126,13 +146,10 @@ impl Database {
     /// corners and c1, piece 1 holds b1 and piece 2 a1.
     fn corner_weighted_velocity(&self, tet: u32, bary: &[f64; 4]) -> DVec3 {
         const CORNERS: [[usize; 4]; 3] = [[0, 1, 2, 2], [0, 1, 1, 2], [0, 0, 1, 2]];
-        let t = &self.tets[tet as usize];
-        let first = 3 * t.prism as usize;
-        let piece = |k: usize| &self.tets[first + k].vertices;
-        let bottom = [piece(0)[0], piece(0)[1], piece(0)[2]];
-        let top = [piece(2)[1], piece(1)[2], piece(0)[3]];
+        let c = &self.corners[(tet / 3) as usize];
+        let (bottom, top) = (&c[..3], &c[3..]);
         let mut weights = [0.0; 3];
-        for (j, &corner) in CORNERS[t.piece as usize].iter().enumerate() {
+        for (j, &corner) in CORNERS[(tet % 3) as usize].iter().enumerate() {
             weights[corner] += bary[j];
         }
         (0..3)
@@ -145,19 +162,19 @@ impl Database {
     pub fn primitive_number(&self, primitive: PrimitiveId) -> u32 {
         match primitive {
             PrimitiveId::Tetrahedron(i) => i,
-            PrimitiveId::Sphere(k) => self.tets.len() as u32 + k,
+            PrimitiveId::Sphere(k) => self.tetrahedron_count() as u32 + k,
         }
     }
 
     /// The prism a tetrahedron belongs to.
     pub fn prism_of(&self, tet: u32) -> &Prism {
-        &self.prisms[self.tets[tet as usize].prism as usize]
+        &self.prisms[(tet / 3) as usize]
     }
 
     /// One tetrahedron's barycentric solve, with the reason for a miss.
     pub fn test(&self, ray: &Ray, tet: u32, range: (f64, f64)) -> Result<Hit, Miss> {
-        let corners = &self.tets[tet as usize].vertices;
-        self.prepared[tet as usize].intersect(ray, (tet, corners), range)
+        let corners = &self.corners[(tet / 3) as usize];
+        self.prepared[tet as usize].intersect(ray, (tet, corners, (tet % 3) as usize), range)
     }
 
     /// The solve of `tet`, recorded as a candidate.
@@ -170,14 +187,13 @@ impl Database {
     ) -> Result<Hit, Miss> {
         let result = self.test(ray, tet, range);
         if T::ENABLED {
-            let t = &self.tets[tet as usize];
-            let prism = &self.prisms[t.prism as usize];
+            let prism = &self.prisms[(tet / 3) as usize];
             trace.record(Step::Candidate {
                 tet,
                 object: self.records[prism.object as usize].name.clone(),
                 triangle: prism.triangle,
-                prism: t.prism,
-                piece: t.piece,
+                prism: tet / 3,
+                piece: (tet % 3) as u8,
                 outcome: Outcome::from(&result),
             });
         }
@@ -212,7 +228,7 @@ impl Database {
         match self.traversal {
             Traversal::BruteForce => {
                 let mut best: Option<Hit> = None;
-                for i in 0..self.tets.len() as u32 {
+                for i in 0..self.tetrahedron_count() as u32 {
                     let hi = best.map_or(range.1, |b| b.s);
                     if let Ok(h) = self.test_traced(ray, i, (range.0, hi), trace) {
                         best = Some(nearer(best, h));

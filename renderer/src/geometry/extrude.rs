@@ -87,30 +87,46 @@ pub fn split_prism(
 /// straight from `lo[i]` to `hi[i]`) as three tetrahedra, cut as in
 /// [`split_prism`].
 pub fn split_between(lo: [Event; 3], hi: [Event; 3], order: [usize; 3]) -> [[Event; 4]; 3] {
+    let corners = corners_between(lo, hi, order);
+    [0, 1, 2].map(|k| piece(&corners, k))
+}
+
+/// A prism's six corners in its cut's order: the bottom corners a0, b0, c0
+/// (a < b < c by [`corner_order`]), then the top corners a1, b1, c1. The
+/// database keeps these, once per prism, and its tetrahedra are read off
+/// them ([`piece`]).
+pub type PrismCorners = [Event; 6];
+
+/// Which of a prism's [`PrismCorners`] each of its three pieces has:
+/// (a0 b0 c0 c1), (a0 b0 b1 c1), (a0 a1 b1 c1).
+const PIECES: [[usize; 4]; 3] = [[0, 1, 2, 5], [0, 1, 4, 5], [0, 3, 4, 5]];
+
+/// The [`PrismCorners`] of the prism from `lo` to `hi`, ordered by `order`.
+pub fn corners_between(lo: [Event; 3], hi: [Event; 3], order: [usize; 3]) -> PrismCorners {
     let [a, b, c] = order;
-    [
-        [lo[a], lo[b], lo[c], hi[c]],
-        [lo[a], lo[b], hi[b], hi[c]],
-        [lo[a], hi[a], hi[b], hi[c]],
-    ]
+    [lo[a], lo[b], lo[c], hi[a], hi[b], hi[c]]
+}
+
+/// Piece `k` (0..3) of the prism with `corners`, as a tetrahedron's corners.
+pub fn piece(corners: &PrismCorners, k: usize) -> [Event; 4] {
+    PIECES[k].map(|i| corners[i])
 }
 
 /// Extrudes every triangle of `mesh` (lab-frame shape, relative to the
 /// worldline's reference point) along `worldline`, appending prisms and
-/// tetrahedra. The caller has validated the mesh and the worldline.
+/// their corners. The caller has validated the mesh and the worldline.
 pub fn extrude(
     mesh: &Mesh,
     worldline: &Worldline,
     object: u32,
     prisms: &mut Vec<Prism>,
-    tets: &mut Vec<Tetrahedron>,
+    corners_out: &mut Vec<PrismCorners>,
 ) {
     for (t, _) in mesh.triangles.iter().enumerate() {
         let corners = mesh.corners(t);
         let normal = (corners[1] - corners[0])
             .cross(corners[2] - corners[0])
             .normalize();
-        let prism = prisms.len() as u32;
         prisms.push(Prism {
             object,
             triangle: t as u32,
@@ -119,14 +135,8 @@ pub fn extrude(
             span: (worldline.start.t, worldline.end().t),
         });
         let bottom = corners.map(|p| Event::new(worldline.start.t, worldline.start.x + p));
-        let pieces = split_prism(bottom, worldline.extrusion, corner_order(corners));
-        for (piece, vertices) in pieces.into_iter().enumerate() {
-            tets.push(Tetrahedron {
-                vertices,
-                prism,
-                piece: piece as u8,
-            });
-        }
+        let top = bottom.map(|e| e + worldline.extrusion);
+        corners_out.push(corners_between(bottom, top, corner_order(corners)));
     }
 }
 
@@ -142,13 +152,12 @@ pub fn extrude_between(
     to: &Pose,
     object: u32,
     prisms: &mut Vec<Prism>,
-    tets: &mut Vec<Tetrahedron>,
+    corners_out: &mut Vec<PrismCorners>,
 ) {
     let normal_of = |c: [Event; 3]| (c[1].x - c[0].x).cross(c[2].x - c[0].x).normalize();
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let lo = tri.map(|i| Event::new(from.t, from.vertices[i as usize]));
         let hi = tri.map(|i| Event::new(to.t, to.vertices[i as usize]));
-        let prism = prisms.len() as u32;
         prisms.push(Prism {
             object,
             triangle: t as u32,
@@ -156,14 +165,7 @@ pub fn extrude_between(
             end_normal: normal_of(hi),
             span: (from.t, to.t),
         });
-        let pieces = split_between(lo, hi, corner_order(mesh.corners(t)));
-        for (piece, vertices) in pieces.into_iter().enumerate() {
-            tets.push(Tetrahedron {
-                vertices,
-                prism,
-                piece: piece as u8,
-            });
-        }
+        corners_out.push(corners_between(lo, hi, corner_order(mesh.corners(t))));
     }
 }
 

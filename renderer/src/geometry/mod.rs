@@ -10,8 +10,8 @@ mod sphere;
 mod tetrahedron;
 
 pub use extrude::{
-    corner_order, extrude, extrude_between, split_between, split_prism, tetrahedron_volume, Prism,
-    Tetrahedron,
+    corner_order, corners_between, extrude, extrude_between, piece, split_between, split_prism,
+    tetrahedron_volume, Prism, PrismCorners, Tetrahedron,
 };
 pub use hit::{nearer, Hit, Miss, PrimitiveId};
 pub(crate) use poses::resolve;

@@ -19,7 +19,7 @@
 //! shared edge or corner at least one does. Signs do not depend on the
 //! coordinates' scale.
 
-use super::{Hit, Miss, PrimitiveId, Tetrahedron};
+use super::{piece, Hit, Miss, PrimitiveId, PrismCorners};
 use crate::spacetime::Event;
 use crate::spacetime::Ray;
 use glam::{DMat3, DVec3, DVec4};
@@ -76,9 +76,10 @@ fn normal4(a: DVec4, b: DVec4, c: DVec4) -> DVec4 {
 }
 
 impl PreparedTet {
-    /// `None` for a tetrahedron with no 3-volume (cannot be hit).
-    pub fn new(tet: &Tetrahedron) -> Option<PreparedTet> {
-        let v = tet.vertices.map(|e| e.to_xyzt());
+    /// The solve of the tetrahedron with `corners`; `None` when it has no
+    /// 3-volume (cannot be hit).
+    pub fn new(corners: &[Event; 4]) -> Option<PreparedTet> {
+        let v = corners.map(|e| e.to_xyzt());
         let (e1, e2, e3) = (v[1] - v[0], v[2] - v[0], v[3] - v[0]);
         let normal = normal4(e1, e2, e3);
         let drop = normal
@@ -114,12 +115,13 @@ impl PreparedTet {
         })
     }
 
-    /// The barycentric solve of the tetrahedron with `corners` (those it
-    /// was prepared from). `range` bounds the ray parameter s (inclusive).
+    /// The barycentric solve of tetrahedron `tet`, piece `k` of the prism
+    /// with `corners` (the piece it was prepared from). `range` bounds the
+    /// ray parameter s (inclusive).
     pub fn intersect(
         &self,
         ray: &Ray,
-        (tet, corners): (u32, &[Event; 4]),
+        (tet, corners, k): (u32, &PrismCorners, usize),
         range: (f64, f64),
     ) -> Result<Hit, Miss> {
         let o = ray.origin.to_xyzt();
@@ -142,7 +144,7 @@ impl PreparedTet {
         );
         let bary = [1.0 - b.x - b.y - b.z, b.x, b.y, b.z];
         let least = bary.iter().copied().fold(f64::INFINITY, f64::min);
-        if !(least >= -EXACT_BAND && (least > EXACT_BAND || crosses(corners, o, d))) {
+        if !(least >= -EXACT_BAND && (least > EXACT_BAND || crosses(&piece(corners, k), o, d))) {
             return Err(Miss::Outside { s, bary });
         }
         let clamped = bary.map(|x| x.clamp(0.0, 1.0));

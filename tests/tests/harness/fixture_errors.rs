@@ -541,7 +541,7 @@ fn the_tetrahedron_estimate_bounds_the_database() {
         let f = workspace_tests::fixture(&name);
         let estimate = vstf::budget::tetrahedra(&f.scene);
         for lorentz in [false, true] {
-            let built = f.database(lorentz).unwrap().tetrahedra().len() as u64;
+            let built = f.database(lorentz).unwrap().tetrahedron_count() as u64;
             assert!(estimate >= built, "{name}: estimate {estimate} < {built}");
             assert!(
                 estimate <= 2 * built.max(1),

@@ -299,7 +299,6 @@ fn a_v_obj_clock_and_lifetime_are_dilated() {
        // Contraction: the box is 2/gamma long along x in the lab.
     let xs: Vec<f64> = rel
         .tetrahedra()
-        .iter()
         .flat_map(|t| t.vertices)
         .filter(|ev| ev.t == 0.0)
         .map(|ev| ev.x.x)

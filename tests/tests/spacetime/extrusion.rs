@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 use renderer::SplitMix64;
-use renderer::{corner_order, extrude, split_prism, tetrahedron_volume};
+use renderer::{corner_order, extrude, piece, split_prism, tetrahedron_volume};
 use renderer::{Event, FourVector, Mesh, Worldline};
 use std::collections::{BTreeSet, HashMap};
 use workspace_tests::{point, unit};
@@ -114,9 +114,9 @@ fn neighbouring_prisms_cut_shared_faces_alike() {
                 start: Event::new(rng.range(-10.0, 10.0), point(&mut rng, 3.0)),
                 extrusion: FourVector::new(dt, unit(&mut rng) * rng.range(0.0, 0.99) * dt),
             };
-            let (mut prisms, mut tets) = (Vec::new(), Vec::new());
-            extrude(&mesh, &wl, 0, &mut prisms, &mut tets);
-            assert_eq!(tets.len(), 3 * mesh.triangles.len());
+            let (mut prisms, mut corners) = (Vec::new(), Vec::new());
+            extrude(&mesh, &wl, 0, &mut prisms, &mut corners);
+            assert_eq!(corners.len(), mesh.triangles.len());
             // Group prisms by the (position-keyed) mesh edges they contain.
             let mut by_edge: HashMap<[[u64; 3]; 2], Vec<usize>> = HashMap::new();
             for (t, _) in mesh.triangles.iter().enumerate() {
@@ -142,10 +142,7 @@ fn neighbouring_prisms_cut_shared_faces_alike() {
                     .iter()
                     .map(|t| {
                         faces_in(
-                            &tets[3 * t..3 * t + 3]
-                                .iter()
-                                .map(|x| x.vertices)
-                                .collect::<Vec<_>>(),
+                            &(0..3).map(|k| piece(&corners[*t], k)).collect::<Vec<_>>(),
                             &quad,
                         )
                     })

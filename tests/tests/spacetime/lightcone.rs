@@ -129,7 +129,9 @@ fn hits_lie_on_the_light_cone_inside_their_tetrahedron() {
             );
             assert_abs_diff_eq!(hit.bary.iter().sum::<f64>(), 1.0, epsilon = 1e-9);
             // Rebuild the event from the barycentric coordinates alone.
-            let v = db.tetrahedra()[hit.primitive.tetrahedron().unwrap() as usize].vertices;
+            let v = db
+                .tetrahedron(hit.primitive.tetrahedron().unwrap())
+                .vertices;
             let from_bary = (0..4).fold(glam::DVec4::ZERO, |acc, i| {
                 acc + v[i].to_xyzt() * hit.bary[i]
             });

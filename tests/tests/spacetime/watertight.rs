@@ -67,9 +67,9 @@ fn shared_elements(db: &Database, mesh: &Mesh, scale: f64, life: (f64, f64)) -> 
             continue;
         }
         let inside = |p: &Shared| p.iter().all(|e| e.t > life.0 && e.t < life.1);
-        for part in parts(tet)
+        for part in parts(&tet)
             .into_iter()
-            .filter(|p| spans_time(tet, p) || inside(p))
+            .filter(|p| spans_time(&tet, p) || inside(p))
         {
             let mut k: Vec<[u64; 4]> = part.iter().map(key).collect();
             k.sort_unstable();

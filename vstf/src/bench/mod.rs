@@ -252,7 +252,7 @@ fn memory_per_tetrahedron(plan: &Plan, out: &mut String) -> Result<(), String> {
     let (rss0, _) = memory();
     let scene = boxes(n_mem, 5);
     let db = Database::build(&scene, false).map_err(|e| e.to_string())?;
-    let tets = db.tetrahedra().len();
+    let tets = db.tetrahedron_count();
     let (_, peak) = memory();
     drop(db);
     let per_million = (peak.saturating_sub(rss0)) as f64 / 1e6 / (tets as f64 / 1e6);
@@ -331,7 +331,7 @@ fn against_brute_force(plan: &Plan, out: &mut String) -> Result<(), String> {
         let _ = writeln!(
             out,
             "   {n:>7} {:>9} {brute:>12.4} {bvh:>12.6} {:>8.0}x",
-            db.tetrahedra().len(),
+            db.tetrahedron_count(),
             brute / bvh
         );
     }
@@ -357,7 +357,7 @@ fn growth(plan: &Plan, out: &mut String) -> Result<(), String> {
         let frame = best_of(plan.runs, || {
             drop(render_boxes(&db, &scene, &boxes_camera(w, h)))
         });
-        let n = db.tetrahedra().len();
+        let n = db.tetrahedron_count();
         let growth = previous.map_or(String::new(), |(f, m)| {
             format!(
                 "  (frame x{:.2} for tets x{:.1})",

@@ -48,7 +48,7 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
         view.camera.width,
         view.camera.height,
         view.settings.spp,
-        db.tetrahedra().len(),
+        db.tetrahedron_count(),
         started.elapsed().as_secs_f64(),
         out.display()
     );
