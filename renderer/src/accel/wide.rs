@@ -20,12 +20,10 @@ const EMPTY: u32 = u32::MAX;
 
 #[derive(Clone, Debug)]
 struct WideNode<const AXES: usize> {
-    /// Lower and upper bounds of the four children, per axis, in f32
-    /// rounded outward (so each holds its f64 box, and a ray tested against
-    /// them in f64 never misses what it would have met). An empty slot has
-    /// +inf for both, which no ray enters.
-    min: [[f32; WIDTH]; AXES],
-    max: [[f32; WIDTH]; AXES],
+    /// Lower and upper bounds of the four children, per axis. An empty
+    /// slot has +inf for both, which no ray enters.
+    min: [[f64; WIDTH]; AXES],
+    max: [[f64; WIDTH]; AXES],
     /// Inner node index, `LEAF | leaf index`, or `EMPTY`.
     child: [u32; WIDTH],
 }
@@ -84,8 +82,8 @@ impl<const AXES: usize> WideBvh<AXES> {
         }
         let at = self.nodes.len();
         self.nodes.push(WideNode {
-            min: [[f32::INFINITY; WIDTH]; AXES],
-            max: [[f32::INFINITY; WIDTH]; AXES],
+            min: [[f64::INFINITY; WIDTH]; AXES],
+            max: [[f64::INFINITY; WIDTH]; AXES],
             child: [EMPTY; WIDTH],
         });
         for (slot, &k) in kids.iter().enumerate() {
@@ -97,8 +95,8 @@ impl<const AXES: usize> WideBvh<AXES> {
             };
             let node = &mut self.nodes[at];
             for axis in 0..AXES {
-                node.min[axis][slot] = below(lo[axis]);
-                node.max[axis][slot] = above(hi[axis]);
+                node.min[axis][slot] = lo[axis];
+                node.max[axis][slot] = hi[axis];
             }
             node.child[slot] = child;
         }
@@ -115,8 +113,8 @@ impl<const AXES: usize> WideBvh<AXES> {
         let mut hi = [range.1; WIDTH];
         for axis in 0..AXES {
             for k in 0..WIDTH {
-                let a = (f64::from(node.min[axis][k]) - o[axis]) * inv[axis];
-                let b = (f64::from(node.max[axis][k]) - o[axis]) * inv[axis];
+                let a = (node.min[axis][k] - o[axis]) * inv[axis];
+                let b = (node.max[axis][k] - o[axis]) * inv[axis];
                 lo[k] = lo[k].max(a.min(b));
                 hi[k] = hi[k].min(a.max(b));
             }
@@ -199,63 +197,5 @@ impl<const AXES: usize> WideBvh<AXES> {
             }
         }
         best
-    }
-}
-
-/// The largest f32 at or below `x` (-inf below f32's range).
-fn below(x: f64) -> f32 {
-    let f = x as f32;
-    if f64::from(f) <= x {
-        f
-    } else {
-        step_down(f)
-    }
-}
-
-/// The smallest f32 at or above `x` (+inf above f32's range).
-fn above(x: f64) -> f32 {
-    -below(-x)
-}
-
-/// The f32 next below the finite `f`.
-fn step_down(f: f32) -> f32 {
-    if f == 0.0 {
-        -f32::from_bits(1)
-    } else if f > 0.0 {
-        f32::from_bits(f.to_bits() - 1)
-    } else {
-        f32::from_bits(f.to_bits() + 1)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{above, below};
-
-    #[test]
-    fn boxes_round_outward_to_f32() {
-        for x in [
-            0.1,
-            -0.1,
-            1e5 + 1e-9,
-            -3.0e38,
-            1e-50,
-            -1e-50,
-            0.0,
-            7.0,
-            1e39,
-            -1e39,
-        ] {
-            let (lo, hi) = (below(x), above(x));
-            assert!(f64::from(lo) <= x && x <= f64::from(hi), "{x}: {lo} {hi}");
-            assert!(
-                f64::from(hi) - f64::from(lo) <= (x.abs() * 2.5e-7).max(3e-45)
-                    || lo.is_infinite()
-                    || hi.is_infinite(),
-                "{x}: {lo} {hi} not adjacent"
-            );
-        }
-        // Exact f32 values stay as they are.
-        assert_eq!((below(0.5), above(0.5)), (0.5, 0.5));
     }
 }
