@@ -16,9 +16,8 @@
 use glam::DVec4;
 
 const LEAF_SIZE: usize = 4;
-/// Deeper subtrees become leaves, so that the traversal stack (sized by
-/// this) never overflows.
-pub(crate) const MAX_DEPTH: usize = 48;
+/// Deeper subtrees become leaves (which keeps the traversal's stack short).
+const MAX_DEPTH: usize = 48;
 
 /// An axis-aligned box of spacetime: lower and upper corners, (x, y, z, t).
 #[derive(Clone, Copy, Debug, PartialEq)]

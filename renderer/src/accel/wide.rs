@@ -7,7 +7,7 @@
 //! clipped). Which leaves exist, and so which hit is found, is exactly the
 //! binary hierarchy's.
 
-use super::bvh::{Bvh, BvhNode, MAX_DEPTH};
+use super::bvh::{Bvh, BvhNode};
 use crate::geometry::{nearer, Hit};
 use glam::DVec4;
 
@@ -156,15 +156,9 @@ impl<const AXES: usize> WideBvh<AXES> {
             return None;
         }
         let inv = DVec4::ONE / d;
-        // Entries: (child reference, entry parameter). The wide tree is no
-        // deeper than the binary one, and each node visited adds at most
-        // three entries net.
-        let mut stack = [(0u32, 0.0f64); 3 * MAX_DEPTH + 2];
-        stack[0] = (0, range.0);
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let (n, entry) = stack[top];
+        let mut stack = Stack::new();
+        stack.push((0, range.0));
+        while let Some((n, entry)) = stack.pop() {
             let hi = best.map_or(range.1, |b| b.s);
             if entry > hi {
                 continue;
@@ -192,10 +186,52 @@ impl<const AXES: usize> WideBvh<AXES> {
                 }
             }
             for &(e, child) in &entered[..m] {
-                stack[top] = (child, e);
-                top += 1;
+                stack.push((child, e));
             }
         }
         best
+    }
+}
+
+/// The traversal's stack of (child reference, entry parameter): a small
+/// array, which is all a ray needs in practice and cheap to set up for each
+/// of the many per-stretch searches of one ray, spilling into a vector
+/// beyond it (each node visited adds at most three entries net, so a deep
+/// tree can need more).
+struct Stack {
+    fixed: [(u32, f64); 32],
+    len: usize,
+    spill: Vec<(u32, f64)>,
+}
+
+impl Stack {
+    fn new() -> Stack {
+        Stack {
+            fixed: [(0, 0.0); 32],
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+
+    #[inline]
+    fn push(&mut self, entry: (u32, f64)) {
+        if self.len < self.fixed.len() {
+            self.fixed[self.len] = entry;
+            self.len += 1;
+        } else {
+            self.spill.push(entry);
+        }
+    }
+
+    #[inline]
+    fn pop(&mut self) -> Option<(u32, f64)> {
+        if let Some(e) = self.spill.pop() {
+            return Some(e);
+        }
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        Some(self.fixed[self.len])
     }
 }
