@@ -1,7 +1,6 @@
-//! A bounding volume hierarchy over 4D boxes (x, y, z, t), built binary
-//! once per database and traversed collapsed four-wide (`wide.rs`); it
-//! only decides which items a ray is tested against, never how (that is
-//! the barycentric solve of `geometry`).
+//! A bounding volume hierarchy over 4D boxes (x, y, z, t). Built once per
+//! database; it only decides which items a ray is tested against, never how
+//! (that is the barycentric solve of `geometry`).
 //!
 //! Items are anything with 4D bounds: the database uses one hierarchy over
 //! the time slices of its stretches (lab frame) and one per stretch over its
@@ -13,10 +12,11 @@
 //! objects (which all live for the whole scene) a split along t gains
 //! nothing and is not chosen.
 
+use crate::geometry::{nearer, Hit};
 use glam::DVec4;
 
 const LEAF_SIZE: usize = 4;
-/// Deeper subtrees become leaves (which keeps the traversal's stack short).
+/// Deeper subtrees become leaves, so that the traversal stack (64) never overflows.
 const MAX_DEPTH: usize = 48;
 
 /// An axis-aligned box of spacetime: lower and upper corners, (x, y, z, t).
@@ -51,7 +51,7 @@ pub(crate) fn rounding_margin(min: DVec4, max: DVec4) -> DVec4 {
 }
 
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct BvhNode {
+struct Node {
     min: DVec4,
     max: DVec4,
     /// Leaf: first index into `order`; inner: index of the second child
@@ -61,42 +61,10 @@ pub(crate) struct BvhNode {
     count: u32,
 }
 
-impl BvhNode {
-    /// Whether the node is a leaf.
-    pub(crate) fn is_leaf(&self) -> bool {
-        self.count > 0
-    }
-
-    /// A leaf's first index into the item order.
-    pub(crate) fn first(&self) -> u32 {
-        self.index
-    }
-
-    /// A leaf's number of items.
-    pub(crate) fn count(&self) -> u32 {
-        self.count
-    }
-
-    /// An inner node's two children (the first follows the node).
-    pub(crate) fn children(&self, at: usize) -> [usize; 2] {
-        [at + 1, self.index as usize]
-    }
-
-    /// The node's (padded) box.
-    pub(crate) fn bounds(&self) -> (DVec4, DVec4) {
-        (self.min, self.max)
-    }
-
-    /// The surface area heuristic's measure of the node's box.
-    pub(crate) fn area(&self) -> f64 {
-        area(self.min, self.max)
-    }
-}
-
 /// The hierarchy: nodes in depth-first order and the item order they index.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Bvh {
-    nodes: Vec<BvhNode>,
+    nodes: Vec<Node>,
     order: Vec<u32>,
 }
 
@@ -232,7 +200,7 @@ impl Bvh {
         }
         let (min, max) = pad(min, max);
         let node = self.nodes.len();
-        self.nodes.push(BvhNode {
+        self.nodes.push(Node {
             min,
             max,
             index: first as u32,
@@ -255,13 +223,81 @@ impl Bvh {
         node
     }
 
-    /// The nodes, the root first.
-    pub(crate) fn nodes(&self) -> &[BvhNode] {
-        &self.nodes
+    /// Entry parameter of the ray into a node's box within `range`, if any.
+    /// `inv` holds 1/d per axis (infinite for d = 0: such an axis constrains
+    /// nothing unless the origin lies outside the slab).
+    #[inline]
+    fn enter(node: &Node, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
+        let a = (node.min - o) * inv;
+        let b = (node.max - o) * inv;
+        // NaN (0 * inf: the origin on a slab face of a parallel axis) is
+        // dropped by f64::min/max, which keeps the test conservative.
+        let near = a.min(b);
+        let far = a.max(b);
+        let lo = range.0.max(near.x).max(near.y).max(near.z).max(near.w);
+        let hi = range.1.min(far.x).min(far.y).min(far.z).min(far.w);
+        (lo <= hi).then_some(lo)
     }
 
-    /// The item order the leaves index.
-    pub(crate) fn order(&self) -> &[u32] {
-        &self.order
+    /// The closest hit along the ray `o + s d` (both (x, y, z, t), in the
+    /// coordinates the bounds were built in) within `range`: `test(item,
+    /// range)` is called for every item whose box the ray enters, with the
+    /// range shrunk to the best hit so far. Ties go to the lower primitive.
+    pub(crate) fn closest(
+        &self,
+        o: DVec4,
+        d: DVec4,
+        range: (f64, f64),
+        mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
+    ) -> Option<Hit> {
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let inv = DVec4::ONE / d;
+        let mut best: Option<Hit> = None;
+        let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
+        let mut stack = [(0u32, 0.0f64); 64];
+        let e = Self::enter(&self.nodes[0], o, inv, range)?;
+        stack[0] = (0, e);
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (n, entry) = stack[top];
+            if entry > hi(&best) {
+                continue;
+            }
+            let node = &self.nodes[n as usize];
+            if node.count > 0 {
+                let start = node.index as usize;
+                for &i in &self.order[start..start + node.count as usize] {
+                    if let Some(h) = test(i, (range.0, hi(&best))) {
+                        best = Some(nearer(best, h));
+                    }
+                }
+                continue;
+            }
+            let (a, b) = (n + 1, node.index);
+            let r = (range.0, hi(&best));
+            let ea = Self::enter(&self.nodes[a as usize], o, inv, r);
+            let eb = Self::enter(&self.nodes[b as usize], o, inv, r);
+            // Push the farther child first so the nearer is searched first.
+            let mut push = |n: u32, e: Option<f64>| {
+                if let Some(e) = e {
+                    stack[top] = (n, e);
+                    top += 1;
+                }
+            };
+            match (ea, eb) {
+                (Some(x), Some(y)) if x <= y => {
+                    push(b, eb);
+                    push(a, ea);
+                }
+                _ => {
+                    push(a, ea);
+                    push(b, eb);
+                }
+            }
+        }
+        best
     }
 }

@@ -1,11 +1,8 @@
 //! Acceleration: which prisms a ray is tested against. Bounding volume
 //! hierarchies over 4D boxes, in two levels (per stretch of an object's
-//! path, and over all stretches), built binary by the surface area
-//! heuristic and collapsed four-wide for traversal. Never changes which hit
-//! is found.
+//! path, and over all stretches). Never changes which hit is found.
 
 mod bvh;
 mod two_level;
-mod wide;
 
 pub(crate) use two_level::{StretchPrisms, TwoLevel};

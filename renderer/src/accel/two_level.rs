@@ -6,7 +6,6 @@
 //! hierarchy of the lab-frame 4D bounds of their time slices.
 
 use super::bvh::{rounding_margin, Bounds4, Bvh};
-use super::wide::WideBvh;
 use crate::geometry::{Hit, PrismCorners};
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
@@ -36,8 +35,7 @@ struct StretchBvh {
     origin: Event,
     velocity: DVec3,
     first_prism: u32,
-    /// Over comoving x, y, z only: every prism spans the stretch's times.
-    bvh: WideBvh<3>,
+    bvh: Bvh,
 }
 
 impl StretchBvh {
@@ -85,7 +83,7 @@ impl TimeSlice {
 /// comoving bounds; over all stretches, a hierarchy of the lab-frame 4D
 /// bounds of their time slices.
 pub(crate) struct TwoLevel {
-    top: WideBvh<4>,
+    top: Bvh,
     stretches: Vec<StretchBvh>,
     slices: Vec<TimeSlice>,
 }
@@ -172,11 +170,11 @@ impl TwoLevel {
                 origin: g.origin,
                 velocity: g.velocity,
                 first_prism: g.prisms.start as u32,
-                bvh: WideBvh::collapse(&Bvh::build(&comoving)),
+                bvh: Bvh::build(&comoving),
             });
         }
         TwoLevel {
-            top: WideBvh::collapse(&Bvh::build(&slice_bounds)),
+            top: Bvh::build(&slice_bounds),
             stretches: built,
             slices: all_slices,
         }
