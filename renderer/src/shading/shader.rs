@@ -213,7 +213,13 @@ impl Shader<'_> {
         let n = self.facing_normal(ray, hit);
         let view = -ray.direction.x;
         let to_light = self.light.position - hit.event.x;
-        let l = to_light.normalize_or_zero();
+        // A light on the surface point lights nothing; a non-finite
+        // direction stays NaN, for the pixel's check to report.
+        let l = if to_light.is_finite() {
+            to_light.normalize_or_zero()
+        } else {
+            DVec3::NAN
+        };
         let (velocity, gamma) = self.db.surface_motion(hit);
         let frame = match self.light_speed {
             LightSpeed::Finite => SurfaceFrame::of(n, velocity, object.contracted),
@@ -224,11 +230,15 @@ impl Shader<'_> {
         let [n_s, l_s, view_s] = surface_frame.unwrap_or([n, l, view]);
         let lambert = n_s.dot(l_s);
         let (mut specular, mut shadowed) = (0.0, false);
-        if lambert > 0.0 {
+        // NaN passes these tests (`!(x <= 0)`, not `x > 0` or `max(0)`), so
+        // that a non-finite direction reaches the pixel's check rather than
+        // shading as if unlit.
+        if !(lambert <= 0.0) {
             shadowed = self.shadows && self.in_shadow_traced(hit.event, trace);
             if !shadowed && m.specular > 0.0 {
                 let r = 2.0 * lambert * n_s - l_s;
-                specular = m.specular * r.dot(view_s).max(0.0).powf(m.shininess);
+                let cos = r.dot(view_s);
+                specular = m.specular * if cos < 0.0 { 0.0 } else { cos }.powf(m.shininess);
             }
         }
         let from_light = self.to_surface(velocity, gamma, -l);

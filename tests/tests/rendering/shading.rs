@@ -310,3 +310,63 @@ fn a_v_obj_clock_and_lifetime_are_dilated() {
         "contracted length {len}"
     );
 }
+
+/// A light at a non-finite position makes the lit colour NaN, which the
+/// pixel's check then reports, instead of shading the surface as if unlit
+/// (`x > 0` and `max(0)` would drop the NaN); a finite light shades it
+/// finitely (the control).
+#[test]
+fn a_non_finite_light_direction_reaches_the_pixel_instead_of_shading_unlit() {
+    let static_plate = object(
+        "plate",
+        ObjectKind::HObj,
+        Mesh::quad(
+            DVec3::new(-2.0, 0.0, -2.0),
+            DVec3::new(4.0, 0.0, 0.0),
+            DVec3::new(0.0, 0.0, 4.0),
+        ),
+        Motion::Extrusion {
+            start: Event::new(-100.0, DVec3::ZERO),
+            extrusion: FourVector::new(200.0, DVec3::ZERO),
+        },
+    );
+    let colour = |light_at: DVec3, spectral: bool| {
+        let scene = Scene {
+            objects: vec![static_plate.clone()],
+            light: Light {
+                position: light_at,
+                color: DVec3::ONE,
+                ambient: 0.2,
+                spectrum: None,
+            },
+            background: DVec3::ZERO,
+        };
+        let db = Database::build(&scene, false).unwrap();
+        let shader = Shader {
+            db: &db,
+            light: &scene.light,
+            background: DVec3::ZERO,
+            light_speed: LightSpeed::Finite,
+            max_depth: 0,
+            shadows: false,
+            effects: Effects {
+                doppler: spectral,
+                searchlight: false,
+            },
+        };
+        let ray = Ray::backwards(
+            Event::new(0.0, DVec3::new(0.0, 5.0, 0.0)),
+            DVec3::new(0.0, -1.0, 0.0),
+            LightSpeed::Finite,
+        );
+        shader.radiance(&ray, 0)
+    };
+    for spectral in [false, true] {
+        assert!(colour(DVec3::new(1.0, 10.0, 0.0), spectral).is_finite());
+        let c = colour(DVec3::new(f64::NAN, 10.0, 0.0), spectral);
+        assert!(
+            !c.is_finite(),
+            "spectral {spectral}: {c} shaded as if unlit"
+        );
+    }
+}
