@@ -103,9 +103,7 @@ impl Carried for DVec3 {
         let albedo = m.color_at(lit.tau);
         let ambient = albedo * shader.light.ambient;
         let (mut diffuse, mut specular) = (DVec3::ZERO, 0.0);
-        // `!(x <= 0)`, not `x > 0`: a NaN lambert reaches the pixel, whose
-        // check reports it, instead of shading as if unlit.
-        if !(lit.lambert <= 0.0) && !lit.shadowed {
+        if lit.faces_light() && !lit.shadowed {
             specular = lit.specular;
             diffuse = albedo * (m.diffuse * lit.lambert);
         }
@@ -183,7 +181,7 @@ impl Carried for Band {
             &shader.light.spectrum(),
             &scaled(&surface_nm, lit.from_light),
         );
-        let direct = if !(lit.lambert <= 0.0) && !lit.shadowed {
+        let direct = if lit.faces_light() && !lit.shadowed {
             (m.diffuse * lit.lambert, lit.specular)
         } else {
             (0.0, 0.0)

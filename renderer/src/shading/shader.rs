@@ -82,6 +82,15 @@ pub(super) struct Lit {
     pub(super) out: f64,
 }
 
+impl Lit {
+    /// Whether the surface faces the light (n . l > 0), or n . l is NaN: a
+    /// NaN is shaded through, for the pixel's check to report, rather than
+    /// dropped as unlit.
+    pub(super) fn faces_light(&self) -> bool {
+        self.lambert > 0.0 || self.lambert.is_nan()
+    }
+}
+
 impl Shader<'_> {
     /// Colour of the light arriving along `ray` (towards its origin).
     pub fn radiance(&self, ray: &Ray, depth: u32) -> DVec3 {
@@ -230,10 +239,10 @@ impl Shader<'_> {
         let [n_s, l_s, view_s] = surface_frame.unwrap_or([n, l, view]);
         let lambert = n_s.dot(l_s);
         let (mut specular, mut shadowed) = (0.0, false);
-        // NaN passes these tests (`!(x <= 0)`, not `x > 0` or `max(0)`), so
-        // that a non-finite direction reaches the pixel's check rather than
+        // NaN passes these tests (not `x > 0` or `max(0)`), so that a
+        // non-finite direction reaches the pixel's check rather than
         // shading as if unlit.
-        if !(lambert <= 0.0) {
+        if lambert > 0.0 || lambert.is_nan() {
             shadowed = self.shadows && self.in_shadow_traced(hit.event, trace);
             if !shadowed && m.specular > 0.0 {
                 let r = 2.0 * lambert * n_s - l_s;
