@@ -243,11 +243,11 @@ fn render_frame(
 }
 
 /// Assembles the frames of a sharded animation, found through the shards'
-/// manifests in `dirs`, into `out` (a folder of frames, a GIF or an APNG),
-/// once every shard is there, of one animation and unchanged; returns the
-/// number of frames.
-pub fn merge(dirs: &[PathBuf], out: &Output, fps: u32) -> Result<usize, String> {
-    let shards = crate::shard::complete(crate::shard::read_manifests(dirs)?, "animation")?;
+/// manifests (`found`, [`crate::shard::read_manifests`]), into `out` (a
+/// folder of frames, a GIF or an APNG), once every shard is there, of one
+/// animation and unchanged; returns the number of frames.
+pub fn merge(found: Vec<crate::shard::Found>, out: &Output, fps: u32) -> Result<usize, String> {
+    let shards = crate::shard::complete(found, "animation")?;
     let n = shards[0].manifest.items;
     let mut files: Vec<Option<PathBuf>> = vec![None; n];
     for s in &shards {

@@ -144,6 +144,16 @@ impl Project {
         names.sort();
         names
     }
+
+    /// The fixtures a command given `names` works on: those names, or all
+    /// of the project's when there are none.
+    pub fn fixtures_or_all(&self, names: &[String]) -> Vec<String> {
+        if names.is_empty() {
+            self.fixture_names()
+        } else {
+            names.to_vec()
+        }
+    }
 }
 
 /// The known name nearest to `name` by edit distance, if it is near (at

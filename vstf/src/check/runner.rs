@@ -126,11 +126,7 @@ pub fn run_reporting(
     finished: &(dyn Fn(&FixtureReport, f64) + Sync),
 ) -> Result<Vec<FixtureReport>, String> {
     let store = &project.store();
-    let mut chosen: Vec<String> = if names.is_empty() {
-        project.fixture_names()
-    } else {
-        names.to_vec()
-    };
+    let mut chosen = project.fixtures_or_all(names);
     // A fixture named twice (or by name and by path) is checked once: two
     // runs of it at once would write the same pending images.
     let mut seen = std::collections::HashSet::new();

@@ -34,16 +34,6 @@ struct StoredReport {
     declared_views: Vec<String>,
 }
 
-/// The fixtures of the project a check of `names` covers (all of the
-/// project's when empty), in order.
-pub fn chosen(project: &Project, names: &[String]) -> Vec<String> {
-    if names.is_empty() {
-        project.fixture_names()
-    } else {
-        names.to_vec()
-    }
-}
-
 /// A hash of what a check's results depend on: the fixtures chosen, each
 /// fixture file's bytes and its golden images' bytes, so that shards of
 /// different projects (or of one project at different commits) are not
@@ -201,12 +191,11 @@ fn load_report(dir: &Path, file: &str) -> Result<FixtureReport, String> {
     })
 }
 
-/// The reports of every shard whose folders (or a folder holding them)
-/// are `dirs`, once all N shards are there, of one suite and unchanged:
-/// the fixtures in the order of their names.
-pub fn merge(dirs: &[PathBuf]) -> Result<Vec<FixtureReport>, String> {
-    let folders = with_shard_folders(dirs);
-    let shards = crate::shard::complete(crate::shard::read_manifests(&folders)?, "check")?;
+/// The reports of the shards whose manifests are `found` (read from the
+/// folders of [`with_shard_folders`]), once all N shards are there, of one
+/// suite and unchanged: the fixtures in the order of their names.
+pub fn merge(found: Vec<crate::shard::Found>) -> Result<Vec<FixtureReport>, String> {
+    let shards = crate::shard::complete(found, "check")?;
     let mut reports: Vec<FixtureReport> = Vec::new();
     for s in &shards {
         for w in s

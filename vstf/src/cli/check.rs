@@ -35,7 +35,7 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
         Some(s) => Some(Shard::parse(&s, |v| std::env::var(v).ok())?),
         None => None,
     };
-    let chosen = vstf::check::sharded::chosen(&project, &fixtures);
+    let chosen = project.fixtures_or_all(&fixtures);
     let mine: Vec<String> = match shard {
         Some(s) => chosen
             .iter()
@@ -77,12 +77,7 @@ fn checked(
     (effort, budget): (&Effort, &vstf::Budget),
 ) -> Result<Vec<FixtureReport>, String> {
     let terminal = Terminal::stderr();
-    let count = if names.is_empty() {
-        project.fixture_names().len()
-    } else {
-        names.len()
-    };
-    let bar = terminal.progress(count);
+    let bar = terminal.progress(project.fixtures_or_all(names).len());
     let reports = vstf::check::run_reporting(project, names, (effort, budget), &|r, seconds| {
         let line = fixture_line(r, seconds, terminal.colour);
         if terminal.tty {

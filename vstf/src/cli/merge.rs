@@ -22,10 +22,10 @@ pub fn run(args: MergeArgs) -> Result<(), String> {
                 .out
                 .ok_or("merging an animation needs --out (a folder, FILE.gif or FILE.png)")?;
             let output = vstf::animate::Output::from_path(&out);
-            let n = vstf::animate::merge(&args.dirs, &output, args.fps)?;
+            let shards = found.first().map_or(0, |f| f.manifest.shard.count);
+            let n = vstf::animate::merge(found, &output, args.fps)?;
             eprintln!(
-                "merged {n} frames from {} shards -> {}",
-                found.first().map_or(0, |f| f.manifest.shard.count),
+                "merged {n} frames from {shards} shards -> {}",
                 out.display()
             );
             Ok(())
@@ -36,7 +36,7 @@ pub fn run(args: MergeArgs) -> Result<(), String> {
                     "--out is for animations; a check suite takes --json and --report".into(),
                 );
             }
-            let reports = vstf::check::sharded::merge(&args.dirs)?;
+            let reports = vstf::check::sharded::merge(found)?;
             let asked = Asked {
                 json: args.json,
                 report: args.report,
