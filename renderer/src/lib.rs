@@ -9,7 +9,9 @@
 //! 2. `geometry`: temporal extrusion of every triangle along its object's
 //!    path into a prism of three [`Tetrahedron`]s (paper 3.1), keyframed and
 //!    accelerated paths first resolved into [`Pose`]s; analytic spheres kept
-//!    exact; the barycentric solve ([`Hit`], paper 3.2).
+//!    exact; the ray tests ([`Hit`]): a prism of uniform motion whole, as its
+//!    triangle at rest in the comoving frame within its lab times, and a
+//!    keyframe interval's tetrahedra by the barycentric solve (paper 3.2).
 //! 3. `database`: the static 4D [`Database`] of all prisms, built once
 //!    (paper 3, items 1-2), each object's path cut into straight
 //!    [`Stretch`]es, searched through `accel`, a two-level bounding volume
@@ -45,7 +47,8 @@ pub use color::{
 pub use database::{Database, ObjectRecord, Stretch, Surface, Traversal};
 pub use geometry::{
     corner_order, corners_between, extrude, extrude_between, piece, split_between, split_prism,
-    tetrahedron_volume, Hit, Miss, Pose, PrimitiveId, Prism, PrismCorners, Tetrahedron,
+    tetrahedron_volume, Barycentric, Hit, Miss, Pose, PrimitiveId, Prism, PrismCorners,
+    Tetrahedron,
 };
 pub use render::{pixel, pixel_traced, render, shader, Frame, Image, RenderSettings};
 pub use rng::SplitMix64;

@@ -6,7 +6,7 @@
 //! [`NoTrace`], whose recording compiles away, and the debug command passes a
 //! [`Recorder`]. There is no second implementation of the physics to drift.
 
-use crate::geometry::{Hit, Miss};
+use crate::geometry::{Barycentric, Hit, Miss, PrimitiveId};
 use crate::spacetime::{Event, FourVector};
 use glam::DVec3;
 #[cfg(feature = "serde")]
@@ -25,34 +25,43 @@ pub enum RayKind {
     Reflection,
 }
 
-/// The outcome of one barycentric solve.
+/// The outcome of one test of a prism (whole, as its comoving triangle) or
+/// of a tetrahedron (the barycentric solve).
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(Serialize))]
 #[cfg_attr(feature = "serde", serde(tag = "result", rename_all = "snake_case"))]
 pub enum Outcome {
-    /// The ray meets the tetrahedron.
+    /// The ray meets the primitive.
     Accepted {
         /// Ray parameter.
         s: f64,
         /// The event met.
         event: Event,
         /// Its barycentric coordinates, clamped to [0, 1].
-        bary: [f64; 4],
+        bary: Barycentric,
     },
-    /// The ray is parallel to the tetrahedron's hyperplane.
+    /// The ray is parallel to the tetrahedron's hyperplane (lies in the
+    /// plane of the prism's comoving triangle).
     Parallel,
-    /// The hyperplane is met outside the searched stretch of the ray
-    /// (behind the origin, or beyond a hit already found).
+    /// The hyperplane (the triangle's plane) is met outside the searched
+    /// stretch of the ray (behind the origin, or beyond a hit already found).
     OutOfRange {
         /// Ray parameter where the hyperplane is met.
         s: f64,
     },
-    /// The hyperplane is met outside the tetrahedron.
+    /// The hyperplane (the triangle's plane) is met outside the primitive.
     Outside {
         /// Ray parameter where the hyperplane is met.
         s: f64,
         /// Barycentric coordinates there, one of them negative.
-        bary: [f64; 4],
+        bary: Barycentric,
+    },
+    /// The prism's triangle is crossed before or after the prism's lab times.
+    OutOfSpan {
+        /// Ray parameter of the crossing.
+        s: f64,
+        /// Its lab time.
+        t: f64,
     },
 }
 
@@ -67,6 +76,7 @@ impl From<&Result<Hit, Miss>> for Outcome {
             Err(Miss::Parallel) => Outcome::Parallel,
             Err(Miss::OutOfRange { s }) => Outcome::OutOfRange { s },
             Err(Miss::Outside { s, bary }) => Outcome::Outside { s, bary },
+            Err(Miss::OutOfSpan { s, t }) => Outcome::OutOfSpan { s, t },
         }
     }
 }
@@ -102,19 +112,17 @@ pub enum Step {
         /// Searched range of the ray parameter.
         range: (f64, f64),
     },
-    /// A tetrahedron tested against the current ray.
+    /// A prism (whole) or tetrahedron tested against the current ray.
     Candidate {
-        /// Index of the tetrahedron (analytic spheres numbered after the tetrahedra).
-        tet: u32,
+        /// The primitive tested.
+        primitive: PrimitiveId,
         /// Name of the object.
         object: String,
         /// Index of the triangle in the object's mesh.
         triangle: u32,
-        /// Index of the prism.
+        /// Index of the prism (the one tested, or the tetrahedron's).
         prism: u32,
-        /// Which of the prism's three tetrahedra, 0..3.
-        piece: u8,
-        /// The result of the solve.
+        /// The result of the test.
         outcome: Outcome,
     },
     /// The hit kept for the current ray (the most recent event), or the first
@@ -122,11 +130,11 @@ pub enum Step {
     Hit {
         /// What the ray is for.
         kind: RayKind,
-        /// Index of the tetrahedron (analytic spheres numbered after the tetrahedra).
-        tet: u32,
+        /// The primitive met.
+        primitive: PrimitiveId,
         /// Name of the object.
         object: String,
-        /// Index of the triangle in the object's mesh.
+        /// Index of the triangle in the object's mesh (0 for a sphere).
         triangle: u32,
         /// Where the ray meets it.
         event: Event,

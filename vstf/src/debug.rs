@@ -33,7 +33,7 @@ pub struct PixelLog {
 }
 
 impl PixelLog {
-    /// Drops the tetrahedra tested but not kept (`candidate` steps): the
+    /// Drops the prisms and tetrahedra tested but not kept (`candidate` steps): the
     /// compact log, one block per sample of rays, hits and shading.
     pub fn drop_candidates(&mut self) {
         self.steps.retain(|s| !matches!(s, Step::Candidate { .. }));
@@ -89,8 +89,21 @@ fn ev(e: renderer::Event) -> String {
     format!("t = {:.9}, x = {}", e.t, v3(e.x))
 }
 
-fn bary(b: &[f64; 4]) -> String {
-    format!("[{:.6}, {:.6}, {:.6}, {:.6}]", b[0], b[1], b[2], b[3])
+fn bary(b: &renderer::Barycentric) -> String {
+    let each: Vec<String> = b.coordinates().iter().map(|x| format!("{x:.6}")).collect();
+    format!("[{}]", each.join(", "))
+}
+
+/// A primitive as the log names it: a prism tested whole, a tetrahedron
+/// with its prism and piece, or a sphere.
+fn primitive(p: renderer::PrimitiveId) -> String {
+    match p {
+        renderer::PrimitiveId::Prism(p) => format!("prism {p} (whole)"),
+        renderer::PrimitiveId::Tetrahedron(t) => {
+            format!("tet {t} (prism {}, piece {})", t / 3, t % 3)
+        }
+        renderer::PrimitiveId::Sphere(k) => format!("sphere {k}"),
+    }
 }
 
 /// The log as text for a person, one line per step, indented by ray.
@@ -139,18 +152,20 @@ pub fn describe(log: &PixelLog) -> String {
                     range.1
                 )
             }
-            Step::Candidate { tet, object, triangle, prism, piece, outcome } => {
+            Step::Candidate { primitive: p, object, triangle, prism: _, outcome } => {
                 let what = match outcome {
                     Outcome::Accepted { s, event, bary: b } => format!("ACCEPTED s = {s:.9}, event {}, bary {}", ev(*event), bary(b)),
-                    Outcome::Parallel => "rejected: parallel to the tetrahedron's hyperplane".into(),
+                    Outcome::Parallel => "rejected: parallel to its hyperplane".into(),
                     Outcome::OutOfRange { s } => format!("rejected: hyperplane met at s = {s:.6}, outside the searched range"),
-                    Outcome::Outside { s, bary: b } => format!("rejected: outside the tetrahedron (s = {s:.6}, bary {})", bary(b)),
+                    Outcome::Outside { s, bary: b } => format!("rejected: outside it (s = {s:.6}, bary {})", bary(b)),
+                    Outcome::OutOfSpan { s, t } => format!("rejected: triangle crossed at s = {s:.6}, t = {t:.6}, outside the prism's lab times"),
                 };
-                format!("  tet {tet} ({object:?} triangle {triangle}, prism {prism}, piece {piece}): {what}")
+                format!("  {} ({object:?} triangle {triangle}): {what}", primitive(*p))
             }
-            Step::Hit { kind, tet, object, triangle, event, surface_point, proper_time, start_t, normal, facing_normal } => format!(
-                "{} {object:?} (tet {tet}, triangle {triangle}) at {}; in the object's frame {}; proper time {proper_time:.9} since its start at t = {start_t}; normal {}, facing {}",
+            Step::Hit { kind, primitive: p, object, triangle, event, surface_point, proper_time, start_t, normal, facing_normal } => format!(
+                "{} {object:?} ({}, triangle {triangle}) at {}; in the object's frame {}; proper time {proper_time:.9} since its start at t = {start_t}; normal {}, facing {}",
                 if *kind == renderer::RayKind::Shadow { "BLOCKED by" } else { "HIT" },
+                primitive(*p),
                 ev(*event),
                 v3(*surface_point),
                 v3(*normal),

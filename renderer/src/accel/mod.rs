@@ -5,4 +5,5 @@
 mod bvh;
 mod two_level;
 
+pub(crate) use bvh::rounding_margin;
 pub(crate) use two_level::{StretchPrisms, TwoLevel};

@@ -6,7 +6,7 @@
 //! hierarchy of the lab-frame 4D bounds of their time slices.
 
 use super::bvh::{rounding_margin, Bounds4, Bvh};
-use crate::geometry::{Hit, PrismCorners};
+use crate::geometry::Hit;
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
 
@@ -88,26 +88,6 @@ pub(crate) struct TwoLevel {
     slices: Vec<TimeSlice>,
 }
 
-/// A prism's box in its stretch's comoving coordinates (the box of all six
-/// corners, which holds the prism since comoving coordinates are affine in
-/// the event). A translated prism's box is that of its start corners; a
-/// keyframe interval's takes all six corners, padded for the rounding of the
-/// comoving transform.
-fn comoving_box(g: &StretchPrisms, corners: &PrismCorners) -> (DVec3, DVec3) {
-    let (t0, v) = (g.span.0, g.velocity);
-    let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-    for e in &corners[..if g.translation { 3 } else { 6 }] {
-        let x = e.x - v * (e.t - t0) - g.origin.x;
-        a = a.min(x);
-        b = b.max(x);
-    }
-    if !g.translation {
-        let pad = rounding_margin(a.extend(0.0), b.extend(0.0)).truncate();
-        (a, b) = (a - pad, b + pad);
-    }
-    (a, b)
-}
-
 /// Cuts a stretch into as many time slices as it takes for each to sweep
 /// about its own size (at most [`MAX_SLICES`]), given the comoving box
 /// `lo..hi` of all its prisms; returns each slice's lab times and bounds.
@@ -142,18 +122,22 @@ fn slices(g: &StretchPrisms, lo: DVec3, hi: DVec3) -> Vec<(f64, f64, Bounds4)> {
 }
 
 impl TwoLevel {
-    /// Builds both levels over the prisms of `stretches`, given every
-    /// prism's corners.
-    pub(crate) fn build(stretches: &[StretchPrisms], corners: &[PrismCorners]) -> TwoLevel {
+    /// Builds both levels over the prisms of `stretches`, given each
+    /// prism's box in its stretch's comoving coordinates, by stretch and
+    /// prism: `comoving_box(k, p)`.
+    pub(crate) fn build<'a>(
+        stretches: impl Iterator<Item = &'a StretchPrisms>,
+        comoving_box: impl Fn(usize, usize) -> (DVec3, DVec3),
+    ) -> TwoLevel {
         let mut built = Vec::new();
         let mut all_slices = Vec::new();
         let mut slice_bounds = Vec::new();
-        for g in stretches {
+        for (k, g) in stretches.enumerate() {
             let (t0, t1) = g.span;
             let mut comoving = Vec::with_capacity(g.prisms.len());
             let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
             for p in g.prisms.clone() {
-                let (a, b) = comoving_box(g, &corners[p]);
+                let (a, b) = comoving_box(k, p);
                 comoving.push(Bounds4::new(a.extend(t0), b.extend(t1)));
                 lo = lo.min(a);
                 hi = hi.max(b);
@@ -181,23 +165,24 @@ impl TwoLevel {
     }
 
     /// The closest hit along the ray `o + s d` (lab frame, (x, y, z, t))
-    /// within `range`: `test(prism, range)` is called for every prism whose
-    /// boxes the ray enters, with the range shrunk to the best hit so far.
+    /// within `range`: `test(stretch, prism, range)` is called for every
+    /// prism whose boxes the ray enters, with its stretch's index and the
+    /// range shrunk to the best hit so far.
     pub(crate) fn closest(
         &self,
         o: DVec4,
         d: DVec4,
         range: (f64, f64),
-        mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
+        mut test: impl FnMut(u32, u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         self.top.closest(o, d, range, |k, r| {
             let slice = &self.slices[k as usize];
             let r = slice.window(o, d, r)?;
             let stretch = &self.stretches[slice.stretch as usize];
             let (oc, dc) = stretch.to_comoving(o, d);
-            stretch
-                .bvh
-                .closest(oc, dc, r, |p, r| test(stretch.first_prism + p, r))
+            stretch.bvh.closest(oc, dc, r, |p, r| {
+                test(slice.stretch, stretch.first_prism + p, r)
+            })
         })
     }
 }

@@ -1,16 +1,15 @@
 //! Insertion: every object of the scene temporally extruded once into
 //! prisms (paper 3, items 1-2), its path cut into straight stretches.
 
-use super::{Database, ObjectRecord, Stretch, Traversal};
-use crate::accel::{StretchPrisms, TwoLevel};
-use crate::geometry::{
-    self, extrude, extrude_between, piece, Pose, PreparedTet, Prism, PrismCorners, Sphere,
-};
+use super::{Database, Keyframed, ObjectRecord, Run, Stretch, Traversal};
+use crate::accel::{rounding_margin, StretchPrisms, TwoLevel};
+use crate::geometry::{self, extrude_between, piece, Pose, PreparedTet, PrismCorners, Sphere};
 use crate::scene::{
     Fault, Mesh, Motion, ObjectKind, Scene, SceneError, SceneErrorKind as K, SceneField as F,
     SceneObject, Shape, NO_MESH,
 };
 use crate::spacetime::{Boost, Event, FourVector, Worldline};
+use glam::DVec3;
 
 /// An object's mesh; none for an analytic sphere.
 fn mesh_of(obj: &SceneObject) -> &Mesh {
@@ -23,11 +22,10 @@ fn mesh_of(obj: &SceneObject) -> &Mesh {
 /// The database under construction.
 #[derive(Default)]
 struct Builder {
-    prisms: Vec<Prism>,
-    /// Each prism's corners, from which its three tetrahedra are read.
-    corners: Vec<PrismCorners>,
+    runs: Vec<Run>,
+    comoving: Vec<[DVec3; 3]>,
+    keyframed: Keyframed,
     spheres: Vec<Sphere>,
-    stretch_prisms: Vec<StretchPrisms>,
 }
 
 /// The straight worldline of a uniformly moving object and the boost of
@@ -92,6 +90,11 @@ fn straight(obj: &SceneObject, lorentz: bool) -> Result<(Worldline, Boost), Faul
 }
 
 impl Builder {
+    /// How many prisms have been inserted.
+    fn prism_count(&self) -> usize {
+        self.comoving.len() + self.keyframed.prisms.len()
+    }
+
     /// Extrudes a keyframed object pose to pose, each interval one stretch
     /// of its path.
     fn keyframed(
@@ -124,21 +127,20 @@ impl Builder {
             } else {
                 Boost::identity()
             };
-            let first = self.prisms.len();
-            extrude_between(
-                mesh,
-                &w[0],
-                &w[1],
+            let (first, slot) = (self.prism_count(), self.keyframed.prisms.len());
+            let kf = &mut self.keyframed;
+            extrude_between(mesh, &w[0], &w[1], object, &mut kf.prisms, &mut kf.corners);
+            self.runs.push(Run {
                 object,
-                &mut self.prisms,
-                &mut self.corners,
-            );
-            self.stretch_prisms.push(StretchPrisms {
-                origin: worldline.start,
-                velocity: v,
-                span: (w[0].t, w[1].t),
-                prisms: first..self.prisms.len(),
-                translation: false,
+                stretch: StretchPrisms {
+                    origin: worldline.start,
+                    velocity: v,
+                    span: (w[0].t, w[1].t),
+                    prisms: first..first + mesh.triangles.len(),
+                    translation: false,
+                },
+                extrusion: worldline.extrusion,
+                slot,
             });
             stretches.push(Stretch {
                 worldline,
@@ -167,20 +169,20 @@ impl Builder {
             let mesh = mesh_of(obj).map_vertices(|p| boost.contract(p));
             mesh.validate()
                 .map_err(|e| Fault::new(F::Shape, K::ContractedMesh(e)))?;
-            let first = self.prisms.len();
-            extrude(
-                &mesh,
-                &worldline,
-                i as u32,
-                &mut self.prisms,
-                &mut self.corners,
-            );
-            self.stretch_prisms.push(StretchPrisms {
-                origin: worldline.start,
-                velocity: worldline.velocity(),
-                span: (worldline.start.t, worldline.end().t),
-                prisms: first..self.prisms.len(),
-                translation: true,
+            let (first, slot) = (self.prism_count(), self.comoving.len());
+            self.comoving
+                .extend((0..mesh.triangles.len()).map(|t| mesh.corners(t)));
+            self.runs.push(Run {
+                object: i as u32,
+                stretch: StretchPrisms {
+                    origin: worldline.start,
+                    velocity: worldline.velocity(),
+                    span: (worldline.start.t, worldline.end().t),
+                    prisms: first..first + mesh.triangles.len(),
+                    translation: true,
+                },
+                extrusion: worldline.extrusion,
+                slot,
             });
         }
         Ok(Stretch {
@@ -228,19 +230,17 @@ impl Builder {
 struct Inserted {
     builder: Builder,
     records: Vec<ObjectRecord>,
-    prepared: Vec<PreparedTet>,
 }
 
-/// Extrudes every object and prepares every tetrahedron's solve; the
-/// errors are those of [`Database::build`].
+/// Extrudes every object and prepares every keyframe tetrahedron's solve;
+/// the errors are those of [`Database::build`].
 fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
     let mut b = Builder::default();
     let mut records = Vec::new();
-    let mut prepared = Vec::new();
     for (i, obj) in scene.objects.iter().enumerate() {
-        let first = b.prisms.len();
+        let first = b.keyframed.prisms.len();
         let stretches = b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
-        prepare(&b, first, &mut prepared).map_err(|f| f.of(i, &obj.name))?;
+        prepare(&mut b.keyframed, first).map_err(|f| f.of(i, &obj.name))?;
         records.push(ObjectRecord {
             name: obj.name.clone(),
             kind: obj.kind,
@@ -252,28 +252,42 @@ fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
     Ok(Inserted {
         builder: b,
         records,
-        prepared,
     })
 }
 
-/// Prepares the solves of the tetrahedra of the builder's prisms from
+/// Prepares the solves of the tetrahedra of the keyframe prisms from
 /// `first` on (one object's), or the fault of the first with no 3-volume.
-fn prepare(b: &Builder, first: usize, prepared: &mut Vec<PreparedTet>) -> Result<(), Fault> {
-    prepared.reserve(3 * (b.prisms.len() - first));
-    for (p, corners) in b.corners.iter().enumerate().skip(first) {
+fn prepare(kf: &mut Keyframed, first: usize) -> Result<(), Fault> {
+    kf.prepared.reserve(3 * (kf.prisms.len() - first));
+    for (p, corners) in kf.corners.iter().enumerate().skip(first) {
         for k in 0..3 {
             let solve = PreparedTet::new(&piece(corners, k)).ok_or_else(|| {
                 Fault::new(
                     F::Shape,
                     K::FlatTetrahedron {
-                        triangle: b.prisms[p].triangle,
+                        triangle: kf.prisms[p].triangle,
                     },
                 )
             })?;
-            prepared.push(solve);
+            kf.prepared.push(solve);
         }
     }
     Ok(())
+}
+
+/// A keyframe prism's box in its stretch's comoving coordinates: the box of
+/// all six corners (which holds the prism, comoving coordinates being affine
+/// in the event), padded for the rounding of the comoving transform.
+fn keyframed_box(g: &StretchPrisms, corners: &PrismCorners) -> (DVec3, DVec3) {
+    let (t0, v) = (g.span.0, g.velocity);
+    let (mut a, mut b) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    for e in corners {
+        let x = e.x - v * (e.t - t0) - g.origin.x;
+        a = a.min(x);
+        b = b.max(x);
+    }
+    let pad = rounding_margin(a.extend(0.0), b.extend(0.0)).truncate();
+    (a - pad, b + pad)
 }
 
 impl Database {
@@ -284,14 +298,22 @@ impl Database {
         let Inserted {
             builder: b,
             records,
-            prepared,
         } = insert_all(scene, lorentz)?;
-        let accel = TwoLevel::build(&b.stretch_prisms, &b.corners);
+        let accel = TwoLevel::build(b.runs.iter().map(|r| &r.stretch), |k, p| {
+            let run = &b.runs[k];
+            let slot = run.slot + p - run.stretch.prisms.start;
+            if run.stretch.translation {
+                let c = &b.comoving[slot];
+                (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]))
+            } else {
+                keyframed_box(&run.stretch, &b.keyframed.corners[slot])
+            }
+        });
         Ok(Database {
             records,
-            prisms: b.prisms,
-            corners: b.corners,
-            prepared,
+            runs: b.runs,
+            comoving: b.comoving,
+            keyframed: b.keyframed,
             accel,
             spheres: b.spheres,
             traversal: Traversal::Bvh,
@@ -306,9 +328,10 @@ impl Database {
         for (i, obj) in scene.objects.iter().enumerate() {
             let mut b = Builder::default();
             b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
-            for (p, corners) in b.corners.iter().enumerate() {
+            let kf = &b.keyframed;
+            for (p, corners) in kf.corners.iter().enumerate() {
                 if (0..3).any(|k| PreparedTet::new(&piece(corners, k)).is_none()) {
-                    let triangle = b.prisms[p].triangle;
+                    let triangle = kf.prisms[p].triangle;
                     return Err(
                         Fault::new(F::Shape, K::FlatTetrahedron { triangle }).of(i, &obj.name)
                     );

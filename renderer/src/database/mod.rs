@@ -6,35 +6,63 @@ mod object;
 
 pub use object::{ObjectRecord, Stretch};
 
-use crate::accel::TwoLevel;
+use crate::accel::{StretchPrisms, TwoLevel};
 use crate::geometry::{
-    nearer, piece, Hit, Miss, PreparedTet, PrimitiveId, Prism, PrismCorners, Sphere, Tetrahedron,
+    corner_order, corners_between, intersect_prism, nearer, piece, Barycentric, ComovingRay, Hit,
+    Miss, PreparedTet, PrimitiveId, Prism, PrismCorners, Sphere, Tetrahedron,
 };
-use crate::spacetime::Ray;
+use crate::spacetime::{Event, FourVector, Ray};
 use crate::trace::{NoTrace, Outcome, Step, Trace};
-use glam::DVec3;
+use glam::{DVec3, DVec4};
 
-/// How rays find candidate tetrahedra. Both give identical hits.
+/// How rays find candidate prisms and tetrahedra. Both give identical hits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Traversal {
-    /// Every tetrahedron for every ray.
+    /// Every prism and tetrahedron for every ray.
     BruteForce,
-    /// A bounding volume hierarchy over the tetrahedra's 4D bounds.
+    /// A bounding volume hierarchy over their 4D bounds.
     Bvh,
+}
+
+/// The prisms of one stretch of a meshed object's path, numbered
+/// consecutively (one per triangle of the mesh, in mesh order).
+struct Run {
+    /// Index of the object in [`Database::objects`].
+    object: u32,
+    /// The stretch as the acceleration structure sees it.
+    stretch: StretchPrisms,
+    /// The lab-frame extrusion of the stretch's reference point.
+    extrusion: FourVector,
+    /// Index of the run's first prism in [`Database::comoving`] (a
+    /// translation) or [`Database::keyframed`] (a keyframe interval).
+    slot: usize,
+}
+
+/// The prisms of keyframe intervals, which may turn or deform their
+/// triangles: each tested as the paper's three tetrahedra.
+#[derive(Default)]
+struct Keyframed {
+    prisms: Vec<Prism>,
+    /// Each prism's corners; its tetrahedra are read off them.
+    corners: Vec<PrismCorners>,
+    /// Each tetrahedron's prepared solve, three per prism in prism order.
+    prepared: Vec<PreparedTet>,
 }
 
 /// The static 4D database.
 pub struct Database {
     records: Vec<ObjectRecord>,
-    prisms: Vec<Prism>,
-    /// Each prism's corners; its tetrahedra 3p, 3p + 1, 3p + 2 are read off
-    /// them (the events are kept once, not once per tetrahedron).
-    corners: Vec<PrismCorners>,
-    /// Each tetrahedron's prepared solve, three per prism in prism order.
-    prepared: Vec<PreparedTet>,
+    /// Every meshed object's prisms, stretch by stretch, in prism order.
+    runs: Vec<Run>,
+    /// The triangles of the prisms of translations (uniform motion), at rest
+    /// in their stretch's comoving coordinates x' = x - v (t - t0) - x0: all
+    /// such a prism needs, since its events are the triangle carried along
+    /// the stretch's worldline.
+    comoving: Vec<[DVec3; 3]>,
+    keyframed: Keyframed,
     /// The two-level hierarchy over the prisms.
     accel: TwoLevel,
-    /// Analytic spheres, numbered after the tetrahedra in hits.
+    /// Analytic spheres.
     spheres: Vec<Sphere>,
     traversal: Traversal,
 }
@@ -52,12 +80,12 @@ pub struct Surface {
 }
 
 impl Database {
-    /// Chooses how rays find candidate tetrahedra.
+    /// Chooses how rays find candidate prisms and tetrahedra.
     pub fn set_traversal(&mut self, traversal: Traversal) {
         self.traversal = traversal;
     }
 
-    /// How rays find candidate tetrahedra.
+    /// How rays find candidate prisms and tetrahedra.
     pub fn traversal(&self) -> Traversal {
         self.traversal
     }
@@ -67,43 +95,105 @@ impl Database {
         &self.records
     }
 
-    /// Every extruded triangle.
-    pub fn prisms(&self) -> &[Prism] {
-        &self.prisms
+    /// How many prisms (extruded triangles) there are.
+    pub fn prism_count(&self) -> usize {
+        self.comoving.len() + self.keyframed.prisms.len()
     }
 
-    /// How many tetrahedra there are: three per prism.
+    /// The run prism `p` belongs to, and its place in the run.
+    fn run_of(&self, p: u32) -> (&Run, usize) {
+        let k = self
+            .runs
+            .partition_point(|r| r.stretch.prisms.end <= p as usize);
+        let run = &self.runs[k];
+        (run, p as usize - run.stretch.prisms.start)
+    }
+
+    /// Prism `p`, by index in `0..prism_count()`: its object, triangle,
+    /// normals and lab times.
+    pub fn prism(&self, p: u32) -> Prism {
+        let (run, k) = self.run_of(p);
+        if !run.stretch.translation {
+            return self.keyframed.prisms[run.slot + k];
+        }
+        let c = &self.comoving[run.slot + k];
+        let normal = (c[1] - c[0]).cross(c[2] - c[0]).normalize();
+        Prism {
+            object: run.object,
+            triangle: k as u32,
+            normal,
+            end_normal: normal,
+            span: run.stretch.span,
+        }
+    }
+
+    /// Prism `p`'s six corners in the paper's cut ([`PrismCorners`]): the
+    /// corners of its triangle at its start and at its end.
+    pub fn prism_corners(&self, p: u32) -> PrismCorners {
+        let (run, k) = self.run_of(p);
+        if !run.stretch.translation {
+            return self.keyframed.corners[run.slot + k];
+        }
+        let c = self.comoving[run.slot + k];
+        let start = run.stretch.origin;
+        let bottom = c.map(|x| Event::new(start.t, start.x + x));
+        let top = bottom.map(|e| e + run.extrusion);
+        corners_between(bottom, top, corner_order(c))
+    }
+
+    /// The corners of prism `p`'s triangle at lab time `t`, in the order of
+    /// a [`Barycentric::Triangle`] on it: for a translation, its comoving
+    /// corners carried along the stretch's worldline; for a keyframe
+    /// interval, each corner moved straight between the poses.
+    pub fn triangle_at(&self, p: u32, t: f64) -> [Event; 3] {
+        let (run, k) = self.run_of(p);
+        let g = &run.stretch;
+        if g.translation {
+            let at = g.origin.x + g.velocity * (t - g.origin.t);
+            return self.comoving[run.slot + k].map(|x| Event::new(t, at + x));
+        }
+        let c = &self.keyframed.corners[run.slot + k];
+        let f = (t - g.span.0) / (g.span.1 - g.span.0);
+        [0, 1, 2].map(|i| Event::new(t, c[i].x.lerp(c[i + 3].x, f)))
+    }
+
+    /// How many tetrahedra the paper's cut gives: three per prism.
     pub fn tetrahedron_count(&self) -> usize {
-        self.prepared.len()
+        3 * self.prism_count()
     }
 
-    /// Tetrahedron `i`: piece `i % 3` of prism `i / 3`.
+    /// Tetrahedron `i` of the paper's cut: piece `i % 3` of prism `i / 3`.
+    /// Only keyframe intervals are tested as tetrahedra; a translation's
+    /// three tile the prism it tests whole.
     pub fn tetrahedron(&self, i: u32) -> Tetrahedron {
         let (prism, k) = (i / 3, (i % 3) as usize);
         Tetrahedron {
-            vertices: piece(&self.corners[prism as usize], k),
+            vertices: piece(&self.prism_corners(prism), k),
             prism,
             piece: k as u8,
         }
     }
 
-    /// Every tetrahedron, three per prism in prism order.
+    /// Every tetrahedron of the paper's cut, three per prism in prism order.
     pub fn tetrahedra(&self) -> impl ExactSizeIterator<Item = Tetrahedron> + '_ {
         (0..self.tetrahedron_count() as u32).map(|i| self.tetrahedron(i))
     }
 
     /// The surface a hit lies on: a triangle's prism, or an analytic sphere.
     pub fn surface(&self, hit: &Hit) -> Surface {
-        match hit.primitive {
-            PrimitiveId::Tetrahedron(tet) => {
-                let p = self.prism_of(tet);
+        match hit.primitive.prism() {
+            Some(p) => {
+                let prism = self.prism(p);
                 Surface {
-                    object: p.object,
-                    normal: p.normal_at(hit.event.t),
-                    triangle: p.triangle,
+                    object: prism.object,
+                    normal: prism.normal_at(hit.event.t),
+                    triangle: prism.triangle,
                 }
             }
-            PrimitiveId::Sphere(k) => {
+            None => {
+                let PrimitiveId::Sphere(k) = hit.primitive else {
+                    unreachable!("every other primitive is of a prism")
+                };
                 let sp = &self.spheres[k as usize];
                 Surface {
                     object: sp.object,
@@ -126,11 +216,13 @@ impl Database {
         let surface = self.surface(hit);
         let record = &self.records[surface.object as usize];
         let stretch = record.stretch_at(hit.event.t);
-        let tet = match hit.primitive {
-            PrimitiveId::Tetrahedron(tet) if !stretch.translation => tet,
-            _ => return (stretch.worldline.velocity(), stretch.clock.gamma()),
+        let (tet, Barycentric::Tetrahedron(bary)) = (hit.primitive, hit.bary) else {
+            return (stretch.worldline.velocity(), stretch.clock.gamma());
         };
-        let velocity = self.corner_weighted_velocity(tet, &hit.bary);
+        let PrimitiveId::Tetrahedron(tet) = tet else {
+            unreachable!("tetrahedron coordinates are a tetrahedron's")
+        };
+        let velocity = self.corner_weighted_velocity(tet, &bary);
         let gamma = if record.contracted {
             crate::spacetime::lorentz_factor(velocity.length_squared())
         } else {
@@ -146,7 +238,7 @@ impl Database {
     /// corners and c1, piece 1 holds b1 and piece 2 a1.
     fn corner_weighted_velocity(&self, tet: u32, bary: &[f64; 4]) -> DVec3 {
         const CORNERS: [[usize; 4]; 3] = [[0, 1, 2, 2], [0, 1, 1, 2], [0, 0, 1, 2]];
-        let c = &self.corners[(tet / 3) as usize];
+        let c = self.prism_corners(tet / 3);
         let (bottom, top) = (&c[..3], &c[3..]);
         let mut weights = [0.0; 3];
         for (j, &corner) in CORNERS[(tet % 3) as usize].iter().enumerate() {
@@ -157,63 +249,21 @@ impl Database {
             .sum()
     }
 
-    /// The number the debug log gives a primitive: tetrahedra by index,
-    /// then the analytic spheres numbered after them.
-    pub fn primitive_number(&self, primitive: PrimitiveId) -> u32 {
-        match primitive {
-            PrimitiveId::Tetrahedron(i) => i,
-            PrimitiveId::Sphere(k) => self.tetrahedron_count() as u32 + k,
-        }
-    }
-
-    /// The prism a tetrahedron belongs to.
-    pub fn prism_of(&self, tet: u32) -> &Prism {
-        &self.prisms[(tet / 3) as usize]
-    }
-
-    /// One tetrahedron's barycentric solve, with the reason for a miss.
-    pub fn test(&self, ray: &Ray, tet: u32, range: (f64, f64)) -> Result<Hit, Miss> {
-        let corners = &self.corners[(tet / 3) as usize];
-        self.prepared[tet as usize].intersect(ray, (tet, corners, (tet % 3) as usize), range)
-    }
-
-    /// The solve of `tet`, recorded as a candidate.
-    fn test_traced<T: Trace>(
-        &self,
-        ray: &Ray,
-        tet: u32,
-        range: (f64, f64),
-        trace: &mut T,
-    ) -> Result<Hit, Miss> {
-        let result = self.test(ray, tet, range);
-        if T::ENABLED {
-            let prism = &self.prisms[(tet / 3) as usize];
-            trace.record(Step::Candidate {
-                tet,
-                object: self.records[prism.object as usize].name.clone(),
-                triangle: prism.triangle,
-                prism: tet / 3,
-                piece: (tet % 3) as u8,
-                outcome: Outcome::from(&result),
-            });
-        }
-        result
-    }
-
     /// The hit with the smallest ray parameter in `range`: on a light-cone
     /// ray, the most recent event (paper 3.2).
     pub fn closest_hit(&self, ray: &Ray, range: (f64, f64)) -> Option<Hit> {
         self.closest_hit_traced(ray, range, &mut NoTrace)
     }
 
-    /// [`Database::closest_hit`], recording every tetrahedron tested.
+    /// [`Database::closest_hit`], recording every prism and tetrahedron
+    /// tested.
     pub fn closest_hit_traced<T: Trace>(
         &self,
         ray: &Ray,
         range: (f64, f64),
         trace: &mut T,
     ) -> Option<Hit> {
-        let mut best = self.closest_tet(ray, range, trace);
+        let mut best = self.closest_in_runs(ray, range, trace);
         // Analytic spheres (few): the same for every traversal.
         for (k, sphere) in self.spheres.iter().enumerate() {
             let hi = best.map_or(range.1, |b| b.s);
@@ -224,32 +274,116 @@ impl Database {
         best
     }
 
-    fn closest_tet<T: Trace>(&self, ray: &Ray, range: (f64, f64), trace: &mut T) -> Option<Hit> {
+    fn closest_in_runs<T: Trace>(
+        &self,
+        ray: &Ray,
+        range: (f64, f64),
+        trace: &mut T,
+    ) -> Option<Hit> {
+        let mut tester = Tester {
+            db: self,
+            ray,
+            o: ray.origin.to_xyzt(),
+            d: ray.direction.to_xyzt(),
+            comoving: None,
+            trace,
+        };
         match self.traversal {
             Traversal::BruteForce => {
                 let mut best: Option<Hit> = None;
-                for i in 0..self.tetrahedron_count() as u32 {
-                    let hi = best.map_or(range.1, |b| b.s);
-                    if let Ok(h) = self.test_traced(ray, i, (range.0, hi), trace) {
-                        best = Some(nearer(best, h));
+                for (k, run) in self.runs.iter().enumerate() {
+                    for p in run.stretch.prisms.clone() {
+                        let hi = best.map_or(range.1, |b| b.s);
+                        if let Some(h) = tester.prism(k as u32, p as u32, (range.0, hi)) {
+                            best = Some(nearer(best, h));
+                        }
                     }
                 }
                 best
             }
             Traversal::Bvh => {
-                let (o, d) = (ray.origin.to_xyzt(), ray.direction.to_xyzt());
-                self.accel.closest(o, d, range, |prism, r| {
-                    let first = 3 * prism;
-                    let mut best: Option<Hit> = None;
-                    for tet in first..first + 3 {
-                        let hi = best.map_or(r.1, |b| b.s);
-                        if let Ok(h) = self.test_traced(ray, tet, (r.0, hi), trace) {
-                            best = Some(nearer(best, h));
-                        }
-                    }
-                    best
-                })
+                let (o, d) = (tester.o, tester.d);
+                self.accel
+                    .closest(o, d, range, |run, p, r| tester.prism(run, p, r))
             }
+        }
+    }
+}
+
+/// One ray's tests against the database's prisms, with the ray in the
+/// comoving coordinates of the last translation tested kept for the next.
+struct Tester<'a, T> {
+    db: &'a Database,
+    ray: &'a Ray,
+    o: DVec4,
+    d: DVec4,
+    /// The stretch the comoving ray is of, and the ray (none when it is at
+    /// rest there).
+    comoving: Option<(u32, Option<ComovingRay>)>,
+    trace: &'a mut T,
+}
+
+impl<T: Trace> Tester<'_, T> {
+    /// The closest hit on prism `p` of run `k` within `range`: a
+    /// translation's whole, or a keyframe interval's three tetrahedra.
+    fn prism(&mut self, k: u32, p: u32, range: (f64, f64)) -> Option<Hit> {
+        let run = &self.db.runs[k as usize];
+        if !run.stretch.translation {
+            let mut best: Option<Hit> = None;
+            for tet in 3 * p..3 * p + 3 {
+                let hi = best.map_or(range.1, |b| b.s);
+                if let Ok(h) = self.tetrahedron(run, tet, (range.0, hi)) {
+                    best = Some(nearer(best, h));
+                }
+            }
+            return best;
+        }
+        let comoving = match self.comoving {
+            Some((cached, ray)) if cached == k => ray,
+            _ => {
+                let g = &run.stretch;
+                let ray = ComovingRay::new(self.o, self.d, (g.origin.t, g.origin.x), g.velocity);
+                self.comoving = Some((k, ray));
+                ray
+            }
+        };
+        let corners = &self.db.comoving[run.slot + p as usize - run.stretch.prisms.start];
+        let result = match comoving {
+            None => Err(Miss::Parallel),
+            Some(c) => intersect_prism(corners, &c, run.stretch.span, range).map(|(s, b)| Hit {
+                s,
+                event: Event::from_xyzt(self.o + self.d * s),
+                primitive: PrimitiveId::Prism(p),
+                bary: Barycentric::Triangle(b.map(|x| x.clamp(0.0, 1.0))),
+            }),
+        };
+        self.record(run, PrimitiveId::Prism(p), &result);
+        result.ok()
+    }
+
+    /// The barycentric solve of keyframe tetrahedron `tet` of `run`.
+    fn tetrahedron(&mut self, run: &Run, tet: u32, range: (f64, f64)) -> Result<Hit, Miss> {
+        let slot = run.slot + (tet / 3) as usize - run.stretch.prisms.start;
+        let kf = &self.db.keyframed;
+        let result = kf.prepared[3 * slot + (tet % 3) as usize].intersect(
+            self.ray,
+            (tet, &kf.corners[slot], (tet % 3) as usize),
+            range,
+        );
+        self.record(run, PrimitiveId::Tetrahedron(tet), &result);
+        result
+    }
+
+    fn record(&mut self, run: &Run, primitive: PrimitiveId, result: &Result<Hit, Miss>) {
+        if T::ENABLED {
+            let prism = primitive.prism().expect("a prism's");
+            self.trace.record(Step::Candidate {
+                primitive,
+                object: self.db.records[run.object as usize].name.clone(),
+                triangle: prism - run.stretch.prisms.start as u32,
+                prism,
+                outcome: Outcome::from(result),
+            });
         }
     }
 }

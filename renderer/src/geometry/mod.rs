@@ -1,20 +1,23 @@
 //! The 4D geometry of the database: temporal extrusion of triangles into
 //! prisms of three tetrahedra (paper 3.1), keyframed and accelerated paths
-//! resolved into poses (paper 6), and the ray tests: the barycentric solve
-//! against a tetrahedron (paper 3.2) and the analytic sphere.
+//! resolved into poses (paper 6), and the ray tests: a translated prism
+//! whole, as its triangle at rest in the comoving frame; the barycentric
+//! solve against a tetrahedron (paper 3.2); and the analytic sphere.
 
 mod extrude;
 mod hit;
 mod poses;
 mod sphere;
 mod tetrahedron;
+mod triangle;
 
 pub use extrude::{
     corner_order, corners_between, extrude, extrude_between, piece, split_between, split_prism,
     tetrahedron_volume, Prism, PrismCorners, Tetrahedron,
 };
-pub use hit::{nearer, Hit, Miss, PrimitiveId};
+pub use hit::{nearer, Barycentric, Hit, Miss, PrimitiveId};
 pub(crate) use poses::resolve;
 pub use poses::Pose;
 pub(crate) use sphere::Sphere;
 pub(crate) use tetrahedron::PreparedTet;
+pub(crate) use triangle::{intersect_prism, ComovingRay};

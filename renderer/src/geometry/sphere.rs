@@ -1,7 +1,7 @@
 //! The analytic sphere: a worldtube met by solving a quadratic, exact where
 //! a tessellated sphere is faceted.
 
-use super::{Hit, PrimitiveId};
+use super::{Barycentric, Hit, PrimitiveId};
 use crate::spacetime::Event;
 use crate::spacetime::Ray;
 use glam::DVec3;
@@ -60,7 +60,7 @@ impl Sphere {
             s,
             event: ray.at(s),
             primitive: PrimitiveId::Sphere(id),
-            bary: [0.0; 4],
+            bary: Barycentric::Sphere,
         })
     }
 

@@ -19,7 +19,7 @@
 //! shared edge or corner at least one does. Signs do not depend on the
 //! coordinates' scale.
 
-use super::{piece, Hit, Miss, PrimitiveId, PrismCorners};
+use super::{piece, Barycentric, Hit, Miss, PrimitiveId, PrismCorners};
 use crate::spacetime::Event;
 use crate::spacetime::Ray;
 use glam::{DMat3, DVec3, DVec4};
@@ -145,14 +145,17 @@ impl PreparedTet {
         let bary = [1.0 - b.x - b.y - b.z, b.x, b.y, b.z];
         let least = bary.iter().copied().fold(f64::INFINITY, f64::min);
         if !(least >= -EXACT_BAND && (least > EXACT_BAND || crosses(&piece(corners, k), o, d))) {
-            return Err(Miss::Outside { s, bary });
+            return Err(Miss::Outside {
+                s,
+                bary: Barycentric::Tetrahedron(bary),
+            });
         }
         let clamped = bary.map(|x| x.clamp(0.0, 1.0));
         Ok(Hit {
             s,
             event: Event::from_xyzt(p),
             primitive: PrimitiveId::Tetrahedron(tet),
-            bary: clamped,
+            bary: Barycentric::Tetrahedron(clamped),
         })
     }
 }

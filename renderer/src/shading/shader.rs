@@ -153,7 +153,7 @@ impl Shader<'_> {
         let object = &self.db.objects()[surface.object as usize];
         Step::Hit {
             kind,
-            tet: self.db.primitive_number(hit.primitive),
+            primitive: hit.primitive,
             object: object.name.clone(),
             triangle: surface.triangle,
             event: hit.event,

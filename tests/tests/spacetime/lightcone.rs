@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 use renderer::SplitMix64;
-use renderer::{Database, Event, Motion, ObjectKind, Traversal};
+use renderer::{Database, Event, Motion, ObjectKind, PrimitiveId, Traversal};
 use renderer::{LightSpeed, Ray};
 use workspace_tests::{object, point, random_mesh, random_motion, scene, unit};
 
@@ -101,7 +101,7 @@ fn normalized_light_cone_direction_has_t_minus_sqrt2_over_2() {
 }
 
 #[test]
-fn hits_lie_on_the_light_cone_inside_their_tetrahedron() {
+fn hits_lie_on_the_light_cone_inside_their_prism() {
     let mut rng = SplitMix64::new(5);
     let mut hits = 0;
     for k in 0..200 {
@@ -122,26 +122,32 @@ fn hits_lie_on_the_light_cone_inside_their_tetrahedron() {
                 continue;
             };
             hits += 1;
+            let bary = hit.bary.coordinates();
+            assert!(bary.iter().all(|b| (0.0..=1.0).contains(b)), "{bary:?}");
+            assert_abs_diff_eq!(bary.iter().sum::<f64>(), 1.0, epsilon = 1e-9);
+            // Rebuild the event from the barycentric coordinates alone: over
+            // the triangle where it is at the hit's time, within the
+            // prism's lab times.
+            let PrimitiveId::Prism(p) = hit.primitive else {
+                panic!(
+                    "uniform motion is tested prism by prism: {:?}",
+                    hit.primitive
+                )
+            };
+            let span = db.prism(p).span;
             assert!(
-                hit.bary.iter().all(|b| (0.0..=1.0).contains(b)),
-                "{:?}",
-                hit.bary
+                span.0 <= hit.event.t && hit.event.t <= span.1,
+                "outside its prism's times"
             );
-            assert_abs_diff_eq!(hit.bary.iter().sum::<f64>(), 1.0, epsilon = 1e-9);
-            // Rebuild the event from the barycentric coordinates alone.
-            let v = db
-                .tetrahedron(hit.primitive.tetrahedron().unwrap())
-                .vertices;
-            let from_bary = (0..4).fold(glam::DVec4::ZERO, |acc, i| {
-                acc + v[i].to_xyzt() * hit.bary[i]
-            });
+            let v = db.triangle_at(p, hit.event.t);
+            let from_bary = (0..3).fold(glam::DVec4::ZERO, |acc, i| acc + v[i].to_xyzt() * bary[i]);
             let scale = 1.0
                 + v.iter()
                     .map(|e| e.to_xyzt().abs().max_element())
                     .fold(0.0, f64::max);
             assert!(
                 abs_diff_eq!(from_bary, hit.event.to_xyzt(), epsilon = 1e-9 * scale),
-                "event off its tetrahedron"
+                "event off its triangle"
             );
             let d = Event::from_xyzt(from_bary) - ray.origin;
             assert!(

@@ -62,7 +62,7 @@ fn shared_elements(db: &Database, mesh: &Mesh, scale: f64, life: (f64, f64)) -> 
     let key = |e: &Event| [e.t, e.x.x, e.x.y, e.x.z].map(f64::to_bits);
     let mut count: HashMap<Vec<[u64; 4]>, (usize, Shared)> = HashMap::new();
     for tet in db.tetrahedra() {
-        let prism = &db.prisms()[tet.prism as usize];
+        let prism = db.prism(tet.prism);
         if touches_rim(mesh, prism.triangle as usize, scale) {
             continue;
         }

@@ -159,7 +159,7 @@ pub struct RenderArgs {
     pub models: Option<ModelsArg>,
     #[command(flatten)]
     pub view: ViewArgs,
-    /// Test every tetrahedron for every ray (no acceleration structure).
+    /// Test every prism and tetrahedron for every ray (no acceleration structure).
     #[arg(long)]
     pub brute_force: bool,
 }
@@ -261,10 +261,10 @@ pub struct DebugArgs {
     pub log: Option<PathBuf>,
     #[command(flatten)]
     pub view: ViewArgs,
-    /// Test every tetrahedron for every ray (no acceleration structure).
+    /// Test every prism and tetrahedron for every ray (no acceleration structure).
     #[arg(long)]
     pub brute_force: bool,
-    /// Also print and log every tetrahedron tested and why it was rejected
+    /// Also print and log every prism and tetrahedron tested and why it was rejected
     /// (long: hundreds of lines a pixel).
     #[arg(long)]
     pub candidates: bool,

@@ -36,7 +36,7 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
         eprintln!("warning: {warning}");
     }
     eprintln!(
-        "rendered {} ({} model{}, t_c = {}, {}x{}, {} spp, {} tetrahedra) in {:.2} s -> {}",
+        "rendered {} ({} model{}, t_c = {}, {}x{}, {} spp, {} prisms) in {:.2} s -> {}",
         fixture.name,
         view.model,
         if view.model.light_speed == LightSpeed::Infinite {
@@ -48,7 +48,7 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
         view.camera.width,
         view.camera.height,
         view.settings.spp,
-        db.tetrahedron_count(),
+        db.prism_count(),
         started.elapsed().as_secs_f64(),
         out.display()
     );
