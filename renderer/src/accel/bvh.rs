@@ -4,7 +4,10 @@
 //!
 //! Items are anything with 4D bounds: the database uses one hierarchy over
 //! the time slices of its stretches (lab frame) and one per stretch over its
-//! prisms (in the stretch's comoving coordinates).
+//! prisms (in the stretch's comoving coordinates, [`super::space_bvh`]).
+//! Both are binary, and each inner node keeps both children's boxes, so a
+//! step of a traversal reads one node and tests both; nodes are stored
+//! children first, the root last.
 //!
 //! Splits are chosen by the surface area heuristic over binned centroids
 //! on x, y, z and t, with the 4D boundary measure of a box as its area: the
@@ -50,21 +53,59 @@ pub(crate) fn rounding_margin(min: DVec4, max: DVec4) -> DVec4 {
     DVec4::new(space, space, space, per_axis.w)
 }
 
-#[derive(Clone, Copy, Debug)]
-struct Node {
-    min: DVec4,
-    max: DVec4,
-    /// Leaf: first index into `order`; inner: index of the second child
-    /// (the first child follows the node).
-    index: u32,
+/// What a node's child is: an inner node, or a leaf's items.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Child {
+    /// Inner: index of the node; leaf: first index into the item order.
+    pub(super) index: u32,
     /// Number of items of a leaf; 0 for an inner node.
-    count: u32,
+    pub(super) count: u32,
 }
 
-/// The hierarchy: nodes in depth-first order and the item order they index.
-#[derive(Clone, Debug, Default)]
+/// An inner node as a hierarchy stores it, made from its children's boxes.
+pub(super) trait PairNode: Send {
+    /// The node over two children with (padded) boxes `bounds`.
+    fn pair(bounds: [Bounds4; 2], children: [Child; 2]) -> Self;
+    /// Its children, to renumber when a subtree built on its own is appended.
+    fn children_mut(&mut self) -> &mut [Child; 2];
+}
+
+/// A hierarchy as built: inner nodes children first, the root (and its box)
+/// apart, and the item order its leaves index.
+pub(super) struct Built<N> {
+    pub(super) nodes: Vec<N>,
+    pub(super) root: Child,
+    pub(super) root_bounds: Bounds4,
+    pub(super) order: Vec<u32>,
+}
+
+/// An inner node of the lab-frame hierarchy: both children's 4D boxes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Node {
+    min: [DVec4; 2],
+    max: [DVec4; 2],
+    children: [Child; 2],
+}
+
+impl PairNode for Node {
+    fn pair(bounds: [Bounds4; 2], children: [Child; 2]) -> Node {
+        Node {
+            min: bounds.map(|b| b.min),
+            max: bounds.map(|b| b.max),
+            children,
+        }
+    }
+
+    fn children_mut(&mut self) -> &mut [Child; 2] {
+        &mut self.children
+    }
+}
+
+/// The hierarchy over 4D boxes (the lab frame's time slices).
 pub(crate) struct Bvh {
     nodes: Vec<Node>,
+    root: Child,
+    root_bounds: Bounds4,
     order: Vec<u32>,
 }
 
@@ -77,45 +118,84 @@ fn area(min: DVec4, max: DVec4) -> f64 {
     d.x * d.y * d.z + d.w * (d.x * d.y + d.y * d.z + d.z * d.x)
 }
 
-/// Chooses a split of `items` by the surface area heuristic over binned
-/// centroids on x, y, z and t, reorders `items` so that the left part comes
-/// first, and returns its length; `None` when no split beats a leaf.
-fn sah_split(bounds: &[Bounds4], items: &mut [u32], cmin: DVec4, extent: DVec4) -> Option<usize> {
-    const BINS: usize = 16;
-    let centroid = |i: u32| bounds[i as usize].centroid();
-    let (mut pmin, mut pmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
-    for &i in items.iter() {
-        let b = bounds[i as usize];
-        pmin = pmin.min(b.min);
-        pmax = pmax.max(b.max);
+/// An item while the hierarchy is built: its bounds beside its index, so
+/// that every pass over a node's items reads them in order.
+#[derive(Clone, Copy, Debug)]
+struct Item {
+    bounds: Bounds4,
+    index: u32,
+}
+
+/// The box of a set of items and the box of their centroids.
+#[derive(Clone, Copy, Debug)]
+struct Extent {
+    min: DVec4,
+    max: DVec4,
+    cmin: DVec4,
+    cmax: DVec4,
+}
+
+impl Extent {
+    const EMPTY: Extent = Extent {
+        min: DVec4::INFINITY,
+        max: DVec4::NEG_INFINITY,
+        cmin: DVec4::INFINITY,
+        cmax: DVec4::NEG_INFINITY,
+    };
+
+    #[inline]
+    fn add(&mut self, b: &Bounds4) {
+        self.min = self.min.min(b.min);
+        self.max = self.max.max(b.max);
+        let c = b.centroid();
+        self.cmin = self.cmin.min(c);
+        self.cmax = self.cmax.max(c);
     }
-    let leaf_cost = items.len() as f64;
-    let parent = area(pmin, pmax).max(1e-300);
+
+    fn of(items: &[Item]) -> Extent {
+        let mut e = Extent::EMPTY;
+        items.iter().for_each(|i| e.add(&i.bounds));
+        e
+    }
+}
+
+/// Subtrees of at least this many items are built on both threads.
+const PARALLEL_ITEMS: usize = 16_384;
+
+/// Centroid bins per axis of the surface area heuristic.
+const BINS: usize = 16;
+
+/// Chooses a split of `items` (of extent `ext`) by the surface area
+/// heuristic over binned centroids on x, y, z and t, one pass binning every
+/// axis; moves the left part first and returns its length and both parts'
+/// extents; `None` when no split beats a leaf. Deterministic: the same
+/// items in the same order give the same split and order.
+fn sah_split(items: &mut [Item], ext: &Extent) -> Option<(usize, Extent, Extent)> {
+    let (min, max, cmin, extent) = (ext.min, ext.max, ext.cmin, ext.cmax - ext.cmin);
+    let scale = DVec4::select(extent.cmpgt(DVec4::ZERO), BINS as f64 / extent, DVec4::ZERO);
+    let bin =
+        |c: DVec4, axis: usize| (((c[axis] - cmin[axis]) * scale[axis]) as usize).min(BINS - 1);
+    let axes: Vec<usize> = (0..4).filter(|&a| extent[a] > 0.0).collect();
+    let mut count = [[0usize; BINS]; 4];
+    let mut bmin = [[DVec4::splat(f64::INFINITY); BINS]; 4];
+    let mut bmax = [[DVec4::splat(f64::NEG_INFINITY); BINS]; 4];
+    for item in items.iter() {
+        let c = item.bounds.centroid();
+        for &axis in &axes {
+            let b = bin(c, axis);
+            count[axis][b] += 1;
+            bmin[axis][b] = bmin[axis][b].min(item.bounds.min);
+            bmax[axis][b] = bmax[axis][b].max(item.bounds.max);
+        }
+    }
+    let parent = area(min, max).max(1e-300);
     let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins on the left)
-    for axis in 0..4 {
-        if extent[axis] <= 0.0 {
-            continue;
-        }
-        let bin_of = |i: u32| {
-            (((centroid(i)[axis] - cmin[axis]) / extent[axis] * BINS as f64) as usize).min(BINS - 1)
-        };
-        let mut count = [0usize; BINS];
-        let mut bmin = [DVec4::splat(f64::INFINITY); BINS];
-        let mut bmax = [DVec4::splat(f64::NEG_INFINITY); BINS];
-        for &i in items.iter() {
-            let b = bin_of(i);
-            let item = bounds[i as usize];
-            count[b] += 1;
-            bmin[b] = bmin[b].min(item.min);
-            bmax[b] = bmax[b].max(item.max);
-        }
+    for &axis in &axes {
+        let (count, bmin, bmax) = (&count[axis], &bmin[axis], &bmax[axis]);
         // Sweep from the right to know each right part's box.
         let mut right_area = [0.0; BINS];
-        let (mut rmin, mut rmax, mut rcount) = (
-            DVec4::splat(f64::INFINITY),
-            DVec4::splat(f64::NEG_INFINITY),
-            [0usize; BINS],
-        );
+        let mut rcount = [0usize; BINS];
+        let (mut rmin, mut rmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
         let mut n = 0;
         for b in (1..BINS).rev() {
             rmin = rmin.min(bmin[b]);
@@ -124,11 +204,8 @@ fn sah_split(bounds: &[Bounds4], items: &mut [u32], cmin: DVec4, extent: DVec4) 
             right_area[b] = area(rmin, rmax);
             rcount[b] = n;
         }
-        let (mut lmin, mut lmax, mut lcount) = (
-            DVec4::splat(f64::INFINITY),
-            DVec4::splat(f64::NEG_INFINITY),
-            0,
-        );
+        let (mut lmin, mut lmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
+        let mut lcount = 0;
         for split in 1..BINS {
             lmin = lmin.min(bmin[split - 1]);
             lmax = lmax.max(bmax[split - 1]);
@@ -145,19 +222,22 @@ fn sah_split(bounds: &[Bounds4], items: &mut [u32], cmin: DVec4, extent: DVec4) 
         }
     }
     let (cost, axis, split) = best?;
-    if cost >= leaf_cost {
+    if cost >= items.len() as f64 {
         return None;
     }
-    let bin_of = |i: u32| {
-        (((centroid(i)[axis] - cmin[axis]) / extent[axis] * BINS as f64) as usize).min(BINS - 1)
-    };
-    // Stable partition: deterministic, and keeps the input order within each side.
-    let (mut left, mut right): (Vec<u32>, Vec<u32>) =
-        items.iter().partition(|&&i| bin_of(i) < split);
-    let mid = left.len();
-    left.append(&mut right);
-    items.copy_from_slice(&left);
-    Some(mid)
+    let mut mid = 0;
+    let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
+    for i in 0..items.len() {
+        let b = items[i].bounds;
+        if bin(b.centroid(), axis) < split {
+            left.add(&b);
+            items.swap(i, mid);
+            mid += 1;
+        } else {
+            right.add(&b);
+        }
+    }
+    Some((mid, left, right))
 }
 
 /// Pads a box so that hits accepted with barycentric slack are never culled.
@@ -166,70 +246,125 @@ fn pad(min: DVec4, max: DVec4) -> (DVec4, DVec4) {
     (min - e, max + e)
 }
 
-impl Bvh {
-    /// Builds the hierarchy over items given by their 4D bounds (x, y, z, t).
-    pub(crate) fn build(bounds: &[Bounds4]) -> Bvh {
-        let mut bvh = Bvh {
-            nodes: Vec::new(),
-            order: (0..bounds.len() as u32).collect(),
-        };
-        if !bounds.is_empty() {
-            let mut order = std::mem::take(&mut bvh.order);
-            bvh.build_node(bounds, &mut order, 0, 0);
-            bvh.order = order;
-        }
-        bvh
-    }
-
-    fn build_node(
-        &mut self,
-        bounds: &[Bounds4],
-        items: &mut [u32],
-        first: usize,
-        depth: usize,
-    ) -> usize {
-        let (mut min, mut max) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
-        let (mut cmin, mut cmax) = (min, max);
-        for &i in items.iter() {
-            let b = bounds[i as usize];
-            min = min.min(b.min);
-            max = max.max(b.max);
-            let c = b.centroid();
-            cmin = cmin.min(c);
-            cmax = cmax.max(c);
-        }
-        let (min, max) = pad(min, max);
-        let node = self.nodes.len();
-        self.nodes.push(Node {
-            min,
-            max,
+/// Builds the subtree over `items` (at `first` in the item order), its
+/// inner nodes appended to `nodes` children first; returns it as a child,
+/// with its padded box. Large subtrees build their two halves on both
+/// threads, the second into nodes of its own appended after the first's:
+/// the same nodes in the same order as a build on one thread.
+fn build_into<N: PairNode>(
+    nodes: &mut Vec<N>,
+    items: &mut [Item],
+    ext: Extent,
+    (first, depth): (usize, usize),
+) -> (Child, Bounds4) {
+    let (pmin, pmax) = pad(ext.min, ext.max);
+    let padded = Bounds4::new(pmin, pmax);
+    let split = if items.len() <= LEAF_SIZE || depth >= MAX_DEPTH {
+        None
+    } else {
+        sah_split(items, &ext)
+    };
+    let Some((mid, lext, rext)) = split else {
+        let leaf = Child {
             index: first as u32,
             count: items.len() as u32,
-        });
-        let extent = cmax - cmin;
-        let split = if items.len() <= LEAF_SIZE || depth >= MAX_DEPTH {
-            None
-        } else {
-            sah_split(bounds, items, cmin, extent)
         };
-        let Some(mid) = split else {
-            return node;
-        };
-        let (left, right) = items.split_at_mut(mid);
-        self.nodes[node].count = 0;
-        self.build_node(bounds, left, first, depth + 1);
-        let second = self.build_node(bounds, right, first + mid, depth + 1);
-        self.nodes[node].index = second as u32;
-        node
+        return (leaf, padded);
+    };
+    let parallel = items.len() >= PARALLEL_ITEMS;
+    let (left, right) = items.split_at_mut(mid);
+    let (at_left, at_right) = ((first, depth + 1), (first + mid, depth + 1));
+    let (l, r) = if parallel {
+        let (l, (r, own)) = rayon::join(
+            || build_into(nodes, left, lext, at_left),
+            || {
+                let mut own = Vec::new();
+                let r = build_into(&mut own, right, rext, at_right);
+                (r, own)
+            },
+        );
+        (l, append(nodes, own, r))
+    } else {
+        let l = build_into(nodes, left, lext, at_left);
+        (l, build_into(nodes, right, rext, at_right))
+    };
+    nodes.push(N::pair([l.1, r.1], [l.0, r.0]));
+    let inner = Child {
+        index: (nodes.len() - 1) as u32,
+        count: 0,
+    };
+    (inner, padded)
+}
+
+/// Appends a subtree built into nodes of its own, renumbering its inner
+/// nodes by where they land; returns its root renumbered alike.
+fn append<N: PairNode>(
+    nodes: &mut Vec<N>,
+    subtree: Vec<N>,
+    root: (Child, Bounds4),
+) -> (Child, Bounds4) {
+    let base = nodes.len() as u32;
+    let moved = |c: &mut Child| {
+        if c.count == 0 {
+            c.index += base;
+        }
+    };
+    nodes.reserve_exact(subtree.len());
+    for mut n in subtree {
+        n.children_mut().iter_mut().for_each(moved);
+        nodes.push(n);
+    }
+    let (mut child, bounds) = root;
+    moved(&mut child);
+    (child, bounds)
+}
+
+/// Builds a hierarchy over items given by their 4D bounds, in order: item i
+/// is the i-th bounds.
+pub(super) fn build<N: PairNode>(bounds: impl Iterator<Item = Bounds4>) -> Built<N> {
+    let mut items: Vec<Item> = bounds
+        .enumerate()
+        .map(|(i, bounds)| Item {
+            bounds,
+            index: i as u32,
+        })
+        .collect();
+    let mut nodes = Vec::new();
+    let (root, root_bounds) = if items.is_empty() {
+        let none = DVec4::splat(f64::INFINITY);
+        (Child { index: 0, count: 0 }, Bounds4::new(none, -none))
+    } else {
+        let ext = Extent::of(&items);
+        build_into(&mut nodes, &mut items, ext, (0, 0))
+    };
+    Built {
+        nodes,
+        root,
+        root_bounds,
+        order: items.iter().map(|i| i.index).collect(),
+    }
+}
+
+impl Bvh {
+    /// Builds the hierarchy over items given by their 4D bounds (x, y, z,
+    /// t), in order: item i is the i-th bounds.
+    pub(crate) fn build(bounds: impl Iterator<Item = Bounds4>) -> Bvh {
+        let built = build(bounds);
+        Bvh {
+            nodes: built.nodes,
+            root: built.root,
+            root_bounds: built.root_bounds,
+            order: built.order,
+        }
     }
 
-    /// Entry parameter of the ray into a node's box within `range`, if any.
-    /// `inv` holds 1/d per axis (infinite for d = 0: such an axis constrains
-    /// nothing unless the origin lies outside the slab).
+    /// Entry parameter of the ray into the box `min..max` within `range`,
+    /// if any. `inv` holds 1/d per axis (infinite for d = 0: such an axis
+    /// constrains nothing unless the origin lies outside the slab).
     #[inline]
-    fn enter(node: &Node, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
-        let a = (node.min - o) * inv;
-        let b = (node.max - o) * inv;
+    fn enter(min: DVec4, max: DVec4, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
+        let a = (min - o) * inv;
+        let b = (max - o) * inv;
         // NaN (0 * inf: the origin on a slab face of a parallel axis) is
         // dropped by f64::min/max, which keeps the test conservative.
         let near = a.min(b);
@@ -250,40 +385,39 @@ impl Bvh {
         range: (f64, f64),
         mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
-        if self.nodes.is_empty() {
-            return None;
+        if self.root.count == 0 && self.nodes.is_empty() {
+            return None; // no items
         }
         let inv = DVec4::ONE / d;
+        let root = &self.root_bounds;
+        let entry = Self::enter(root.min, root.max, o, inv, range)?;
         let mut best: Option<Hit> = None;
         let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
-        let mut stack = [(0u32, 0.0f64); 64];
-        let e = Self::enter(&self.nodes[0], o, inv, range)?;
-        stack[0] = (0, e);
+        let mut stack = [(self.root, entry); 64];
         let mut top = 1;
         while top > 0 {
             top -= 1;
-            let (n, entry) = stack[top];
+            let (child, entry) = stack[top];
             if entry > hi(&best) {
                 continue;
             }
-            let node = &self.nodes[n as usize];
-            if node.count > 0 {
-                let start = node.index as usize;
-                for &i in &self.order[start..start + node.count as usize] {
+            if child.count > 0 {
+                let start = child.index as usize;
+                for &i in &self.order[start..start + child.count as usize] {
                     if let Some(h) = test(i, (range.0, hi(&best))) {
                         best = Some(nearer(best, h));
                     }
                 }
                 continue;
             }
-            let (a, b) = (n + 1, node.index);
+            let node = &self.nodes[child.index as usize];
             let r = (range.0, hi(&best));
-            let ea = Self::enter(&self.nodes[a as usize], o, inv, r);
-            let eb = Self::enter(&self.nodes[b as usize], o, inv, r);
+            let [ea, eb] = [0, 1].map(|c| Self::enter(node.min[c], node.max[c], o, inv, r));
+            let [a, b] = node.children;
             // Push the farther child first so the nearer is searched first.
-            let mut push = |n: u32, e: Option<f64>| {
+            let mut push = |c: Child, e: Option<f64>| {
                 if let Some(e) = e {
-                    stack[top] = (n, e);
+                    stack[top] = (c, e);
                     top += 1;
                 }
             };
@@ -299,5 +433,79 @@ impl Bvh {
             }
         }
         best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::SplitMix64;
+
+    fn random_boxes(n: usize, seed: u64) -> Vec<Bounds4> {
+        let mut rng = SplitMix64::new(seed);
+        (0..n)
+            .map(|_| {
+                let c = DVec4::new(
+                    rng.next_f64(),
+                    rng.next_f64(),
+                    rng.next_f64(),
+                    rng.next_f64(),
+                );
+                let size = DVec4::splat(0.01 * rng.next_f64());
+                Bounds4::new(c * 100.0, c * 100.0 + size)
+            })
+            .collect()
+    }
+
+    fn built_on(threads: usize, boxes: &[Bounds4]) -> Bvh {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| Bvh::build(boxes.iter().copied()))
+    }
+
+    /// A build large enough to split on both threads gives the tree a build
+    /// on one thread gives, node for node; the control, one box moved,
+    /// gives another.
+    #[test]
+    fn the_tree_does_not_depend_on_the_thread_count() {
+        let boxes = random_boxes(4 * PARALLEL_ITEMS, 9);
+        let (one, two) = (built_on(1, &boxes), built_on(2, &boxes));
+        assert!(one.nodes.len() > 1000);
+        assert_eq!(one.nodes, two.nodes);
+        assert_eq!((one.root, one.order.clone()), (two.root, two.order));
+        let mut moved = boxes.clone();
+        moved[7].min.x += 50.0;
+        moved[7].max.x += 50.0;
+        assert_ne!(built_on(2, &moved).nodes, one.nodes);
+    }
+
+    /// Every item sits in exactly one leaf, inside every box on its path.
+    #[test]
+    fn every_item_is_in_one_leaf_inside_its_boxes() {
+        let boxes = random_boxes(3 * PARALLEL_ITEMS, 10);
+        let bvh = built_on(2, &boxes);
+        let mut seen = vec![0u32; boxes.len()];
+        let inside =
+            |b: &Bounds4, min: DVec4, max: DVec4| b.min.cmpge(min).all() && b.max.cmple(max).all();
+        let mut stack = vec![(bvh.root, bvh.root_bounds)];
+        while let Some((child, bounds)) = stack.pop() {
+            if child.count > 0 {
+                let start = child.index as usize;
+                for &i in &bvh.order[start..start + child.count as usize] {
+                    assert!(inside(&boxes[i as usize], bounds.min, bounds.max));
+                    seen[i as usize] += 1;
+                }
+                continue;
+            }
+            let node = &bvh.nodes[child.index as usize];
+            for c in 0..2 {
+                let b = Bounds4::new(node.min[c], node.max[c]);
+                assert!(inside(&b, bounds.min, bounds.max));
+                stack.push((node.children[c], b));
+            }
+        }
+        assert!(seen.iter().all(|&n| n == 1));
     }
 }

@@ -3,6 +3,7 @@
 //! path, and over all stretches). Never changes which hit is found.
 
 mod bvh;
+mod space_bvh;
 mod two_level;
 
 pub(crate) use bvh::rounding_margin;

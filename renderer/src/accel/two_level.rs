@@ -6,6 +6,7 @@
 //! hierarchy of the lab-frame 4D bounds of their time slices.
 
 use super::bvh::{rounding_margin, Bounds4, Bvh};
+use super::space_bvh::SpaceBvh;
 use crate::geometry::Hit;
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
@@ -35,16 +36,17 @@ struct StretchBvh {
     origin: Event,
     velocity: DVec3,
     first_prism: u32,
-    bvh: Bvh,
+    bvh: SpaceBvh,
 }
 
 impl StretchBvh {
-    /// The ray `o + s d` in comoving coordinates, with the same parameter s.
+    /// The ray `o + s d` in comoving coordinates (x, y, z), with the same
+    /// parameter s.
     #[inline]
-    fn to_comoving(&self, o: DVec4, d: DVec4) -> (DVec4, DVec4) {
+    fn to_comoving(&self, o: DVec4, d: DVec4) -> (DVec3, DVec3) {
         let x = o.truncate() - self.velocity * (o.w - self.origin.t) - self.origin.x;
         let dx = d.truncate() - self.velocity * d.w;
-        (x.extend(o.w), dx.extend(d.w))
+        (x, dx)
     }
 }
 
@@ -134,14 +136,16 @@ impl TwoLevel {
         let mut slice_bounds = Vec::new();
         for (k, g) in stretches.enumerate() {
             let (t0, t1) = g.span;
-            let mut comoving = Vec::with_capacity(g.prisms.len());
             let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
             for p in g.prisms.clone() {
                 let (a, b) = comoving_box(k, p);
-                comoving.push(Bounds4::new(a.extend(t0), b.extend(t1)));
                 lo = lo.min(a);
                 hi = hi.max(b);
             }
+            let tree = SpaceBvh::build(g.prisms.clone().map(|p| {
+                let (a, b) = comoving_box(k, p);
+                Bounds4::new(a.extend(t0), b.extend(t1))
+            }));
             for (ta, tb, bounds) in slices(g, lo, hi) {
                 slice_bounds.push(bounds);
                 all_slices.push(TimeSlice {
@@ -154,11 +158,11 @@ impl TwoLevel {
                 origin: g.origin,
                 velocity: g.velocity,
                 first_prism: g.prisms.start as u32,
-                bvh: Bvh::build(&comoving),
+                bvh: tree,
             });
         }
         TwoLevel {
-            top: Bvh::build(&slice_bounds),
+            top: Bvh::build(slice_bounds.into_iter()),
             stretches: built,
             slices: all_slices,
         }

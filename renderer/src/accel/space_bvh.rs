@@ -1,0 +1,169 @@
+//! One stretch's hierarchy over its prisms, in the stretch's comoving x, y,
+//! z only. Every prism of a stretch lives over the stretch's lab times, and
+//! the top level has already cut the ray to those of one time slice, so
+//! time tells the prisms nothing apart. Each node keeps both children's
+//! boxes side by side: a step of the traversal reads one node and tests
+//! both, with the near and far face of each axis chosen once per ray by
+//! the sign of its direction.
+
+use super::bvh::{build, Bounds4, Child, PairNode};
+use crate::geometry::{nearer, Hit};
+use glam::DVec3;
+
+/// An inner node: its two children and their boxes.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    /// Lower x, y, z then upper x, y, z, each for both children.
+    bounds: [[f64; 2]; 6],
+    children: [Child; 2],
+}
+
+impl PairNode for Node {
+    fn pair(boxes: [Bounds4; 2], children: [Child; 2]) -> Node {
+        let mut bounds = [[0.0; 2]; 6];
+        for (c, b) in boxes.iter().enumerate() {
+            for axis in 0..3 {
+                bounds[axis][c] = b.min[axis];
+                bounds[axis + 3][c] = b.max[axis];
+            }
+        }
+        Node { bounds, children }
+    }
+
+    fn children_mut(&mut self) -> &mut [Child; 2] {
+        &mut self.children
+    }
+}
+
+/// The hierarchy: inner nodes children first, the root's own box (a tree
+/// of one leaf has no inner node), and the item order the leaves index.
+#[derive(Clone, Debug)]
+pub(crate) struct SpaceBvh {
+    nodes: Vec<Node>,
+    root: Child,
+    root_bounds: [f64; 6],
+    order: Vec<u32>,
+}
+
+impl SpaceBvh {
+    /// Builds the hierarchy over boxes that all span the same lab times,
+    /// in order: item i is the i-th bounds.
+    pub(crate) fn build(bounds: impl Iterator<Item = Bounds4>) -> SpaceBvh {
+        let built = build::<Node>(bounds);
+        let (lo, hi) = (built.root_bounds.min, built.root_bounds.max);
+        SpaceBvh {
+            nodes: built.nodes,
+            root: built.root,
+            root_bounds: [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z],
+            order: built.order,
+        }
+    }
+
+    /// The closest hit along the ray `o + s d` (comoving x, y, z) within
+    /// `range`: `test(item, range)` is called for every item whose box the
+    /// ray enters, with the range shrunk to the best hit so far.
+    pub(crate) fn closest(
+        &self,
+        o: DVec3,
+        d: DVec3,
+        range: (f64, f64),
+        mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
+    ) -> Option<Hit> {
+        if self.root.count == 0 && self.nodes.is_empty() {
+            return None; // no items
+        }
+        let ray = SlabRay::new(o, d);
+        let root = self.root_bounds.map(|b| [b, b]);
+        let entry = ray.enter(&root, range)[0]?;
+        let mut best: Option<Hit> = None;
+        let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
+        let mut stack = [(self.root, entry); 64];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (child, entry) = stack[top];
+            if entry > hi(&best) {
+                continue;
+            }
+            if child.count > 0 {
+                let start = child.index as usize;
+                for &i in &self.order[start..start + child.count as usize] {
+                    if let Some(h) = test(i, (range.0, hi(&best))) {
+                        best = Some(nearer(best, h));
+                    }
+                }
+                continue;
+            }
+            let node = &self.nodes[child.index as usize];
+            let [ea, eb] = ray.enter(&node.bounds, (range.0, hi(&best)));
+            let [a, b] = node.children;
+            // Push the farther child first so the nearer is searched first.
+            match (ea, eb) {
+                (Some(x), Some(y)) => {
+                    let (near, far) = if x <= y {
+                        ((a, x), (b, y))
+                    } else {
+                        ((b, y), (a, x))
+                    };
+                    stack[top] = far;
+                    stack[top + 1] = near;
+                    top += 2;
+                }
+                (Some(x), None) => {
+                    stack[top] = (a, x);
+                    top += 1;
+                }
+                (None, Some(y)) => {
+                    stack[top] = (b, y);
+                    top += 1;
+                }
+                (None, None) => {}
+            }
+        }
+        best
+    }
+}
+
+/// A ray prepared for slab tests: origin, inverse direction, and which of
+/// a box's bounds is met first on each axis.
+struct SlabRay {
+    o: [f64; 3],
+    inv: [f64; 3],
+    /// Per axis, the index into a node's bounds of the near face and of the
+    /// far one (lower then upper when the direction is positive).
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+impl SlabRay {
+    fn new(o: DVec3, d: DVec3) -> SlabRay {
+        let inv = (DVec3::ONE / d).to_array();
+        let negative = |a: usize| inv[a] < 0.0;
+        SlabRay {
+            o: o.to_array(),
+            inv,
+            near: [0, 1, 2].map(|a| if negative(a) { a + 3 } else { a }),
+            far: [0, 1, 2].map(|a| if negative(a) { a } else { a + 3 }),
+        }
+    }
+
+    /// Entry parameters of the ray into both boxes of `bounds` within
+    /// `range`. A NaN (0 * inf: the origin on a slab face of an axis the
+    /// ray is parallel to) is dropped by f64::max/min, which keeps the test
+    /// conservative.
+    #[inline(always)]
+    fn enter(&self, bounds: &[[f64; 2]; 6], range: (f64, f64)) -> [Option<f64>; 2] {
+        let (mut lo, mut hi) = ([range.0; 2], [range.1; 2]);
+        for a in 0..3 {
+            let (near, far) = (&bounds[self.near[a]], &bounds[self.far[a]]);
+            for c in 0..2 {
+                lo[c] = lo[c].max((near[c] - self.o[a]) * self.inv[a]);
+                hi[c] = hi[c].min((far[c] - self.o[a]) * self.inv[a]);
+            }
+        }
+        [
+            (lo[0] <= hi[0]).then_some(lo[0]),
+            (lo[1] <= hi[1]).then_some(lo[1]),
+        ]
+    }
+}
