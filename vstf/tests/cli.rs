@@ -383,13 +383,13 @@ fn bench_quick_prints_every_figure() {
     let table: Vec<Vec<&str>> = seven
         .lines()
         .map(|l| l.split_whitespace().collect::<Vec<_>>())
-        .filter(|w| w.len() == 8 && w[0].parse::<u64>().is_ok())
+        .filter(|w| w.len() == 9 && w[0].parse::<u64>().is_ok())
         .collect();
     assert_eq!(table.len(), 2, "{seven}");
     if std::path::Path::new("/usr/include/embree3/rtcore.h").is_file() {
         for row in &table {
-            assert_eq!(row[6], row[7], "hits differ from Embree's: {seven}");
-            assert!(row[3].ends_with('x'), "{seven}");
+            assert_eq!(row[7], row[8], "hits differ from Embree's: {seven}");
+            assert!(row[4].ends_with('x'), "{seven}");
         }
         assert!(seven.contains("peak memory per triangle"), "{seven}");
     } else {

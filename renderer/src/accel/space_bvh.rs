@@ -10,12 +10,48 @@ use super::bvh::{build, Bounds4, Child, PairNode};
 use crate::geometry::{nearer, Hit};
 use glam::DVec3;
 
-/// An inner node: its two children and their boxes.
+/// An inner node: its two children and their boxes, one cache line. The
+/// boxes are in f32 rounded outward, so each holds its f64 box (no hit is
+/// lost), and are tested in f64, into which every f32 converts exactly.
 #[derive(Clone, Copy, Debug)]
+#[repr(align(64))]
 struct Node {
     /// Lower x, y, z then upper x, y, z, each for both children.
-    bounds: [[f64; 2]; 6],
+    bounds: [[f32; 2]; 6],
     children: [Child; 2],
+}
+
+/// The f32 at or below `v`.
+fn down(v: f64) -> f32 {
+    let f = v as f32;
+    if f64::from(f) > v {
+        -next_up(-f)
+    } else {
+        f
+    }
+}
+
+/// The f32 at or above `v`.
+fn up(v: f64) -> f32 {
+    let f = v as f32;
+    if f64::from(f) < v {
+        next_up(f)
+    } else {
+        f
+    }
+}
+
+/// The least f32 above `f`, a finite value or -infinity (f32::next_up,
+/// stable only since Rust 1.86).
+fn next_up(f: f32) -> f32 {
+    let bits = f.to_bits();
+    if f == 0.0 {
+        f32::from_bits(1)
+    } else if f > 0.0 {
+        f32::from_bits(bits + 1)
+    } else {
+        f32::from_bits(bits - 1)
+    }
 }
 
 impl PairNode for Node {
@@ -23,8 +59,8 @@ impl PairNode for Node {
         let mut bounds = [[0.0; 2]; 6];
         for (c, b) in boxes.iter().enumerate() {
             for axis in 0..3 {
-                bounds[axis][c] = b.min[axis];
-                bounds[axis + 3][c] = b.max[axis];
+                bounds[axis][c] = down(b.min[axis]);
+                bounds[axis + 3][c] = up(b.max[axis]);
             }
         }
         Node { bounds, children }
@@ -73,8 +109,7 @@ impl SpaceBvh {
             return None; // no items
         }
         let ray = SlabRay::new(o, d);
-        let root = self.root_bounds.map(|b| [b, b]);
-        let entry = ray.enter(&root, range)[0]?;
+        let entry = ray.enter_root(&self.root_bounds, range)?;
         let mut best: Option<Hit> = None;
         let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
         let mut stack = [(self.root, entry); 64];
@@ -124,6 +159,18 @@ impl SpaceBvh {
     }
 }
 
+impl SlabRay {
+    /// Entry parameter of the ray into the root's box (f64) within `range`.
+    fn enter_root(&self, bounds: &[f64; 6], range: (f64, f64)) -> Option<f64> {
+        let (mut lo, mut hi) = range;
+        for a in 0..3 {
+            lo = lo.max((bounds[self.near[a]] - self.o[a]) * self.inv[a]);
+            hi = hi.min((bounds[self.far[a]] - self.o[a]) * self.inv[a]);
+        }
+        (lo <= hi).then_some(lo)
+    }
+}
+
 /// A ray prepared for slab tests: origin, inverse direction, and which of
 /// a box's bounds is met first on each axis.
 struct SlabRay {
@@ -152,18 +199,49 @@ impl SlabRay {
     /// ray is parallel to) is dropped by f64::max/min, which keeps the test
     /// conservative.
     #[inline(always)]
-    fn enter(&self, bounds: &[[f64; 2]; 6], range: (f64, f64)) -> [Option<f64>; 2] {
+    fn enter(&self, bounds: &[[f32; 2]; 6], range: (f64, f64)) -> [Option<f64>; 2] {
         let (mut lo, mut hi) = ([range.0; 2], [range.1; 2]);
         for a in 0..3 {
             let (near, far) = (&bounds[self.near[a]], &bounds[self.far[a]]);
             for c in 0..2 {
-                lo[c] = lo[c].max((near[c] - self.o[a]) * self.inv[a]);
-                hi[c] = hi[c].min((far[c] - self.o[a]) * self.inv[a]);
+                lo[c] = lo[c].max((f64::from(near[c]) - self.o[a]) * self.inv[a]);
+                hi[c] = hi[c].min((f64::from(far[c]) - self.o[a]) * self.inv[a]);
             }
         }
         [
             (lo[0] <= hi[0]).then_some(lo[0]),
             (lo[1] <= hi[1]).then_some(lo[1]),
         ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rounded outward, every f32 bound holds its f64 value, and is the
+    /// nearest f32 that does.
+    #[test]
+    fn boxes_round_outward() {
+        for v in [
+            0.0,
+            1e-40,
+            -1e-40,
+            0.1,
+            -0.1,
+            1e5 + 1e-9,
+            -3.3e38,
+            7.0,
+            f64::MAX,
+        ] {
+            let (d, u) = (down(v), up(v));
+            assert!(f64::from(d) <= v && v <= f64::from(u), "{v}: {d} {u}");
+            if v.abs() < 3e38 {
+                assert!(f64::from(next_up(d)) > v || f64::from(d) == v, "{v}: {d}");
+                assert!(f64::from(-next_up(-u)) < v || f64::from(u) == v, "{v}: {u}");
+            }
+        }
+        assert_eq!(next_up(-0.0), f32::from_bits(1));
+        assert_eq!(next_up(f32::NEG_INFINITY), f32::MIN);
     }
 }

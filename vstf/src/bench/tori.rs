@@ -60,24 +60,42 @@ fn tilted([x, y, z]: [f64; 3], ax: f64, ay: f64) -> [f64; 3] {
 
 /// The OBJ file and fixture [`fn@write`] writes, for `total` triangles at
 /// `w` x `h`.
-pub fn paths(dir: &Path, total: usize, (w, h): (u32, u32)) -> (PathBuf, PathBuf) {
+/// How the tori move: at rest (the scene Embree's side traces), or as a
+/// Lorentz-contracted V_obj at 0.9c along x seen under the relativistic
+/// model, for the cost of motion against the static frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Motion {
+    /// At rest, seen with infinitely fast light.
+    Static,
+    /// A V_obj at 0.9c along x, seen on the camera's past light cone.
+    Moving,
+}
+
+/// The OBJ file and the fixture of the `total`-triangle scene at `w` x `h`.
+pub fn paths(dir: &Path, total: usize, (w, h): (u32, u32), motion: Motion) -> (PathBuf, PathBuf) {
+    let moving = if motion == Motion::Moving {
+        "-0.9c"
+    } else {
+        ""
+    };
     (
         dir.join(format!("tori-{total}.obj")),
-        dir.join(format!("tori-{total}-{w}x{h}.json")),
+        dir.join(format!("tori-{total}{moving}-{w}x{h}.json")),
     )
 }
 
-/// Writes the OBJ file and the fixture of [`paths`] (unless both are there
-/// already); returns their paths and the number of triangles.
+/// Writes the scene (unless there already) into `dir`: its OBJ file and
+/// fixture, and the number of triangles.
 pub fn write(
     dir: &Path,
     total: usize,
     (w, h): (u32, u32),
+    motion: Motion,
 ) -> Result<(PathBuf, PathBuf, usize), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    let (obj, fixture) = paths(dir, total, (w, h));
+    let (obj, fixture) = paths(dir, total, (w, h), motion);
     let (verts, faces) = grid(total);
-    if !(obj.is_file() && fixture.is_file()) {
+    if !obj.is_file() {
         let mut text = String::with_capacity(40 * (verts.len() + faces.len()));
         for v in &verts {
             let _ = writeln!(text, "v {:.7} {:.7} {:.7}", v[0], v[1], v[2]);
@@ -87,21 +105,43 @@ pub fn write(
         }
         crate::output::write_atomic(&obj, text.as_bytes())
             .map_err(|e| format!("cannot write {}: {e}", obj.display()))?;
-        let spec = serde_json::json!({
-            "description": format!("{} triangles: a grid of tilted tori, static (the Embree side-by-side benchmark)", faces.len()),
-            "model": "infinite",
-            "camera": {"position": [0, 0, 30], "t": 0, "look_at": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40},
-            "light": {"position": [10, 20, 40], "color": [1, 1, 1], "ambient": 0.3},
-            "background": [0, 0, 0],
-            "image": {"width": w, "height": h, "spp": 1, "shutter": 0, "seed": 1, "max_depth": 0, "shadows": false},
-            "objects": [{"name": "tori", "mesh": {"obj": {"path": format!("tori-{total}.obj")}},
-                          "position": [0, 0, 0], "material": {"color": [0.8, 0.6, 0.4]}}],
-        });
-        let text = serde_json::to_string_pretty(&spec).expect("a fixture serialises");
+    }
+    if !fixture.is_file() {
+        let text = serde_json::to_string_pretty(&spec(total, faces.len(), (w, h), motion))
+            .expect("a fixture serialises");
         crate::output::write_atomic(&fixture, text.as_bytes())
             .map_err(|e| format!("cannot write {}: {e}", fixture.display()))?;
     }
     Ok((obj, fixture, faces.len()))
+}
+
+/// The fixture. Moving, the tori's reference point crosses x = 0 at
+/// t = -30, when light leaves the grid's plane to reach the camera at t = 0.
+fn spec(total: usize, triangles: usize, (w, h): (u32, u32), motion: Motion) -> serde_json::Value {
+    let mesh = serde_json::json!({"obj": {"path": format!("tori-{total}.obj")}});
+    let color = serde_json::json!({"color": [0.8, 0.6, 0.4]});
+    let (what, model, object) = match motion {
+        Motion::Static => (
+            "static (the Embree side-by-side benchmark)",
+            "infinite",
+            serde_json::json!({"name": "tori", "mesh": mesh, "position": [0, 0, 0], "material": color}),
+        ),
+        Motion::Moving => (
+            "a V_obj moving at 0.9c along x, relativistic (the cost of motion)",
+            "relativistic",
+            serde_json::json!({"name": "tori", "kind": "V_obj", "mesh": mesh, "material": color,
+                "worldline": {"start": [-130.0, -90.0, 0, 0], "extrusion": [200.0, 180.0, 0, 0]}}),
+        ),
+    };
+    serde_json::json!({
+        "description": format!("{triangles} triangles: a grid of tilted tori, {what}"),
+        "model": model,
+        "camera": {"position": [0, 0, 30], "t": 0, "look_at": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40},
+        "light": {"position": [10, 20, 40], "color": [1, 1, 1], "ambient": 0.3},
+        "background": [0, 0, 0],
+        "image": {"width": w, "height": h, "spp": 1, "shutter": 0, "seed": 1, "max_depth": 0, "shadows": false},
+        "objects": [object],
+    })
 }
 
 #[cfg(test)]
