@@ -113,10 +113,14 @@ impl SpaceBvh {
         let mut best: Option<Hit> = None;
         let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
         let mut stack = [(self.root, entry); 64];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let (child, entry) = stack[top];
+        let mut top: usize = 0;
+        // The subtree being searched; the farther child of each node where
+        // the ray entered both waits on the stack.
+        let mut current = Some((self.root, entry));
+        while let Some((child, entry)) = current.take().or_else(|| {
+            top = top.checked_sub(1)?;
+            Some(stack[top])
+        }) {
             if entry > hi(&best) {
                 continue;
             }
@@ -132,8 +136,7 @@ impl SpaceBvh {
             let node = &self.nodes[child.index as usize];
             let [ea, eb] = ray.enter(&node.bounds, (range.0, hi(&best)));
             let [a, b] = node.children;
-            // Push the farther child first so the nearer is searched first.
-            match (ea, eb) {
+            current = match (ea, eb) {
                 (Some(x), Some(y)) => {
                     let (near, far) = if x <= y {
                         ((a, x), (b, y))
@@ -141,19 +144,13 @@ impl SpaceBvh {
                         ((b, y), (a, x))
                     };
                     stack[top] = far;
-                    stack[top + 1] = near;
-                    top += 2;
-                }
-                (Some(x), None) => {
-                    stack[top] = (a, x);
                     top += 1;
+                    Some(near)
                 }
-                (None, Some(y)) => {
-                    stack[top] = (b, y);
-                    top += 1;
-                }
-                (None, None) => {}
-            }
+                (Some(x), None) => Some((a, x)),
+                (None, Some(y)) => Some((b, y)),
+                (None, None) => None,
+            };
         }
         best
     }
