@@ -73,7 +73,10 @@ pub struct Camera {
     /// Unit up of the image, camera frame.
     pub up: DVec3,
     /// Vertical field of view, degrees.
-    pub vfov_deg: f64,
+    pub(crate) vfov_deg: f64,
+    /// tan(vfov / 2): the image plane's half height at unit distance,
+    /// computed once rather than for every ray.
+    pub(crate) tan_half_v: f64,
     /// Image width, pixels.
     pub width: u32,
     /// Image height, pixels.
@@ -111,6 +114,7 @@ impl Camera {
             right,
             up,
             vfov_deg,
+            tan_half_v: (vfov_deg.to_radians() / 2.0).tan(),
             width,
             height,
             velocity: DVec3::ZERO,
@@ -172,9 +176,14 @@ impl Camera {
         }
     }
 
+    /// Vertical field of view, degrees.
+    pub fn vfov_deg(&self) -> f64 {
+        self.vfov_deg
+    }
+
     /// Half-extent of the image plane at unit distance, vertically.
     fn tan_half_v(&self) -> f64 {
-        (self.vfov_deg.to_radians() / 2.0).tan()
+        self.tan_half_v
     }
 
     /// Unit direction in the camera's own frame through the continuous
