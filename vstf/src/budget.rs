@@ -6,23 +6,32 @@
 //!
 //! The figures behind the estimates are this project's own, measured by
 //! `vstf bench` on the 2-core machine it is developed on (README,
-//! Performance): about 594 bytes per tetrahedron at peak, and between 2.4
-//! and 3.9 million rays per second at 640x360. The estimates round both the
-//! safe way.
+//! Performance): about 210-250 bytes at peak per triangle of a uniformly
+//! moving mesh (section 7), and between 2.4 and 3.9 million rays per second
+//! at 640x360. A keyframe interval's prism keeps its record, six corner
+//! events and three prepared tetrahedron solves (744 bytes) besides its
+//! share of the hierarchy and of the build's items. The estimates round
+//! both the safe way.
 
 use renderer::{Motion, Scene, Shape};
 use std::fmt;
 
-/// Peak memory per tetrahedron of the 4D database, bytes (bench: 594).
-pub const BYTES_PER_TETRAHEDRON: u64 = 600;
+/// Peak memory per prism of a uniformly moving triangle (tested whole in
+/// its comoving frame), bytes (bench: 210-250).
+pub const BYTES_PER_TRANSLATED_PRISM: u64 = 300;
+
+/// Peak memory per prism of a keyframe interval (tested as three
+/// tetrahedra), bytes: 744 stored, and its share of the hierarchy and of
+/// the build's items.
+pub const BYTES_PER_KEYFRAMED_PRISM: u64 = 1000;
 
 /// Primary rays per second assumed for an estimate (bench: 2.4 to 3.9
 /// million with shadows and mirrors on 2 cores; a tenth of that leaves room
 /// for deep mirrors and slow machines).
 pub const RAYS_PER_SECOND: f64 = 1.0e6;
 
-/// The most tetrahedra one hyperbolic motion's keyframes can give a
-/// triangle (the renderer's cap on generated keyframes, 3 per interval).
+/// The most intervals one hyperbolic motion's keyframes can give a
+/// triangle (the renderer's cap on generated keyframes).
 const MAX_HYPERBOLIC_INTERVALS: u64 = 100_000;
 
 /// The limits a command stays within unless forced.
@@ -58,14 +67,21 @@ impl Budget {
 
     /// Refuses a scene whose database would exceed the memory budget.
     pub fn check_scene(&self, scene: &Scene) -> Result<(), String> {
-        let tets = tetrahedra(scene);
-        let bytes = tets.saturating_mul(BYTES_PER_TETRAHEDRON);
+        let p = prisms(scene);
+        let bytes = p
+            .translated
+            .saturating_mul(BYTES_PER_TRANSLATED_PRISM)
+            .saturating_add(p.keyframed.saturating_mul(BYTES_PER_KEYFRAMED_PRISM));
         if bytes <= self.memory {
             return Ok(());
         }
         Err(format!(
-            "about {tets} tetrahedra, {} of memory to build (at {BYTES_PER_TETRAHEDRON} bytes each): \
-             over the budget of {}; pass --force to build it anyway",
+            "about {} prisms ({} of them keyframe intervals'), {} of memory to build \
+             (at {BYTES_PER_TRANSLATED_PRISM} bytes a uniformly moving triangle's prism, \
+             {BYTES_PER_KEYFRAMED_PRISM} a keyframe interval's): over the budget of {}; \
+             pass --force to build it anyway",
+            p.translated.saturating_add(p.keyframed),
+            p.keyframed,
             Bytes(bytes),
             Bytes(self.memory)
         ))
@@ -94,47 +110,67 @@ impl Budget {
     }
 }
 
-/// How many tetrahedra the scene's database will hold: three per triangle
-/// per straight stretch of its path (one stretch for uniform motion, one
-/// per keyframe interval, and for hyperbolic motion one per generated
+/// How many prisms a scene's database will hold, by how they are tested.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Prisms {
+    /// Of uniformly moving meshes: one per triangle.
+    pub translated: u64,
+    /// Of keyframed and accelerated meshes: one per triangle per interval.
+    pub keyframed: u64,
+}
+
+/// How many prisms the scene's database will hold: one per triangle per
+/// straight stretch of its path (one stretch for uniform motion, one per
+/// keyframe interval, and for hyperbolic motion one per generated
 /// interval, h = sqrt(8 tolerance A_min) long, A_min = 1/a less how far a
 /// V_obj reaches behind its reference point; docs/physics.md).
-pub fn tetrahedra(scene: &Scene) -> u64 {
-    scene
-        .objects
-        .iter()
-        .map(|o| {
-            let triangles = match &o.shape {
-                Shape::Mesh(m) => m.triangles.len() as u64,
-                Shape::Sphere { .. } => 0,
+pub fn prisms(scene: &Scene) -> Prisms {
+    scene.objects.iter().fold(Prisms::default(), |p, o| {
+        let n = object_prisms(o);
+        match o.motion {
+            Motion::Extrusion { .. } | Motion::Velocity { .. } => Prisms {
+                translated: p.translated.saturating_add(n),
+                ..p
+            },
+            Motion::Keyframes(_) | Motion::Hyperbolic(_) => Prisms {
+                keyframed: p.keyframed.saturating_add(n),
+                ..p
+            },
+        }
+    })
+}
+
+/// One object's prisms: its triangles times its path's stretches.
+fn object_prisms(o: &renderer::SceneObject) -> u64 {
+    let triangles = match &o.shape {
+        Shape::Mesh(m) => m.triangles.len() as u64,
+        Shape::Sphere { .. } => 0,
+    };
+    let stretches = match &o.motion {
+        Motion::Keyframes(k) => k.len().saturating_sub(1) as u64,
+        Motion::Hyperbolic(h) => {
+            // The smallest A = 1/a + xi over the vertices: a V_obj may
+            // be Born-rigid, its rearmost vertex on the tightest hyperbola.
+            let xi_min = match (&o.shape, o.kind) {
+                (Shape::Mesh(m), renderer::ObjectKind::VObj) => m
+                    .vertices
+                    .iter()
+                    .map(|v| v.dot(h.direction))
+                    .fold(0.0, f64::min),
+                _ => 0.0,
             };
-            let stretches = match &o.motion {
-                Motion::Keyframes(k) => k.len().saturating_sub(1) as u64,
-                Motion::Hyperbolic(h) => {
-                    // The smallest A = 1/a + xi over the vertices: a V_obj may
-                    // be Born-rigid, its rearmost vertex on the tightest hyperbola.
-                    let xi_min = match (&o.shape, o.kind) {
-                        (Shape::Mesh(m), renderer::ObjectKind::VObj) => m
-                            .vertices
-                            .iter()
-                            .map(|v| v.dot(h.direction))
-                            .fold(0.0, f64::min),
-                        _ => 0.0,
-                    };
-                    let a_min = 1.0 / h.acceleration + xi_min;
-                    let step = (8.0 * h.tolerance * a_min).sqrt();
-                    let n = (h.duration / step).ceil();
-                    if n.is_finite() && n >= 1.0 {
-                        (n as u64).min(MAX_HYPERBOLIC_INTERVALS)
-                    } else {
-                        MAX_HYPERBOLIC_INTERVALS
-                    }
-                }
-                Motion::Extrusion { .. } | Motion::Velocity { .. } => 1,
-            };
-            triangles.saturating_mul(3).saturating_mul(stretches.max(1))
-        })
-        .fold(0u64, u64::saturating_add)
+            let a_min = 1.0 / h.acceleration + xi_min;
+            let step = (8.0 * h.tolerance * a_min).sqrt();
+            let n = (h.duration / step).ceil();
+            if n.is_finite() && n >= 1.0 {
+                (n as u64).min(MAX_HYPERBOLIC_INTERVALS)
+            } else {
+                MAX_HYPERBOLIC_INTERVALS
+            }
+        }
+        Motion::Extrusion { .. } | Motion::Velocity { .. } => 1,
+    };
+    triangles.saturating_mul(stretches.max(1))
 }
 
 /// A byte count as a person reads it.

@@ -474,7 +474,7 @@ fn an_absurd_unknown_key_is_named_briefly() {
 
 /// A scene whose database would not fit the memory budget is refused at
 /// load, with its estimate, before anything is built: a finely tessellated
-/// sphere through ten keyframes (30 million tetrahedra, about 18 GB).
+/// sphere through ten keyframes (10 million keyframe prisms, about 10 GB).
 #[test]
 fn a_database_over_the_memory_budget_is_refused_with_its_estimate() {
     let keyframes: Vec<serde_json::Value> = (0..11)
@@ -489,8 +489,8 @@ fn a_database_over_the_memory_budget_is_refused_with_its_estimate() {
     let started = std::time::Instant::now();
     let e = error_of(&text);
     assert!(
-        e.contains("fixtures/bad.json: objects: about 31")
-            && e.contains("tetrahedra")
+        e.contains("fixtures/bad.json: objects: about 10465280 prisms")
+            && e.contains("10465280 of them keyframe intervals'")
             && e.contains("over the budget of 8.0 GB")
             && e.contains("--force"),
         "{e}"
@@ -532,16 +532,17 @@ fn inputs_the_fuzzer_found_are_handled() {
     assert!(n >= 1, "no inputs in {}", dir.display());
 }
 
-/// The memory budget's estimate of the tetrahedra is never below what the
+/// The memory budget's estimate of the prisms is never below what the
 /// database holds, for every kind of motion (uniform, keyframed, hyperbolic
 /// H_obj and Born-rigid V_obj), and not far above it.
 #[test]
-fn the_tetrahedron_estimate_bounds_the_database() {
+fn the_prism_estimate_bounds_the_database() {
     for name in workspace_tests::repo().fixture_names() {
         let f = workspace_tests::fixture(&name);
-        let estimate = vstf::budget::tetrahedra(&f.scene);
+        let p = vstf::budget::prisms(&f.scene);
+        let estimate = p.translated + p.keyframed;
         for lorentz in [false, true] {
-            let built = f.database(lorentz).unwrap().tetrahedron_count() as u64;
+            let built = f.database(lorentz).unwrap().prism_count() as u64;
             assert!(estimate >= built, "{name}: estimate {estimate} < {built}");
             assert!(
                 estimate <= 2 * built.max(1),
