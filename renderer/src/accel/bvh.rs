@@ -19,7 +19,8 @@ use crate::geometry::{nearer, Hit};
 use glam::DVec4;
 
 const LEAF_SIZE: usize = 4;
-/// Deeper subtrees become leaves, so that the traversal stack (64) never overflows.
+/// Deeper subtrees become leaves, so that the traversal stack (one entry a
+/// level) never overflows.
 const MAX_DEPTH: usize = 48;
 
 /// An axis-aligned box of spacetime: lower and upper corners, (x, y, z, t).
@@ -68,6 +69,8 @@ pub(super) trait PairNode: Send {
     fn pair(bounds: [Bounds4; 2], children: [Child; 2]) -> Self;
     /// Its children, to renumber when a subtree built on its own is appended.
     fn children_mut(&mut self) -> &mut [Child; 2];
+    /// Its children.
+    fn children(&self) -> [Child; 2];
 }
 
 /// A hierarchy as built: inner nodes children first, the root (and its box)
@@ -77,6 +80,61 @@ pub(super) struct Built<N> {
     pub(super) root: Child,
     pub(super) root_bounds: Bounds4,
     pub(super) order: Vec<u32>,
+}
+
+/// The closest hit in a tree of `nodes` over `order`, from `root` (entered
+/// at `entry`) within `range`: `enter(node, range)` gives where the ray
+/// enters each of a node's children's boxes, and `test(item, range)` is
+/// called for every item whose box the ray enters, with the range shrunk
+/// to the best hit so far. The nearer child is searched first, the farther
+/// waiting on a stack. Ties go to the lower primitive, whatever the order.
+pub(super) fn closest_in<N: PairNode>(
+    (nodes, order): (&[N], &[u32]),
+    (root, entry): (Child, f64),
+    range: (f64, f64),
+    enter: impl Fn(&N, (f64, f64)) -> [Option<f64>; 2],
+    mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
+) -> Option<Hit> {
+    let mut best: Option<Hit> = None;
+    let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
+    let mut stack = [(root, entry); MAX_DEPTH + 1];
+    let mut top: usize = 0;
+    let mut current = Some((root, entry));
+    while let Some((child, entry)) = current.take().or_else(|| {
+        top = top.checked_sub(1)?;
+        Some(stack[top])
+    }) {
+        if entry > hi(&best) {
+            continue;
+        }
+        if child.count > 0 {
+            let start = child.index as usize;
+            for &i in &order[start..start + child.count as usize] {
+                if let Some(h) = test(i, (range.0, hi(&best))) {
+                    best = Some(nearer(best, h));
+                }
+            }
+            continue;
+        }
+        let node = &nodes[child.index as usize];
+        let [a, b] = node.children();
+        current = match enter(node, (range.0, hi(&best))) {
+            [Some(x), Some(y)] => {
+                let (near, far) = if x <= y {
+                    ((a, x), (b, y))
+                } else {
+                    ((b, y), (a, x))
+                };
+                stack[top] = far;
+                top += 1;
+                Some(near)
+            }
+            [Some(x), None] => Some((a, x)),
+            [None, Some(y)] => Some((b, y)),
+            [None, None] => None,
+        };
+    }
+    best
 }
 
 /// An inner node of the lab-frame hierarchy: both children's 4D boxes.
@@ -98,6 +156,10 @@ impl PairNode for Node {
 
     fn children_mut(&mut self) -> &mut [Child; 2] {
         &mut self.children
+    }
+
+    fn children(&self) -> [Child; 2] {
+        self.children
     }
 }
 
@@ -383,7 +445,7 @@ impl Bvh {
         o: DVec4,
         d: DVec4,
         range: (f64, f64),
-        mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
+        test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         if self.root.count == 0 && self.nodes.is_empty() {
             return None; // no items
@@ -391,48 +453,15 @@ impl Bvh {
         let inv = DVec4::ONE / d;
         let root = &self.root_bounds;
         let entry = Self::enter(root.min, root.max, o, inv, range)?;
-        let mut best: Option<Hit> = None;
-        let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
-        let mut stack = [(self.root, entry); 64];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let (child, entry) = stack[top];
-            if entry > hi(&best) {
-                continue;
-            }
-            if child.count > 0 {
-                let start = child.index as usize;
-                for &i in &self.order[start..start + child.count as usize] {
-                    if let Some(h) = test(i, (range.0, hi(&best))) {
-                        best = Some(nearer(best, h));
-                    }
-                }
-                continue;
-            }
-            let node = &self.nodes[child.index as usize];
-            let r = (range.0, hi(&best));
-            let [ea, eb] = [0, 1].map(|c| Self::enter(node.min[c], node.max[c], o, inv, r));
-            let [a, b] = node.children;
-            // Push the farther child first so the nearer is searched first.
-            let mut push = |c: Child, e: Option<f64>| {
-                if let Some(e) = e {
-                    stack[top] = (c, e);
-                    top += 1;
-                }
-            };
-            match (ea, eb) {
-                (Some(x), Some(y)) if x <= y => {
-                    push(b, eb);
-                    push(a, ea);
-                }
-                _ => {
-                    push(a, ea);
-                    push(b, eb);
-                }
-            }
-        }
-        best
+        let enter =
+            |node: &Node, r| [0, 1].map(|c| Self::enter(node.min[c], node.max[c], o, inv, r));
+        closest_in(
+            (&self.nodes, &self.order),
+            (self.root, entry),
+            range,
+            enter,
+            test,
+        )
     }
 }
 

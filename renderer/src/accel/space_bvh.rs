@@ -6,8 +6,8 @@
 //! both, with the near and far face of each axis chosen once per ray by
 //! the sign of its direction.
 
-use super::bvh::{build, Bounds4, Child, PairNode};
-use crate::geometry::{nearer, Hit};
+use super::bvh::{build, closest_in, Bounds4, Child, PairNode};
+use crate::geometry::Hit;
 use glam::DVec3;
 
 /// An inner node: its two children and their boxes, one cache line. The
@@ -69,6 +69,10 @@ impl PairNode for Node {
     fn children_mut(&mut self) -> &mut [Child; 2] {
         &mut self.children
     }
+
+    fn children(&self) -> [Child; 2] {
+        self.children
+    }
 }
 
 /// The hierarchy: inner nodes children first, the root's own box (a tree
@@ -103,56 +107,21 @@ impl SpaceBvh {
         o: DVec3,
         d: DVec3,
         range: (f64, f64),
-        mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
+        test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         if self.root.count == 0 && self.nodes.is_empty() {
             return None; // no items
         }
         let ray = SlabRay::new(o, d);
         let entry = ray.enter_root(&self.root_bounds, range)?;
-        let mut best: Option<Hit> = None;
-        let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
-        let mut stack = [(self.root, entry); 64];
-        let mut top: usize = 0;
-        // The subtree being searched; the farther child of each node where
-        // the ray entered both waits on the stack.
-        let mut current = Some((self.root, entry));
-        while let Some((child, entry)) = current.take().or_else(|| {
-            top = top.checked_sub(1)?;
-            Some(stack[top])
-        }) {
-            if entry > hi(&best) {
-                continue;
-            }
-            if child.count > 0 {
-                let start = child.index as usize;
-                for &i in &self.order[start..start + child.count as usize] {
-                    if let Some(h) = test(i, (range.0, hi(&best))) {
-                        best = Some(nearer(best, h));
-                    }
-                }
-                continue;
-            }
-            let node = &self.nodes[child.index as usize];
-            let [ea, eb] = ray.enter(&node.bounds, (range.0, hi(&best)));
-            let [a, b] = node.children;
-            current = match (ea, eb) {
-                (Some(x), Some(y)) => {
-                    let (near, far) = if x <= y {
-                        ((a, x), (b, y))
-                    } else {
-                        ((b, y), (a, x))
-                    };
-                    stack[top] = far;
-                    top += 1;
-                    Some(near)
-                }
-                (Some(x), None) => Some((a, x)),
-                (None, Some(y)) => Some((b, y)),
-                (None, None) => None,
-            };
-        }
-        best
+        let enter = |node: &Node, r| ray.enter(&node.bounds, r);
+        closest_in(
+            (&self.nodes, &self.order),
+            (self.root, entry),
+            range,
+            enter,
+            test,
+        )
     }
 }
 

@@ -190,54 +190,70 @@ impl Mesh {
     /// triangles; `i`, `i/t`, `i//n`, `i/t/n` and negative indices) of a
     /// Wavefront OBJ file. Other statements are ignored.
     pub fn from_obj(text: &str) -> Result<Mesh, MeshError> {
+        Mesh::read_obj(text.as_bytes())
+    }
+
+    /// [`Mesh::from_obj`] a line at a time from `reader`, never holding the
+    /// whole file: an OBJ of millions of triangles is read in the memory
+    /// of its mesh. A leading byte-order mark is skipped; a line that is
+    /// not UTF-8, or a read that fails, is an error at its line.
+    pub fn read_obj(mut reader: impl std::io::BufRead) -> Result<Mesh, MeshError> {
         let mut mesh = Mesh::default();
-        for (n, raw) in text.lines().enumerate() {
-            let line = n + 1;
+        let (mut raw, mut face) = (Vec::new(), Vec::new());
+        for line in 1.. {
+            raw.clear();
             let err = |message: String| MeshError::Obj { line, message };
-            let mut words = raw.split_whitespace();
-            match words.next() {
-                Some("v") => {
-                    let c: Vec<f64> = words
-                        .take(3)
-                        .map(|w| {
-                            w.parse::<f64>()
-                                .map_err(|_| err(format!("bad coordinate {w:?}")))
-                        })
-                        .collect::<Result<_, _>>()?;
-                    if c.len() != 3 {
-                        return Err(err("a vertex needs 3 coordinates".into()));
-                    }
-                    mesh.vertices.push(DVec3::new(c[0], c[1], c[2]));
-                }
-                Some("f") => {
-                    let count = mesh.vertices.len() as i64;
-                    let idx: Vec<u32> = words
-                        .map(|w| {
-                            let first = w.split('/').next().unwrap_or("");
-                            let i: i64 = first
-                                .parse()
-                                .map_err(|_| err(format!("bad face index {w:?}")))?;
-                            let resolved = if i < 0 { count + i } else { i - 1 };
-                            if i == 0 || resolved < 0 || resolved >= count {
-                                return Err(err(format!(
-                                    "face index {i} is out of range (1..={count})"
-                                )));
-                            }
-                            Ok(resolved as u32)
-                        })
-                        .collect::<Result<_, _>>()?;
-                    if idx.len() < 3 {
-                        return Err(err("a face needs at least 3 vertices".into()));
-                    }
-                    for k in 1..idx.len() - 1 {
-                        mesh.triangles.push([idx[0], idx[k], idx[k + 1]]);
-                    }
-                }
-                _ => {}
+            match reader.read_until(b'\n', &mut raw) {
+                Ok(0) => break,
+                Ok(_) => {}
+                Err(e) => return Err(err(format!("cannot be read: {e}"))),
             }
+            let text = std::str::from_utf8(&raw).map_err(|_| err("is not UTF-8".into()))?;
+            let text = if line == 1 {
+                text.strip_prefix('\u{feff}').unwrap_or(text)
+            } else {
+                text
+            };
+            obj_statement(&mut mesh, text, &mut face).map_err(err)?;
         }
         Ok(mesh)
     }
+}
+
+/// One OBJ line into `mesh` (`face` a buffer for a face's indices).
+fn obj_statement(mesh: &mut Mesh, text: &str, face: &mut Vec<u32>) -> Result<(), String> {
+    let mut words = text.split_whitespace();
+    match words.next() {
+        Some("v") => {
+            let mut c = [0.0; 3];
+            for x in &mut c {
+                let w = words.next().ok_or("a vertex needs 3 coordinates")?;
+                *x = w.parse().map_err(|_| format!("bad coordinate {w:?}"))?;
+            }
+            mesh.vertices.push(DVec3::from_array(c));
+        }
+        Some("f") => {
+            let count = mesh.vertices.len() as i64;
+            face.clear();
+            for w in words {
+                let first = w.split('/').next().unwrap_or("");
+                let i: i64 = first.parse().map_err(|_| format!("bad face index {w:?}"))?;
+                let resolved = if i < 0 { count + i } else { i - 1 };
+                if i == 0 || resolved < 0 || resolved >= count {
+                    return Err(format!("face index {i} is out of range (1..={count})"));
+                }
+                face.push(resolved as u32);
+            }
+            if face.len() < 3 {
+                return Err("a face needs at least 3 vertices".into());
+            }
+            for k in 1..face.len() - 1 {
+                mesh.triangles.push([face[0], face[k], face[k + 1]]);
+            }
+        }
+        _ => {}
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -285,5 +301,47 @@ mod tests {
             Mesh::from_obj("v 0 zero 0\n"),
             Err(MeshError::Obj { line: 1, .. })
         ));
+    }
+
+    /// Read a line at a time, the mesh is the one the whole text gives; a
+    /// byte-order mark is skipped; a line that is not UTF-8 and a failing
+    /// read are errors at their line.
+    #[test]
+    fn obj_is_read_a_line_at_a_time() {
+        let mut text = String::from("\u{feff}# grid\n");
+        for i in 0..50 {
+            text += &format!("v {i} {} 0.5\nv {i} {} 1.5\n", i * i, i + 1);
+        }
+        for i in 1..99 {
+            text += &format!("f {i} {} {}\n", i + 1, i + 2);
+        }
+        let read = Mesh::read_obj(std::io::BufReader::with_capacity(7, text.as_bytes())).unwrap();
+        let whole = Mesh::from_obj(text.strip_prefix('\u{feff}').unwrap()).unwrap();
+        assert_eq!(read.vertices, whole.vertices);
+        assert_eq!(read.triangles, whole.triangles);
+        assert_eq!((read.vertices.len(), read.triangles.len()), (100, 98));
+
+        let bad = b"v 0 0 0\nv 1 0 0\nv 0 \xff 0\n";
+        assert!(matches!(
+            Mesh::read_obj(&bad[..]),
+            Err(MeshError::Obj { line: 3, ref message }) if message.contains("UTF-8")
+        ));
+
+        struct Failing(usize);
+        impl std::io::Read for Failing {
+            fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+                if self.0 == 0 {
+                    return Err(std::io::Error::other("disk gone"));
+                }
+                self.0 -= 1;
+                buf[..8].copy_from_slice(b"v 0 0 0\n");
+                Ok(8)
+            }
+        }
+        let e = Mesh::read_obj(std::io::BufReader::with_capacity(8, Failing(2))).unwrap_err();
+        assert!(
+            matches!(e, MeshError::Obj { line: 3, ref message } if message.contains("disk gone")),
+            "{e}"
+        );
     }
 }
