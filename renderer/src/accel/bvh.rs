@@ -164,12 +164,7 @@ impl PairNode for Node {
 }
 
 /// The hierarchy over 4D boxes (the lab frame's time slices).
-pub(crate) struct Bvh {
-    nodes: Vec<Node>,
-    root: Child,
-    root_bounds: Bounds4,
-    order: Vec<u32>,
-}
+pub(crate) struct Bvh(Built<Node>);
 
 /// Half the boundary 3-volume of a 4D box (x, y, z, t; c = 1): by Cauchy's
 /// formula, proportional to the chance that a random line meets it, the
@@ -411,13 +406,7 @@ impl Bvh {
     /// Builds the hierarchy over items given by their 4D bounds (x, y, z,
     /// t), in order: item i is the i-th bounds.
     pub(crate) fn build(bounds: impl Iterator<Item = Bounds4>) -> Bvh {
-        let built = build(bounds);
-        Bvh {
-            nodes: built.nodes,
-            root: built.root,
-            root_bounds: built.root_bounds,
-            order: built.order,
-        }
+        Bvh(build(bounds))
     }
 
     /// Entry parameter of the ray into the box `min..max` within `range`,
@@ -447,17 +436,17 @@ impl Bvh {
         range: (f64, f64),
         test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
-        if self.root.count == 0 && self.nodes.is_empty() {
+        if self.0.root.count == 0 && self.0.nodes.is_empty() {
             return None; // no items
         }
         let inv = DVec4::ONE / d;
-        let root = &self.root_bounds;
+        let root = &self.0.root_bounds;
         let entry = Self::enter(root.min, root.max, o, inv, range)?;
         let enter =
             |node: &Node, r| [0, 1].map(|c| Self::enter(node.min[c], node.max[c], o, inv, r));
         closest_in(
-            (&self.nodes, &self.order),
-            (self.root, entry),
+            (&self.0.nodes, &self.0.order),
+            (self.0.root, entry),
             range,
             enter,
             test,
@@ -501,13 +490,13 @@ mod tests {
     fn the_tree_does_not_depend_on_the_thread_count() {
         let boxes = random_boxes(4 * PARALLEL_ITEMS, 9);
         let (one, two) = (built_on(1, &boxes), built_on(2, &boxes));
-        assert!(one.nodes.len() > 1000);
-        assert_eq!(one.nodes, two.nodes);
-        assert_eq!((one.root, one.order.clone()), (two.root, two.order));
+        assert!(one.0.nodes.len() > 1000);
+        assert_eq!(one.0.nodes, two.0.nodes);
+        assert_eq!((one.0.root, one.0.order.clone()), (two.0.root, two.0.order));
         let mut moved = boxes.clone();
         moved[7].min.x += 50.0;
         moved[7].max.x += 50.0;
-        assert_ne!(built_on(2, &moved).nodes, one.nodes);
+        assert_ne!(built_on(2, &moved).0.nodes, one.0.nodes);
     }
 
     /// Every item sits in exactly one leaf, inside every box on its path.
@@ -518,17 +507,17 @@ mod tests {
         let mut seen = vec![0u32; boxes.len()];
         let inside =
             |b: &Bounds4, min: DVec4, max: DVec4| b.min.cmpge(min).all() && b.max.cmple(max).all();
-        let mut stack = vec![(bvh.root, bvh.root_bounds)];
+        let mut stack = vec![(bvh.0.root, bvh.0.root_bounds)];
         while let Some((child, bounds)) = stack.pop() {
             if child.count > 0 {
                 let start = child.index as usize;
-                for &i in &bvh.order[start..start + child.count as usize] {
+                for &i in &bvh.0.order[start..start + child.count as usize] {
                     assert!(inside(&boxes[i as usize], bounds.min, bounds.max));
                     seen[i as usize] += 1;
                 }
                 continue;
             }
-            let node = &bvh.nodes[child.index as usize];
+            let node = &bvh.0.nodes[child.index as usize];
             for c in 0..2 {
                 let b = Bounds4::new(node.min[c], node.max[c]);
                 assert!(inside(&b, bounds.min, bounds.max));

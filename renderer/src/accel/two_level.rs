@@ -7,7 +7,7 @@
 
 use super::bvh::{rounding_margin, Bounds4, Bvh};
 use super::space_bvh::SpaceBvh;
-use crate::geometry::Hit;
+use crate::geometry::{comoving_line, Hit};
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
 
@@ -44,9 +44,7 @@ impl StretchBvh {
     /// parameter s.
     #[inline]
     fn to_comoving(&self, o: DVec4, d: DVec4) -> (DVec3, DVec3) {
-        let x = o.truncate() - self.velocity * (o.w - self.origin.t) - self.origin.x;
-        let dx = d.truncate() - self.velocity * d.w;
-        (x, dx)
+        comoving_line(o, d, (self.origin.t, self.origin.x), self.velocity)
     }
 }
 

@@ -216,11 +216,10 @@ impl Database {
         let surface = self.surface(hit);
         let record = &self.records[surface.object as usize];
         let stretch = record.stretch_at(hit.event.t);
-        let (tet, Barycentric::Tetrahedron(bary)) = (hit.primitive, hit.bary) else {
+        let (PrimitiveId::Tetrahedron(tet), Barycentric::Tetrahedron(bary)) =
+            (hit.primitive, hit.bary)
+        else {
             return (stretch.worldline.velocity(), stretch.clock.gamma());
-        };
-        let PrimitiveId::Tetrahedron(tet) = tet else {
-            unreachable!("tetrahedron coordinates are a tetrahedron's")
         };
         let velocity = self.corner_weighted_velocity(tet, &bary);
         let gamma = if record.contracted {

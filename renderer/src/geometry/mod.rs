@@ -20,4 +20,4 @@ pub(crate) use poses::resolve;
 pub use poses::Pose;
 pub(crate) use sphere::Sphere;
 pub(crate) use tetrahedron::PreparedTet;
-pub(crate) use triangle::{intersect_prism, ComovingRay};
+pub(crate) use triangle::{comoving_line, intersect_prism, ComovingRay};

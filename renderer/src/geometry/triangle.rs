@@ -40,6 +40,24 @@ pub(crate) struct ComovingRay {
     shear: DVec3,
 }
 
+/// The line `o + s d` (lab (x, y, z, t)) in the comoving coordinates
+/// x' = x - v (t - t0) - x0 of the reference point at `x0` at lab time `t0`
+/// moving with `velocity`: its position at s = 0 and its direction, the
+/// parameter s unchanged. The one comoving transform of rays, for the
+/// hierarchy's boxes and the triangle test alike.
+#[inline]
+pub(crate) fn comoving_line(
+    o: glam::DVec4,
+    d: glam::DVec4,
+    (t0, x0): (f64, DVec3),
+    velocity: DVec3,
+) -> (DVec3, DVec3) {
+    (
+        o.truncate() - velocity * (o.w - t0) - x0,
+        d.truncate() - velocity * d.w,
+    )
+}
+
 impl ComovingRay {
     /// The ray `o + s d`, both (x, y, z, t) in lab coordinates, in the
     /// comoving coordinates of the reference point at `x0` at lab time `t0`
@@ -52,8 +70,7 @@ impl ComovingRay {
         (t0, x0): (f64, DVec3),
         velocity: DVec3,
     ) -> Option<ComovingRay> {
-        let origin = o.truncate() - velocity * (o.w - t0) - x0;
-        let dir = d.truncate() - velocity * d.w;
+        let (origin, dir) = comoving_line(o, d, (t0, x0), velocity);
         let abs = dir.abs();
         let kz = if abs.x > abs.y {
             if abs.x > abs.z {
