@@ -328,7 +328,16 @@ fn ctrl_c_leaves_every_finished_frame() {
         .unwrap();
     let frames = dir.join("long.gif.frames");
     let started = std::time::Instant::now();
-    while std::fs::read_dir(&frames).map_or(0, |d| d.count()) < 3 {
+    let finished = |dir: &std::path::Path| {
+        std::fs::read_dir(dir).map_or(0, |d| {
+            d.filter(|e| {
+                e.as_ref()
+                    .is_ok_and(|e| e.path().extension().is_some_and(|x| x == "png"))
+            })
+            .count()
+        })
+    };
+    while finished(&frames) < 3 {
         assert!(started.elapsed().as_secs() < 60, "no frames appeared");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
