@@ -1,27 +1,41 @@
 //! One stretch's hierarchy over its prisms, in the stretch's comoving x, y,
 //! z only. Every prism of a stretch lives over the stretch's lab times, and
 //! the top level has already cut the ray to those of one time slice, so
-//! time tells the prisms nothing apart. Each node keeps both children's
-//! boxes side by side: a step of the traversal reads one node and tests
-//! both, with the near and far face of each axis chosen once per ray by
-//! the sign of its direction.
+//! time tells the prisms nothing apart.
+//!
+//! The tree is built binary (the shared SAH builder) and collapsed into
+//! nodes of four children, whose boxes sit side by side per face in f32
+//! rounded outward: one node visit tests the four boxes at once in 4-lane
+//! SIMD (SSE2 on every x86-64, through the `wide` crate), and a ray visits
+//! about half as many nodes. The slab test runs in f32 and is made
+//! conservative (a box the ray enters is never culled, see [`WideRay`]),
+//! so which prisms are tested, and so which hit is found, is decided by
+//! the leaf tests alone.
 
-use super::bvh::{build, closest_in, Bounds4, Child, PairNode};
-use crate::geometry::Hit;
+use super::bvh::{build, Bounds4, Child, PairNode};
+use crate::geometry::{nearer, Hit};
 use glam::DVec3;
+use wide::{f32x4, CmpLe};
 
-/// An inner node: its two children and their boxes, one cache line. The
-/// boxes are in f32 rounded outward, so each holds its f64 box (no hit is
-/// lost), and are tested in f64, into which every f32 converts exactly.
+/// An inner node of the binary tree as built, before it is collapsed into
+/// [`WideNode`]s: its two children and their boxes in f32 rounded outward,
+/// so that each holds its f64 box.
 #[derive(Clone, Copy, Debug)]
-#[repr(align(64))]
 struct Node {
     /// Lower x, y, z then upper x, y, z, each for both children.
     bounds: [[f32; 2]; 6],
     children: [Child; 2],
 }
 
+impl Node {
+    /// Both children with their boxes (lower then upper x, y, z).
+    fn halves(&self) -> [(Child, [f32; 6]); 2] {
+        [0, 1].map(|c| (self.children[c], self.bounds.map(|face| face[c])))
+    }
+}
+
 /// The f32 at or below `v`.
+#[inline(always)]
 fn down(v: f64) -> f32 {
     let f = v as f32;
     if f64::from(f) > v {
@@ -32,6 +46,7 @@ fn down(v: f64) -> f32 {
 }
 
 /// The f32 at or above `v`.
+#[inline(always)]
 fn up(v: f64) -> f32 {
     let f = v as f32;
     if f64::from(f) < v {
@@ -43,6 +58,7 @@ fn up(v: f64) -> f32 {
 
 /// The least f32 above `f`, a finite value or -infinity (f32::next_up,
 /// stable only since Rust 1.86).
+#[inline(always)]
 fn next_up(f: f32) -> f32 {
     let bits = f.to_bits();
     if f == 0.0 {
@@ -75,11 +91,27 @@ impl PairNode for Node {
     }
 }
 
-/// The hierarchy: inner nodes children first, the root's own box (a tree
-/// of one leaf has no inner node), and the item order the leaves index.
+/// Children of a node of the collapsed tree.
+const WIDTH: usize = 4;
+
+/// A node of the collapsed tree: its four children's boxes, per face (lower
+/// x, y, z then upper x, y, z) one lane a child, in f32 rounded outward.
+/// An empty slot has lower bounds +inf and upper -inf, which no ray enters.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct WideNode {
+    faces: [f32x4; 6],
+    children: [Child; WIDTH],
+}
+
+const NO_CHILD: Child = Child { index: 0, count: 0 };
+
+/// The hierarchy: nodes of four children (the root first), the root's own
+/// box in f64 (a tree of one leaf has no node), and the item order the
+/// leaves index.
 #[derive(Clone, Debug)]
 pub(crate) struct SpaceBvh {
-    nodes: Vec<Node>,
+    nodes: Vec<WideNode>,
     root: Child,
     root_bounds: [f64; 6],
     order: Vec<u32>,
@@ -91,99 +123,452 @@ impl SpaceBvh {
     pub(crate) fn build(bounds: impl Iterator<Item = Bounds4>) -> SpaceBvh {
         let built = build::<Node>(bounds);
         let (lo, hi) = (built.root_bounds.min, built.root_bounds.max);
+        let mut nodes = Vec::with_capacity(built.nodes.len() / 2 + 1);
+        let root = if built.root.count == 0 && !built.nodes.is_empty() {
+            Child {
+                index: collapse(&built.nodes, built.root.index, &mut nodes),
+                count: 0,
+            }
+        } else {
+            built.root
+        };
         SpaceBvh {
-            nodes: built.nodes,
-            root: built.root,
+            nodes,
+            root,
             root_bounds: [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z],
             order: built.order,
         }
     }
 
+    /// The item order of the leaves: position j of a leaf holds item
+    /// `order()[j]`.
+    pub(crate) fn order(&self) -> &[u32] {
+        &self.order
+    }
+
     /// The closest hit along the ray `o + s d` (comoving x, y, z) within
-    /// `range`: `test(item, range)` is called for every item whose box the
-    /// ray enters, with the range shrunk to the best hit so far.
+    /// `range`: `test(position, item, range)` is called for every item
+    /// whose box the ray enters, with its position in [`SpaceBvh::order`]
+    /// and the range shrunk to the best hit so far. The
+    /// nearest entered child is searched first, the others wait on a
+    /// stack. Ties go to the lower primitive, whatever the order.
     pub(crate) fn closest(
         &self,
         o: DVec3,
         d: DVec3,
         range: (f64, f64),
-        test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
+        mut test: impl FnMut(u32, u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         if self.root.count == 0 && self.nodes.is_empty() {
             return None; // no items
         }
-        let ray = SlabRay::new(o, d);
-        let entry = ray.enter_root(&self.root_bounds, range)?;
-        let enter = |node: &Node, r| ray.enter(&node.bounds, r);
-        closest_in(
-            (&self.nodes, &self.order),
-            (self.root, entry),
-            range,
-            enter,
-            test,
-        )
-    }
-}
-
-impl SlabRay {
-    /// Entry parameter of the ray into the root's box (f64) within `range`.
-    fn enter_root(&self, bounds: &[f64; 6], range: (f64, f64)) -> Option<f64> {
-        let (mut lo, mut hi) = range;
-        for a in 0..3 {
-            lo = lo.max((bounds[self.near[a]] - self.o[a]) * self.inv[a]);
-            hi = hi.min((bounds[self.far[a]] - self.o[a]) * self.inv[a]);
+        let inv = DVec3::ONE / d;
+        let entry = enter_root(&self.root_bounds, o, inv, range)?;
+        let ray = WideRay::new(o, inv);
+        let mut best: Option<Hit> = None;
+        let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
+        let mut stack = Stack::new();
+        let mut current = Some((self.root, down(entry)));
+        while let Some((child, entry)) = current.take().or_else(|| stack.pop()) {
+            if f64::from(entry) > hi(&best) {
+                continue;
+            }
+            if child.count > 0 {
+                let start = child.index;
+                for j in start..start + child.count {
+                    let item = self.order[j as usize];
+                    if let Some(h) = test(j, item, (range.0, hi(&best))) {
+                        best = Some(nearer(best, h));
+                    }
+                }
+                continue;
+            }
+            let node = &self.nodes[child.index as usize];
+            let (entries, entered) = ray.enter(node, (range.0, hi(&best)));
+            current = nearest_first(node, entries, entered, &mut stack);
         }
-        (lo <= hi).then_some(lo)
+        best
     }
 }
 
-/// A ray prepared for slab tests: origin, inverse direction, and which of
-/// a box's bounds is met first on each axis.
-struct SlabRay {
-    o: [f64; 3],
-    inv: [f64; 3],
-    /// Per axis, the index into a node's bounds of the near face and of the
+/// Of a node's entered children (bit i of `entered` for child i), the
+/// nearest, with the others pushed farthest first.
+#[inline(always)]
+fn nearest_first(
+    node: &WideNode,
+    entries: [f32; WIDTH],
+    entered: u32,
+    stack: &mut Stack,
+) -> Option<(Child, f32)> {
+    let at = |i: u32| (node.children[i as usize], entries[i as usize]);
+    match entered.count_ones() {
+        0 => None,
+        1 => Some(at(entered.trailing_zeros())),
+        _ => {
+            let mut found = [(NO_CHILD, 0.0f32); WIDTH];
+            let mut n = 0;
+            let mut bits = entered;
+            while bits != 0 {
+                let (child, e) = at(bits.trailing_zeros());
+                bits &= bits - 1;
+                let mut j = n;
+                while j > 0 && found[j - 1].1 < e {
+                    found[j] = found[j - 1];
+                    j -= 1;
+                }
+                found[j] = (child, e);
+                n += 1;
+            }
+            found[..n - 1].iter().for_each(|&f| stack.push(f));
+            Some(found[n - 1])
+        }
+    }
+}
+
+/// Collapses the binary subtree under inner node `n` into nodes of four
+/// children appended to `out` (a node before its children); returns its
+/// index. A node takes the binary node's two children and opens the
+/// largest inner ones among them (by surface area) until it has four, so
+/// the same leaves hold the same items.
+fn collapse(binary: &[Node], n: u32, out: &mut Vec<WideNode>) -> u32 {
+    let mut slots: Vec<(Child, [f32; 6])> = binary[n as usize].halves().into();
+    while slots.len() < WIDTH {
+        let open = (0..slots.len())
+            .filter(|&i| slots[i].0.count == 0)
+            .max_by(|&a, &b| area(&slots[a].1).total_cmp(&area(&slots[b].1)));
+        let Some(i) = open else { break };
+        let (child, _) = slots.remove(i);
+        let halves = binary[child.index as usize].halves();
+        slots.splice(i..i, halves);
+    }
+    let at = out.len();
+    out.push(WideNode {
+        faces: [f32x4::ZERO; 6],
+        children: [NO_CHILD; WIDTH],
+    });
+    let mut faces = [[f32::INFINITY; WIDTH]; 6];
+    faces[3..]
+        .iter_mut()
+        .for_each(|f| *f = [f32::NEG_INFINITY; WIDTH]);
+    for (slot, (child, bounds)) in slots.into_iter().enumerate() {
+        for (face, &b) in faces.iter_mut().zip(&bounds) {
+            face[slot] = b;
+        }
+        out[at].children[slot] = if child.count > 0 {
+            child
+        } else {
+            Child {
+                index: collapse(binary, child.index, out),
+                count: 0,
+            }
+        };
+    }
+    out[at].faces = faces.map(f32x4::from);
+    at as u32
+}
+
+/// Half the surface area of a box given as lower then upper x, y, z.
+fn area(b: &[f32; 6]) -> f32 {
+    let [x, y, z] = [0, 1, 2].map(|a| (b[a + 3] - b[a]).max(0.0));
+    x * y + y * z + z * x
+}
+
+/// The traversal's stack of (child, entry parameter): an array that is all
+/// a ray needs in practice, cheap to set up for each of the searches of a
+/// ray (one per stretch it meets), spilling into a vector beyond it.
+struct Stack {
+    fixed: [(Child, f32); 64],
+    len: usize,
+    spill: Vec<(Child, f32)>,
+}
+
+impl Stack {
+    fn new() -> Stack {
+        Stack {
+            fixed: [(NO_CHILD, 0.0); 64],
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+
+    #[inline(always)]
+    fn push(&mut self, entry: (Child, f32)) {
+        if self.len < self.fixed.len() {
+            self.fixed[self.len] = entry;
+            self.len += 1;
+        } else {
+            self.spill.push(entry);
+        }
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<(Child, f32)> {
+        if let Some(e) = self.spill.pop() {
+            return Some(e);
+        }
+        self.len = self.len.checked_sub(1)?;
+        Some(self.fixed[self.len])
+    }
+}
+
+/// Entry parameter of the ray `o + s d` (`inv` = 1/d) into the root's box
+/// (f64) within `range`. A NaN (0 * inf: the origin on a slab face of an
+/// axis the ray is parallel to) is dropped by f64::max/min, which keeps
+/// the test conservative.
+#[inline(always)]
+fn enter_root(bounds: &[f64; 6], o: DVec3, inv: DVec3, range: (f64, f64)) -> Option<f64> {
+    let (mut lo, mut hi) = range;
+    for a in 0..3 {
+        let (near, far) = if inv[a] < 0.0 { (a + 3, a) } else { (a, a + 3) };
+        lo = lo.max((bounds[near] - o[a]) * inv[a]);
+        hi = hi.min((bounds[far] - o[a]) * inv[a]);
+    }
+    (lo <= hi).then_some(lo)
+}
+
+/// Relative margin of the f32 slab parameters: each is (face - origin) *
+/// (1/d) with three roundings to nearest of at most 2^-24 each (the
+/// subtraction, 1/d to f32, the product), and the margin itself is applied
+/// with one more; 2^-20 covers them with room to spare.
+const MARGIN: f32 = 1.0 / (1u32 << 20) as f32;
+/// Absolute margin, for parameters in f32's subnormal range (where the
+/// roundings are absolute, at most 2^-150 each).
+const TINY: f32 = f32::MIN_POSITIVE;
+
+/// A ray prepared for the four-lane f32 slab test.
+///
+/// The test is conservative, so that a box the ray enters is never culled:
+/// - each face is met from an origin rounded to f32 toward the side that
+///   moves the crossing outward (for a near face, so that it is crossed no
+///   later; for a far face, no sooner): per axis, one origin for the near
+///   faces and one for the far;
+/// - the entry and exit so found are moved out by [`MARGIN`] of their size
+///   and by [`TINY`], which covers the rounding of the subtraction, of 1/d
+///   and of the product;
+/// - a NaN (0 * inf: an axis the ray is parallel to, its origin exactly on
+///   a face) is dropped, as in f64.
+///
+/// Parameters beyond f32's range become infinite, and a direction component
+/// below 2^-128 makes 1/d infinite: such a ray is treated as parallel to
+/// that axis, which can cull a box only when the origin lies within
+/// 2^-128 of the searched range of the slab's face.
+struct WideRay {
+    /// Per axis: the origin for the near faces, for the far faces, and 1/d.
+    near_o: [f32x4; 3],
+    far_o: [f32x4; 3],
+    inv: [f32x4; 3],
+    /// Per axis, the index into a node's faces of the near face and of the
     /// far one (lower then upper when the direction is positive).
     near: [usize; 3],
     far: [usize; 3],
 }
 
-impl SlabRay {
-    fn new(o: DVec3, d: DVec3) -> SlabRay {
-        let inv = (DVec3::ONE / d).to_array();
-        let negative = |a: usize| inv[a] < 0.0;
-        SlabRay {
-            o: o.to_array(),
-            inv,
-            near: [0, 1, 2].map(|a| if negative(a) { a + 3 } else { a }),
-            far: [0, 1, 2].map(|a| if negative(a) { a } else { a + 3 }),
-        }
-    }
-
-    /// Entry parameters of the ray into both boxes of `bounds` within
-    /// `range`. A NaN (0 * inf: the origin on a slab face of an axis the
-    /// ray is parallel to) is dropped by f64::max/min, which keeps the test
-    /// conservative.
+impl WideRay {
     #[inline(always)]
-    fn enter(&self, bounds: &[[f32; 2]; 6], range: (f64, f64)) -> [Option<f64>; 2] {
-        let (mut lo, mut hi) = ([range.0; 2], [range.1; 2]);
+    fn new(o: DVec3, inv: DVec3) -> WideRay {
+        let mut ray = WideRay {
+            near_o: [f32x4::ZERO; 3],
+            far_o: [f32x4::ZERO; 3],
+            inv: [f32x4::ZERO; 3],
+            near: [0, 1, 2],
+            far: [3, 4, 5],
+        };
         for a in 0..3 {
-            let (near, far) = (&bounds[self.near[a]], &bounds[self.far[a]]);
-            for c in 0..2 {
-                lo[c] = lo[c].max((f64::from(near[c]) - self.o[a]) * self.inv[a]);
-                hi[c] = hi[c].min((f64::from(far[c]) - self.o[a]) * self.inv[a]);
+            let (lower, upper) = (f32x4::splat(down(o[a])), f32x4::splat(up(o[a])));
+            ray.inv[a] = f32x4::splat(inv[a] as f32);
+            // 1/(-0) = -inf: a direction of -0 is negative here.
+            if inv[a].is_sign_negative() {
+                (ray.near_o[a], ray.far_o[a]) = (lower, upper);
+                (ray.near[a], ray.far[a]) = (a + 3, a);
+            } else {
+                (ray.near_o[a], ray.far_o[a]) = (upper, lower);
             }
         }
-        [
-            (lo[0] <= hi[0]).then_some(lo[0]),
-            (lo[1] <= hi[1]).then_some(lo[1]),
-        ]
+        ray
     }
+
+    /// Where the ray enters each of a node's four boxes within `range`,
+    /// and which it enters (bit i for child i).
+    #[inline(always)]
+    fn enter(&self, node: &WideNode, range: (f64, f64)) -> ([f32; WIDTH], u32) {
+        let mut entry = f32x4::splat(down(range.0));
+        let mut exit = f32x4::splat(up(range.1));
+        for a in 0..3 {
+            let near = (node.faces[self.near[a]] - self.near_o[a]) * self.inv[a];
+            let far = (node.faces[self.far[a]] - self.far_o[a]) * self.inv[a];
+            entry = max_dropping_nan(entry, near);
+            exit = min_dropping_nan(exit, far);
+        }
+        let (less, more) = (f32x4::splat(1.0 - MARGIN), f32x4::splat(1.0 + MARGIN));
+        let tiny = f32x4::splat(TINY);
+        let entry = (entry * less).fast_min(entry * more) - tiny;
+        let exit = (exit * less).fast_max(exit * more) + tiny;
+        (entry.to_array(), entry.cmp_le(exit).move_mask() as u32)
+    }
+}
+
+/// Lanewise max(acc, t), a NaN lane of `t` dropped (`acc` is never NaN).
+#[inline(always)]
+fn max_dropping_nan(acc: f32x4, t: f32x4) -> f32x4 {
+    // SSE's maxps returns its second operand when either is NaN.
+    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+    let m = t.fast_max(acc);
+    #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+    let m = acc.max(t);
+    m
+}
+
+/// Lanewise min(acc, t), a NaN lane of `t` dropped (`acc` is never NaN).
+#[inline(always)]
+fn min_dropping_nan(acc: f32x4, t: f32x4) -> f32x4 {
+    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+    let m = t.fast_min(acc);
+    #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+    let m = acc.min(t);
+    m
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::SplitMix64;
+    use glam::DVec4;
+
+    /// A box (lower then upper x, y, z) with f32 faces, at a random place
+    /// and size of the scale `scale`.
+    fn random_box(rng: &mut SplitMix64, scale: f64) -> [f64; 6] {
+        let c = [0; 3].map(|_| (rng.next_f64() - 0.5) * scale);
+        let h = [0; 3].map(|_| rng.next_f64() * 0.1 * scale);
+        let (lo, hi) = (
+            [0, 1, 2].map(|a| f64::from(down(c[a] - h[a]))),
+            [0, 1, 2].map(|a| f64::from(up(c[a] + h[a]))),
+        );
+        [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]]
+    }
+
+    /// A ray aimed exactly at a corner, an edge or a face of `b` from up
+    /// to 1000 times its scale away; one in four runs parallel to an axis
+    /// with its origin on a face plane (signed zero directions included).
+    fn aimed_ray(rng: &mut SplitMix64, b: &[f64; 6], scale: f64) -> (DVec3, DVec3) {
+        let mut target = DVec3::ZERO;
+        let kind = (rng.next_u64() % 3) as usize; // 0 corner, 1 edge, 2 face
+        for a in 0..3 {
+            let on_face = a + kind < 3;
+            let side = (rng.next_u64() % 2) as usize * 3;
+            let t = rng.next_f64();
+            target[a] = if on_face {
+                b[a + side]
+            } else {
+                b[a] + t * (b[a + 3] - b[a])
+            };
+        }
+        let mut d = DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) * 2.0 - 1.0;
+        if rng.next_u64() % 4 == 0 {
+            let a = (rng.next_u64() % 3) as usize;
+            d[a] = if rng.next_u64() % 2 == 0 { 0.0 } else { -0.0 };
+            target[a] = b[a + 3 * (rng.next_u64() % 2) as usize];
+        }
+        let d = d.normalize();
+        let far = scale * (1.0 + 1000.0 * rng.next_f64());
+        let mut o = target - d * far;
+        for a in 0..3 {
+            if d[a] == 0.0 {
+                o[a] = target[a];
+            }
+        }
+        (o, d)
+    }
+
+    /// The same slab test in f32 without care: origin and 1/d rounded to
+    /// nearest, no margin (the negative control).
+    fn naive_enters(b: &[f64; 6], o: DVec3, d: DVec3, range: (f64, f64)) -> bool {
+        let (mut lo, mut hi) = (range.0 as f32, range.1 as f32);
+        for a in 0..3 {
+            let inv = (1.0 / d[a]) as f32;
+            let (t0, t1) = (
+                (b[a] as f32 - o[a] as f32) * inv,
+                (b[a + 3] as f32 - o[a] as f32) * inv,
+            );
+            lo = lo.max(t0.min(t1));
+            hi = hi.min(t0.max(t1));
+        }
+        lo <= hi
+    }
+
+    /// Rays aimed at the corners, edges and faces of boxes at scales from
+    /// 0.05 to 1e5, parallel to an axis or not: the four-lane f32 test
+    /// enters every box the f64 test enters, no later; the naive f32 test
+    /// (the negative control) culls some.
+    #[test]
+    fn the_f32_slab_test_never_culls_a_box_the_ray_enters() {
+        let mut rng = SplitMix64::new(21);
+        let (mut entered, mut naive_culled) = (0, 0);
+        for n in 0..200_000 {
+            let scale = [0.05, 1.0, 300.0, 1e5][n % 4];
+            let boxes: [[f64; 6]; 4] = [0; 4].map(|_| random_box(&mut rng, scale));
+            let lane = n % 4;
+            let (o, d) = aimed_ray(&mut rng, &boxes[lane], scale);
+            let inv = DVec3::ONE / d;
+            let range = match n % 3 {
+                0 => (0.0, f64::INFINITY),
+                1 => (-scale, 1e3 * scale),
+                _ => (0.0, (boxes[lane][0] - o.x).abs() + scale),
+            };
+            let node = WideNode {
+                faces: [0, 1, 2, 3, 4, 5].map(|f| f32x4::from(boxes.map(|b| b[f] as f32))),
+                children: [NO_CHILD; WIDTH],
+            };
+            let (entries, mask) = WideRay::new(o, inv).enter(&node, range);
+            for (k, b) in boxes.iter().enumerate() {
+                let Some(exact) = enter_root(b, o, inv, range) else {
+                    continue;
+                };
+                entered += 1;
+                assert!(
+                    mask & (1 << k) != 0 && f64::from(entries[k]) <= exact,
+                    "culled: box {b:?}, ray {o} + s {d}, range {range:?}"
+                );
+                if k == lane && !naive_enters(b, o, d, range) {
+                    naive_culled += 1;
+                }
+            }
+        }
+        assert!(entered > 100_000, "{entered}");
+        assert!(naive_culled > 100, "the control culled only {naive_culled}");
+    }
+
+    /// Every item whose box a ray enters is tested, through the collapsed
+    /// tree, for rays aimed at the items' corners, edges and faces.
+    #[test]
+    fn every_item_whose_box_the_ray_enters_is_tested() {
+        let mut rng = SplitMix64::new(22);
+        for scale in [0.05, 1.0, 1e5] {
+            let items: Vec<[f64; 6]> = (0..2000).map(|_| random_box(&mut rng, scale)).collect();
+            let bvh = SpaceBvh::build(items.iter().map(|b| {
+                Bounds4::new(
+                    DVec4::new(b[0], b[1], b[2], 0.0),
+                    DVec4::new(b[3], b[4], b[5], 1.0),
+                )
+            }));
+            assert!(bvh.nodes.len() > 100);
+            for _ in 0..300 {
+                let aim = (rng.next_u64() % items.len() as u64) as usize;
+                let (o, d) = aimed_ray(&mut rng, &items[aim], scale);
+                let range = (0.0, f64::INFINITY);
+                let mut tested = vec![false; items.len()];
+                bvh.closest(o, d, range, |_, item, _| {
+                    tested[item as usize] = true;
+                    None
+                });
+                let inv = DVec3::ONE / d;
+                for (i, b) in items.iter().enumerate() {
+                    if enter_root(b, o, inv, range).is_some() {
+                        assert!(tested[i], "item {i} {b:?} skipped by {o} + s {d}");
+                    }
+                }
+            }
+        }
+    }
 
     /// Rounded outward, every f32 bound holds its f64 value, and is the
     /// nearest f32 that does.

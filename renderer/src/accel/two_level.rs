@@ -166,24 +166,32 @@ impl TwoLevel {
         }
     }
 
+    /// The order in which stretch `k`'s hierarchy holds its prisms: at
+    /// position j, prism `order(k)[j]` of the stretch (counted from its
+    /// first).
+    pub(crate) fn order(&self, k: usize) -> &[u32] {
+        self.stretches[k].bvh.order()
+    }
+
     /// The closest hit along the ray `o + s d` (lab frame, (x, y, z, t))
-    /// within `range`: `test(stretch, prism, range)` is called for every
-    /// prism whose boxes the ray enters, with its stretch's index and the
-    /// range shrunk to the best hit so far.
+    /// within `range`: `test(stretch, prism, position, range)` is called
+    /// for every prism whose boxes the ray enters, with its stretch's
+    /// index, its position in [`TwoLevel::order`] and the range shrunk to
+    /// the best hit so far.
     pub(crate) fn closest(
         &self,
         o: DVec4,
         d: DVec4,
         range: (f64, f64),
-        mut test: impl FnMut(u32, u32, (f64, f64)) -> Option<Hit>,
+        mut test: impl FnMut(u32, u32, u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         self.top.closest(o, d, range, |k, r| {
             let slice = &self.slices[k as usize];
             let r = slice.window(o, d, r)?;
             let stretch = &self.stretches[slice.stretch as usize];
             let (oc, dc) = stretch.to_comoving(o, d);
-            stretch.bvh.closest(oc, dc, r, |p, r| {
-                test(slice.stretch, stretch.first_prism + p, r)
+            stretch.bvh.closest(oc, dc, r, |j, p, r| {
+                test(slice.stretch, stretch.first_prism + p, j, r)
             })
         })
     }

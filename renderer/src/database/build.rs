@@ -290,6 +290,45 @@ fn keyframed_box(g: &StretchPrisms, corners: &PrismCorners) -> (DVec3, DVec3) {
     (a - pad, b + pad)
 }
 
+/// The triangles of translations stored in the order their stretch's
+/// hierarchy holds them (so that a leaf's triangles lie side by side, read
+/// in one sweep), and where each prism's is: at `slot + stored_at[slot +
+/// k]` for prism k of a run at `slot`. Moved in place, cycle by cycle.
+fn in_leaf_order(
+    mut comoving: Vec<[DVec3; 3]>,
+    runs: &[Run],
+    accel: &TwoLevel,
+) -> (Vec<[DVec3; 3]>, Vec<u32>) {
+    let mut stored_at: Vec<u32> = (0..comoving.len()).map(|_| 0).collect();
+    for (k, run) in runs.iter().enumerate() {
+        if !run.stretch.translation {
+            continue;
+        }
+        let order = accel.order(k);
+        let triangles = &mut comoving[run.slot..run.slot + order.len()];
+        let mut done = vec![false; order.len()];
+        for start in 0..order.len() {
+            if done[start] {
+                continue;
+            }
+            let first = triangles[start];
+            let mut j = start;
+            loop {
+                done[j] = true;
+                let from = order[j] as usize;
+                stored_at[run.slot + from] = j as u32;
+                if from == start {
+                    triangles[j] = first;
+                    break;
+                }
+                triangles[j] = triangles[from];
+                j = from;
+            }
+        }
+    }
+    (comoving, stored_at)
+}
+
 impl Database {
     /// Temporally extrudes every object of `scene`. With `lorentz` on, V_obj
     /// objects are contracted along their velocity and their lifetimes and
@@ -309,10 +348,12 @@ impl Database {
                 keyframed_box(&run.stretch, &b.keyframed.corners[slot])
             }
         });
+        let (comoving, stored_at) = in_leaf_order(b.comoving, &b.runs, &accel);
         Ok(Database {
             records,
             runs: b.runs,
-            comoving: b.comoving,
+            comoving,
+            stored_at,
             keyframed: b.keyframed,
             accel,
             spheres: b.spheres,

@@ -59,6 +59,10 @@ pub struct Database {
     /// such a prism needs, since its events are the triangle carried along
     /// the stretch's worldline.
     comoving: Vec<[DVec3; 3]>,
+    /// Where each translation prism's triangle is in [`Database::comoving`]:
+    /// prism k of a run at `slot` at `slot + stored_at[slot + k]`, its
+    /// position in its stretch's hierarchy (a leaf's side by side).
+    stored_at: Vec<u32>,
     keyframed: Keyframed,
     /// The two-level hierarchy over the prisms.
     accel: TwoLevel,
@@ -109,6 +113,11 @@ impl Database {
         (run, p as usize - run.stretch.prisms.start)
     }
 
+    /// The comoving triangle of prism `k` of translation `run`.
+    fn triangle(&self, run: &Run, k: usize) -> &[DVec3; 3] {
+        &self.comoving[run.slot + self.stored_at[run.slot + k] as usize]
+    }
+
     /// Prism `p`, by index in `0..prism_count()`: its object, triangle,
     /// normals and lab times.
     pub fn prism(&self, p: u32) -> Prism {
@@ -116,7 +125,7 @@ impl Database {
         if !run.stretch.translation {
             return self.keyframed.prisms[run.slot + k];
         }
-        let c = &self.comoving[run.slot + k];
+        let c = self.triangle(run, k);
         let normal = (c[1] - c[0]).cross(c[2] - c[0]).normalize();
         Prism {
             object: run.object,
@@ -134,7 +143,7 @@ impl Database {
         if !run.stretch.translation {
             return self.keyframed.corners[run.slot + k];
         }
-        let c = self.comoving[run.slot + k];
+        let c = *self.triangle(run, k);
         let start = run.stretch.origin;
         let bottom = c.map(|x| Event::new(start.t, start.x + x));
         let top = bottom.map(|e| e + run.extrusion);
@@ -150,7 +159,7 @@ impl Database {
         let g = &run.stretch;
         if g.translation {
             let at = g.origin.x + g.velocity * (t - g.origin.t);
-            return self.comoving[run.slot + k].map(|x| Event::new(t, at + x));
+            return self.triangle(run, k).map(|x| Event::new(t, at + x));
         }
         let c = &self.keyframed.corners[run.slot + k];
         let f = (t - g.span.0) / (g.span.1 - g.span.0);
@@ -293,7 +302,11 @@ impl Database {
                 for (k, run) in self.runs.iter().enumerate() {
                     for p in run.stretch.prisms.clone() {
                         let hi = best.map_or(range.1, |b| b.s);
-                        if let Some(h) = tester.prism(k as u32, p as u32, (range.0, hi)) {
+                        let j = match run.stretch.translation {
+                            true => self.stored_at[run.slot + p - run.stretch.prisms.start],
+                            false => 0, // keyframe intervals keep mesh order
+                        };
+                        if let Some(h) = tester.prism(k as u32, p as u32, j, (range.0, hi)) {
                             best = Some(nearer(best, h));
                         }
                     }
@@ -303,7 +316,7 @@ impl Database {
             Traversal::Bvh => {
                 let (o, d) = (tester.o, tester.d);
                 self.accel
-                    .closest(o, d, range, |run, p, r| tester.prism(run, p, r))
+                    .closest(o, d, range, |run, p, j, r| tester.prism(run, p, j, r))
             }
         }
     }
@@ -324,8 +337,9 @@ struct Tester<'a, T> {
 
 impl<T: Trace> Tester<'_, T> {
     /// The closest hit on prism `p` of run `k` within `range`: a
-    /// translation's whole, or a keyframe interval's three tetrahedra.
-    fn prism(&mut self, k: u32, p: u32, range: (f64, f64)) -> Option<Hit> {
+    /// translation's whole (its triangle stored at position `j` of the run),
+    /// or a keyframe interval's three tetrahedra.
+    fn prism(&mut self, k: u32, p: u32, j: u32, range: (f64, f64)) -> Option<Hit> {
         let run = &self.db.runs[k as usize];
         if !run.stretch.translation {
             let mut best: Option<Hit> = None;
@@ -346,7 +360,7 @@ impl<T: Trace> Tester<'_, T> {
                 ray
             }
         };
-        let corners = &self.db.comoving[run.slot + p as usize - run.stretch.prisms.start];
+        let corners = &self.db.comoving[run.slot + j as usize];
         let result = match comoving {
             None => Err(Miss::Parallel),
             Some(c) => intersect_prism(corners, &c, run.stretch.span, range).map(|(s, b)| Hit {

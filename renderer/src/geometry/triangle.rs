@@ -100,7 +100,7 @@ impl ComovingRay {
     }
 
     /// A corner relative to the ray, sheared: the ray is the third axis.
-    #[inline]
+    #[inline(always)]
     fn sheared(&self, corner: DVec3) -> DVec3 {
         let r = corner - self.origin;
         let [kx, ky, kz] = self.axes;
@@ -137,7 +137,11 @@ pub(crate) fn intersect_prism(
     span: (f64, f64),
     range: (f64, f64),
 ) -> Result<(f64, [f64; 3]), Miss> {
-    let [a, b, c] = corners.map(|p| ray.sheared(p));
+    let (a, b, c) = (
+        ray.sheared(corners[0]),
+        ray.sheared(corners[1]),
+        ray.sheared(corners[2]),
+    );
     let (u, v, w) = (edge(c, b), edge(a, c), edge(b, a));
     if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
         let det = u + v + w;
