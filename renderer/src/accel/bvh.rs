@@ -411,17 +411,30 @@ impl Bvh {
 
     /// Entry parameter of the ray into the box `min..max` within `range`,
     /// if any. `inv` holds 1/d per axis (infinite for d = 0: such an axis
-    /// constrains nothing unless the origin lies outside the slab).
+    /// constrains nothing unless the origin lies outside the slab); the
+    /// near face of each axis is the lower one when 1/d is positive
+    /// (+inf included) and the upper one otherwise.
     #[inline]
     fn enter(min: DVec4, max: DVec4, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
         let a = (min - o) * inv;
         let b = (max - o) * inv;
-        // NaN (0 * inf: the origin on a slab face of a parallel axis) is
-        // dropped by f64::min/max, which keeps the test conservative.
-        let near = a.min(b);
-        let far = a.max(b);
-        let lo = range.0.max(near.x).max(near.y).max(near.z).max(near.w);
-        let hi = range.1.min(far.x).min(far.y).min(far.z).min(far.w);
+        let (mut lo, mut hi) = range;
+        for k in 0..4 {
+            let (near, far) = if inv[k] < 0.0 {
+                (b[k], a[k])
+            } else {
+                (a[k], b[k])
+            };
+            // A NaN (0 * inf: the origin on a slab face of a parallel
+            // axis) fails both comparisons and is dropped, which keeps the
+            // test conservative.
+            if near > lo {
+                lo = near;
+            }
+            if far < hi {
+                hi = far;
+            }
+        }
         (lo <= hi).then_some(lo)
     }
 
@@ -497,6 +510,39 @@ mod tests {
         moved[7].min.x += 50.0;
         moved[7].max.x += 50.0;
         assert_ne!(built_on(2, &moved).0.nodes, one.0.nodes);
+    }
+
+    /// A ray parallel to an axis (either signed zero) whose origin lies
+    /// exactly on one of the box's faces on that axis enters it; one just
+    /// outside does not. (Taking the near face as the lesser of the two
+    /// crossings, as before, let the NaN of 0 * inf on the lower face pass
+    /// the upper face's +inf as the entry: such boxes were culled.)
+    #[test]
+    fn a_parallel_ray_from_a_face_enters_the_box() {
+        let (min, max) = (
+            DVec4::new(0.0, 0.0, 0.0, 0.0),
+            DVec4::new(1.0, 1.0, 1.0, 1.0),
+        );
+        for axis in 0..4 {
+            for zero in [0.0, -0.0] {
+                for (face, inside) in [
+                    (0.0, true),
+                    (1.0, true),
+                    (-1e-9, false),
+                    (1.0 + 1e-9, false),
+                ] {
+                    let mut o = DVec4::splat(0.5) - DVec4::new(3.0, 2.0, 2.5, 1.5);
+                    let mut d = DVec4::new(3.0, 2.0, 2.5, 1.5);
+                    o[axis] = face;
+                    d[axis] = zero;
+                    let entered = Bvh::enter(min, max, o, DVec4::ONE / d, (0.0, 10.0)).is_some();
+                    assert_eq!(
+                        entered, inside,
+                        "axis {axis}, d = {zero:?}, origin on {face}"
+                    );
+                }
+            }
+        }
     }
 
     /// Every item sits in exactly one leaf, inside every box on its path.

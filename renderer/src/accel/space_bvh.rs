@@ -313,15 +313,23 @@ impl Stack {
 
 /// Entry parameter of the ray `o + s d` (`inv` = 1/d) into the root's box
 /// (f64) within `range`. A NaN (0 * inf: the origin on a slab face of an
-/// axis the ray is parallel to) is dropped by f64::max/min, which keeps
-/// the test conservative.
+/// axis the ray is parallel to) fails both comparisons and is dropped,
+/// which keeps the test conservative.
 #[inline(always)]
 fn enter_root(bounds: &[f64; 6], o: DVec3, inv: DVec3, range: (f64, f64)) -> Option<f64> {
     let (mut lo, mut hi) = range;
     for a in 0..3 {
         let (near, far) = if inv[a] < 0.0 { (a + 3, a) } else { (a, a + 3) };
-        lo = lo.max((bounds[near] - o[a]) * inv[a]);
-        hi = hi.min((bounds[far] - o[a]) * inv[a]);
+        let (t_near, t_far) = (
+            (bounds[near] - o[a]) * inv[a],
+            (bounds[far] - o[a]) * inv[a],
+        );
+        if t_near > lo {
+            lo = t_near;
+        }
+        if t_far < hi {
+            hi = t_far;
+        }
     }
     (lo <= hi).then_some(lo)
 }
