@@ -19,8 +19,7 @@ use crate::geometry::{nearer, Hit};
 use glam::DVec4;
 
 const LEAF_SIZE: usize = 4;
-/// Deeper subtrees become leaves, so that the traversal stack (one entry a
-/// level) never overflows.
+/// Deeper subtrees become leaves (a bound on the recursion of the build).
 const MAX_DEPTH: usize = 48;
 
 /// An axis-aligned box of spacetime: lower and upper corners, (x, y, z, t).
@@ -55,7 +54,7 @@ pub(crate) fn rounding_margin(min: DVec4, max: DVec4) -> DVec4 {
 }
 
 /// What a node's child is: an inner node, or a leaf's items.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(super) struct Child {
     /// Inner: index of the node; leaf: first index into the item order.
     pub(super) index: u32,
@@ -97,13 +96,9 @@ pub(super) fn closest_in<N: PairNode>(
 ) -> Option<Hit> {
     let mut best: Option<Hit> = None;
     let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
-    let mut stack = [(root, entry); MAX_DEPTH + 1];
-    let mut top: usize = 0;
+    let mut stack = Stack::new();
     let mut current = Some((root, entry));
-    while let Some((child, entry)) = current.take().or_else(|| {
-        top = top.checked_sub(1)?;
-        Some(stack[top])
-    }) {
+    while let Some((child, entry)) = current.take().or_else(|| stack.pop()) {
         if entry > hi(&best) {
             continue;
         }
@@ -125,8 +120,7 @@ pub(super) fn closest_in<N: PairNode>(
                 } else {
                     ((b, y), (a, x))
                 };
-                stack[top] = far;
-                top += 1;
+                stack.push(far);
                 Some(near)
             }
             [Some(x), None] => Some((a, x)),
@@ -135,6 +129,45 @@ pub(super) fn closest_in<N: PairNode>(
         };
     }
     best
+}
+
+/// A traversal's stack of (child, entry parameter): a small array, zeroed
+/// (cheap to set up for each of the many searches of a ray, one per
+/// stretch it meets), that holds all a ray needs in practice, spilling
+/// into a vector beyond it.
+pub(super) struct Stack<E> {
+    fixed: [E; 32],
+    len: usize,
+    spill: Vec<E>,
+}
+
+impl<E: Copy + Default> Stack<E> {
+    pub(super) fn new() -> Stack<E> {
+        Stack {
+            fixed: [E::default(); 32],
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+
+    #[inline(always)]
+    pub(super) fn push(&mut self, entry: E) {
+        if self.len < self.fixed.len() {
+            self.fixed[self.len] = entry;
+            self.len += 1;
+        } else {
+            self.spill.push(entry);
+        }
+    }
+
+    #[inline(always)]
+    pub(super) fn pop(&mut self) -> Option<E> {
+        if let Some(e) = self.spill.pop() {
+            return Some(e);
+        }
+        self.len = self.len.checked_sub(1)?;
+        Some(self.fixed[self.len])
+    }
 }
 
 /// An inner node of the lab-frame hierarchy: both children's 4D boxes.

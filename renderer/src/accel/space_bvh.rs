@@ -12,7 +12,7 @@
 //! so which prisms are tested, and so which hit is found, is decided by
 //! the leaf tests alone.
 
-use super::bvh::{build, Bounds4, Child, PairNode};
+use super::bvh::{build, Bounds4, Child, PairNode, Stack};
 use crate::geometry::{nearer, Hit};
 use glam::DVec3;
 use wide::{f32x4, CmpLe};
@@ -198,7 +198,7 @@ fn nearest_first(
     node: &WideNode,
     entries: [f32; WIDTH],
     entered: u32,
-    stack: &mut Stack,
+    stack: &mut Stack<(Child, f32)>,
 ) -> Option<(Child, f32)> {
     let at = |i: u32| (node.children[i as usize], entries[i as usize]);
     match entered.count_ones() {
@@ -271,44 +271,6 @@ fn collapse(binary: &[Node], n: u32, out: &mut Vec<WideNode>) -> u32 {
 fn area(b: &[f32; 6]) -> f32 {
     let [x, y, z] = [0, 1, 2].map(|a| (b[a + 3] - b[a]).max(0.0));
     x * y + y * z + z * x
-}
-
-/// The traversal's stack of (child, entry parameter): an array that is all
-/// a ray needs in practice, cheap to set up for each of the searches of a
-/// ray (one per stretch it meets), spilling into a vector beyond it.
-struct Stack {
-    fixed: [(Child, f32); 64],
-    len: usize,
-    spill: Vec<(Child, f32)>,
-}
-
-impl Stack {
-    fn new() -> Stack {
-        Stack {
-            fixed: [(NO_CHILD, 0.0); 64],
-            len: 0,
-            spill: Vec::new(),
-        }
-    }
-
-    #[inline(always)]
-    fn push(&mut self, entry: (Child, f32)) {
-        if self.len < self.fixed.len() {
-            self.fixed[self.len] = entry;
-            self.len += 1;
-        } else {
-            self.spill.push(entry);
-        }
-    }
-
-    #[inline(always)]
-    fn pop(&mut self) -> Option<(Child, f32)> {
-        if let Some(e) = self.spill.pop() {
-            return Some(e);
-        }
-        self.len = self.len.checked_sub(1)?;
-        Some(self.fixed[self.len])
-    }
 }
 
 /// Entry parameter of the ray `o + s d` (`inv` = 1/d) into the root's box
