@@ -106,14 +106,12 @@ struct WideNode {
 
 const NO_CHILD: Child = Child { index: 0, count: 0 };
 
-/// The hierarchy: nodes of four children (the root first), the root's own
-/// box in f64 (a tree of one leaf has no node), and the item order the
-/// leaves index.
+/// The hierarchy: nodes of four children (the root first; a tree of one
+/// leaf has none) and the item order the leaves index.
 #[derive(Clone, Debug)]
 pub(crate) struct SpaceBvh {
     nodes: Vec<WideNode>,
     root: Child,
-    root_bounds: [f64; 6],
     order: Vec<u32>,
 }
 
@@ -122,7 +120,6 @@ impl SpaceBvh {
     /// in order: item i is the i-th bounds.
     pub(crate) fn build(bounds: impl Iterator<Item = Bounds4>) -> SpaceBvh {
         let built = build::<Node>(bounds);
-        let (lo, hi) = (built.root_bounds.min, built.root_bounds.max);
         let mut nodes = Vec::with_capacity(built.nodes.len() / 2 + 1);
         let root = if built.root.count == 0 && !built.nodes.is_empty() {
             Child {
@@ -135,7 +132,6 @@ impl SpaceBvh {
         SpaceBvh {
             nodes,
             root,
-            root_bounds: [lo.x, lo.y, lo.z, hi.x, hi.y, hi.z],
             order: built.order,
         }
     }
@@ -162,13 +158,13 @@ impl SpaceBvh {
         if self.root.count == 0 && self.nodes.is_empty() {
             return None; // no items
         }
-        let inv = DVec3::ONE / d;
-        let entry = enter_root(&self.root_bounds, o, inv, range)?;
-        let ray = WideRay::new(o, inv);
+        // No test of the root's own box: the top level has tested the time
+        // slice's, and the root node tests its children's.
+        let ray = WideRay::new(o, DVec3::ONE / d);
         let mut best: Option<Hit> = None;
         let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
         let mut stack = Stack::new();
-        let mut current = Some((self.root, down(entry)));
+        let mut current = Some((self.root, down(range.0)));
         while let Some((child, entry)) = current.take().or_else(|| stack.pop()) {
             if f64::from(entry) > hi(&best) {
                 continue;
@@ -271,29 +267,6 @@ fn collapse(binary: &[Node], n: u32, out: &mut Vec<WideNode>) -> u32 {
 fn area(b: &[f32; 6]) -> f32 {
     let [x, y, z] = [0, 1, 2].map(|a| (b[a + 3] - b[a]).max(0.0));
     x * y + y * z + z * x
-}
-
-/// Entry parameter of the ray `o + s d` (`inv` = 1/d) into the root's box
-/// (f64) within `range`. A NaN (0 * inf: the origin on a slab face of an
-/// axis the ray is parallel to) fails both comparisons and is dropped,
-/// which keeps the test conservative.
-#[inline(always)]
-fn enter_root(bounds: &[f64; 6], o: DVec3, inv: DVec3, range: (f64, f64)) -> Option<f64> {
-    let (mut lo, mut hi) = range;
-    for a in 0..3 {
-        let (near, far) = if inv[a] < 0.0 { (a + 3, a) } else { (a, a + 3) };
-        let (t_near, t_far) = (
-            (bounds[near] - o[a]) * inv[a],
-            (bounds[far] - o[a]) * inv[a],
-        );
-        if t_near > lo {
-            lo = t_near;
-        }
-        if t_far < hi {
-            hi = t_far;
-        }
-    }
-    (lo <= hi).then_some(lo)
 }
 
 /// Relative margin of the f32 slab parameters: each is (face - origin) *
@@ -404,6 +377,28 @@ mod tests {
     use crate::rng::SplitMix64;
     use glam::DVec4;
 
+    /// Entry parameter of the ray `o + s d` (`inv` = 1/d) into the box (f64)
+    /// within `range`: the reference the f32 test is held to. A NaN (0 * inf: the origin on a slab face of an
+    /// axis the ray is parallel to) fails both comparisons and is dropped,
+    /// which keeps the test conservative.
+    fn f64_entry(bounds: &[f64; 6], o: DVec3, inv: DVec3, range: (f64, f64)) -> Option<f64> {
+        let (mut lo, mut hi) = range;
+        for a in 0..3 {
+            let (near, far) = if inv[a] < 0.0 { (a + 3, a) } else { (a, a + 3) };
+            let (t_near, t_far) = (
+                (bounds[near] - o[a]) * inv[a],
+                (bounds[far] - o[a]) * inv[a],
+            );
+            if t_near > lo {
+                lo = t_near;
+            }
+            if t_far < hi {
+                hi = t_far;
+            }
+        }
+        (lo <= hi).then_some(lo)
+    }
+
     /// A box (lower then upper x, y, z) with f32 faces, at a random place
     /// and size of the scale `scale`.
     fn random_box(rng: &mut SplitMix64, scale: f64) -> [f64; 6] {
@@ -490,7 +485,7 @@ mod tests {
             };
             let (entries, mask) = WideRay::new(o, inv).enter(&node, range);
             for (k, b) in boxes.iter().enumerate() {
-                let Some(exact) = enter_root(b, o, inv, range) else {
+                let Some(exact) = f64_entry(b, o, inv, range) else {
                     continue;
                 };
                 entered += 1;
@@ -532,7 +527,7 @@ mod tests {
                 });
                 let inv = DVec3::ONE / d;
                 for (i, b) in items.iter().enumerate() {
-                    if enter_root(b, o, inv, range).is_some() {
+                    if f64_entry(b, o, inv, range).is_some() {
                         assert!(tested[i], "item {i} {b:?} skipped by {o} + s {d}");
                     }
                 }
