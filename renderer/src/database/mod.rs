@@ -339,17 +339,11 @@ impl<T: Trace> Tester<'_, T> {
     /// The closest hit on prism `p` of run `k` within `range`: a
     /// translation's whole (its triangle stored at position `j` of the run),
     /// or a keyframe interval's three tetrahedra.
+    #[inline(always)]
     fn prism(&mut self, k: u32, p: u32, j: u32, range: (f64, f64)) -> Option<Hit> {
         let run = &self.db.runs[k as usize];
         if !run.stretch.translation {
-            let mut best: Option<Hit> = None;
-            for tet in 3 * p..3 * p + 3 {
-                let hi = best.map_or(range.1, |b| b.s);
-                if let Ok(h) = self.tetrahedron(run, tet, (range.0, hi)) {
-                    best = Some(nearer(best, h));
-                }
-            }
-            return best;
+            return self.keyframe_prism(run, p, range);
         }
         let comoving = match self.comoving {
             Some((cached, ray)) if cached == k => ray,
@@ -372,6 +366,20 @@ impl<T: Trace> Tester<'_, T> {
         };
         self.record(run, PrimitiveId::Prism(p), &result);
         result.ok()
+    }
+
+    /// The closest hit on keyframe prism `p` of `run` within `range`: the
+    /// nearest of its three tetrahedra's.
+    #[inline(never)]
+    fn keyframe_prism(&mut self, run: &Run, p: u32, range: (f64, f64)) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        for tet in 3 * p..3 * p + 3 {
+            let hi = best.map_or(range.1, |b| b.s);
+            if let Ok(h) = self.tetrahedron(run, tet, (range.0, hi)) {
+                best = Some(nearer(best, h));
+            }
+        }
+        best
     }
 
     /// The barycentric solve of keyframe tetrahedron `tet` of `run`.
