@@ -447,7 +447,7 @@ impl Bvh {
     /// constrains nothing unless the origin lies outside the slab); the
     /// near face of each axis is the lower one when 1/d is positive
     /// (+inf included) and the upper one otherwise.
-    #[inline]
+    #[inline(always)]
     fn enter(min: DVec4, max: DVec4, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
         let a = (min - o) * inv;
         let b = (max - o) * inv;
@@ -488,8 +488,12 @@ impl Bvh {
         let inv = DVec4::ONE / d;
         let root = &self.0.root_bounds;
         let entry = Self::enter(root.min, root.max, o, inv, range)?;
-        let enter =
-            |node: &Node, r| [0, 1].map(|c| Self::enter(node.min[c], node.max[c], o, inv, r));
+        let enter = |node: &Node, r| {
+            [
+                Self::enter(node.min[0], node.max[0], o, inv, r),
+                Self::enter(node.min[1], node.max[1], o, inv, r),
+            ]
+        };
         closest_in(
             (&self.0.nodes, &self.0.order),
             (self.0.root, entry),
