@@ -136,7 +136,7 @@ pub(super) fn closest_in<N: PairNode>(
 /// stretch it meets), that holds all a ray needs in practice, spilling
 /// into a vector beyond it.
 pub(super) struct Stack<E> {
-    fixed: [E; 32],
+    fixed: [E; 16],
     len: usize,
     spill: Vec<E>,
 }
@@ -144,7 +144,7 @@ pub(super) struct Stack<E> {
 impl<E: Copy + Default> Stack<E> {
     pub(super) fn new() -> Stack<E> {
         Stack {
-            fixed: [E::default(); 32],
+            fixed: [E::default(); 16],
             len: 0,
             spill: Vec::new(),
         }
@@ -547,6 +547,22 @@ mod tests {
         moved[7].min.x += 50.0;
         moved[7].max.x += 50.0;
         assert_ne!(built_on(2, &moved).0.nodes, one.0.nodes);
+    }
+
+    /// The stack gives back what was pushed, last first, across its spill
+    /// from the array into the vector and back.
+    #[test]
+    fn the_stack_is_last_in_first_out_beyond_its_array() {
+        let mut stack = Stack::new();
+        for round in 0..2u32 {
+            for i in 0..40 {
+                stack.push(i + round);
+            }
+            for i in (0..40).rev() {
+                assert_eq!(stack.pop(), Some(i + round));
+            }
+            assert_eq!(stack.pop(), None);
+        }
     }
 
     /// A ray parallel to an axis (either signed zero) whose origin lies
