@@ -299,7 +299,7 @@ fn in_leaf_order(
     runs: &[Run],
     accel: &TwoLevel,
 ) -> (Vec<[DVec3; 3]>, Vec<u32>) {
-    let mut stored_at: Vec<u32> = (0..comoving.len()).map(|_| 0).collect();
+    let mut stored_at = vec![0u32; comoving.len()];
     for (k, run) in runs.iter().enumerate() {
         if !run.stretch.translation {
             continue;
