@@ -292,9 +292,10 @@ const TINY: f32 = f32::MIN_POSITIVE;
 ///   a face) is dropped, as in f64.
 ///
 /// Parameters beyond f32's range become infinite, and a direction component
-/// below 2^-128 makes 1/d infinite: such a ray is treated as parallel to
-/// that axis, which can cull a box only when the origin lies within
-/// 2^-128 of the searched range of the slab's face.
+/// below 2^-128 makes 1/d infinite: the ray is then treated as parallel to
+/// that axis, which can cull a box only when, on that axis, the box's face
+/// lies within 2^-128 times the longest searched ray parameter of the
+/// origin.
 struct WideRay {
     /// Per axis: the origin for the near faces, for the far faces, and 1/d.
     near_o: [f32x4; 3],
