@@ -6,7 +6,7 @@
 //!
 //! The figures behind the estimates are this project's own, measured by
 //! `vstf bench` on the 2-core machine it is developed on (README,
-//! Performance): about 210-250 bytes at peak per triangle of a uniformly
+//! Performance): about 200-250 bytes at peak per triangle of a uniformly
 //! moving mesh (section 7), and between 2.4 and 3.9 million rays per second
 //! at 640x360. A keyframe interval's prism keeps its record, six corner
 //! events and three prepared tetrahedron solves (744 bytes) besides its
@@ -17,7 +17,7 @@ use renderer::{Motion, Scene, Shape};
 use std::fmt;
 
 /// Peak memory per prism of a uniformly moving triangle (tested whole in
-/// its comoving frame), bytes (bench: 210-250).
+/// its comoving frame), bytes (bench: 200-250).
 pub const BYTES_PER_TRANSLATED_PRISM: u64 = 300;
 
 /// Peak memory per prism of a keyframe interval (tested as three

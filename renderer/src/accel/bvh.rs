@@ -5,9 +5,9 @@
 //! Items are anything with 4D bounds: the database uses one hierarchy over
 //! the time slices of its stretches (lab frame) and one per stretch over its
 //! prisms (in the stretch's comoving coordinates, [`super::space_bvh`]).
-//! Both are binary, and each inner node keeps both children's boxes, so a
-//! step of a traversal reads one node and tests both; nodes are stored
-//! children first, the root last.
+//! Both are built here, binary, each inner node keeping both children's
+//! boxes and stored children first, the root last; the per-stretch tree is
+//! then collapsed into nodes of four children.
 //!
 //! Splits are chosen by the surface area heuristic over binned centroids
 //! on x, y, z and t, with the 4D boundary measure of a box as its area: the
@@ -68,8 +68,6 @@ pub(super) trait PairNode: Send {
     fn pair(bounds: [Bounds4; 2], children: [Child; 2]) -> Self;
     /// Its children, to renumber when a subtree built on its own is appended.
     fn children_mut(&mut self) -> &mut [Child; 2];
-    /// Its children.
-    fn children(&self) -> [Child; 2];
 }
 
 /// A hierarchy as built: inner nodes children first, the root (and its box)
@@ -79,56 +77,6 @@ pub(super) struct Built<N> {
     pub(super) root: Child,
     pub(super) root_bounds: Bounds4,
     pub(super) order: Vec<u32>,
-}
-
-/// The closest hit in a tree of `nodes` over `order`, from `root` (entered
-/// at `entry`) within `range`: `enter(node, range)` gives where the ray
-/// enters each of a node's children's boxes, and `test(item, range)` is
-/// called for every item whose box the ray enters, with the range shrunk
-/// to the best hit so far. The nearer child is searched first, the farther
-/// waiting on a stack. Ties go to the lower primitive, whatever the order.
-pub(super) fn closest_in<N: PairNode>(
-    (nodes, order): (&[N], &[u32]),
-    (root, entry): (Child, f64),
-    range: (f64, f64),
-    enter: impl Fn(&N, (f64, f64)) -> [Option<f64>; 2],
-    mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
-) -> Option<Hit> {
-    let mut best: Option<Hit> = None;
-    let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
-    let mut stack = Stack::new();
-    let mut current = Some((root, entry));
-    while let Some((child, entry)) = current.take().or_else(|| stack.pop()) {
-        if entry > hi(&best) {
-            continue;
-        }
-        if child.count > 0 {
-            let start = child.index as usize;
-            for &i in &order[start..start + child.count as usize] {
-                if let Some(h) = test(i, (range.0, hi(&best))) {
-                    best = Some(nearer(best, h));
-                }
-            }
-            continue;
-        }
-        let node = &nodes[child.index as usize];
-        let [a, b] = node.children();
-        current = match enter(node, (range.0, hi(&best))) {
-            [Some(x), Some(y)] => {
-                let (near, far) = if x <= y {
-                    ((a, x), (b, y))
-                } else {
-                    ((b, y), (a, x))
-                };
-                stack.push(far);
-                Some(near)
-            }
-            [Some(x), None] => Some((a, x)),
-            [None, Some(y)] => Some((b, y)),
-            [None, None] => None,
-        };
-    }
-    best
 }
 
 /// A traversal's stack of (child, entry parameter): a small array, zeroed
@@ -189,10 +137,6 @@ impl PairNode for Node {
 
     fn children_mut(&mut self) -> &mut [Child; 2] {
         &mut self.children
-    }
-
-    fn children(&self) -> [Child; 2] {
-        self.children
     }
 }
 
@@ -474,33 +418,65 @@ impl Bvh {
     /// The closest hit along the ray `o + s d` (both (x, y, z, t), in the
     /// coordinates the bounds were built in) within `range`: `test(item,
     /// range)` is called for every item whose box the ray enters, with the
-    /// range shrunk to the best hit so far. Ties go to the lower primitive.
+    /// range shrunk to the best hit so far. The nearer child is searched
+    /// first, the farther waiting on a stack. Ties go to the lower
+    /// primitive, whatever the order.
     pub(crate) fn closest(
         &self,
         o: DVec4,
         d: DVec4,
         range: (f64, f64),
-        test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
+        mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         if self.0.root.count == 0 && self.0.nodes.is_empty() {
             return None; // no items
         }
         let inv = DVec4::ONE / d;
-        let root = &self.0.root_bounds;
-        let entry = Self::enter(root.min, root.max, o, inv, range)?;
-        let enter = |node: &Node, r| {
-            [
+        let Built {
+            nodes, root, order, ..
+        } = &self.0;
+        let bounds = &self.0.root_bounds;
+        let entry = Self::enter(bounds.min, bounds.max, o, inv, range)?;
+        let mut best: Option<Hit> = None;
+        let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
+        let mut stack = Stack::new();
+        let mut current = Some((*root, entry));
+        while let Some((child, entry)) = current.take().or_else(|| stack.pop()) {
+            if entry > hi(&best) {
+                continue;
+            }
+            if child.count > 0 {
+                let start = child.index as usize;
+                for &i in &order[start..start + child.count as usize] {
+                    if let Some(h) = test(i, (range.0, hi(&best))) {
+                        best = Some(nearer(best, h));
+                    }
+                }
+                continue;
+            }
+            let node = &nodes[child.index as usize];
+            let [a, b] = node.children;
+            let r = (range.0, hi(&best));
+            let entered = [
                 Self::enter(node.min[0], node.max[0], o, inv, r),
                 Self::enter(node.min[1], node.max[1], o, inv, r),
-            ]
-        };
-        closest_in(
-            (&self.0.nodes, &self.0.order),
-            (self.0.root, entry),
-            range,
-            enter,
-            test,
-        )
+            ];
+            current = match entered {
+                [Some(x), Some(y)] => {
+                    let (near, far) = if x <= y {
+                        ((a, x), (b, y))
+                    } else {
+                        ((b, y), (a, x))
+                    };
+                    stack.push(far);
+                    Some(near)
+                }
+                [Some(x), None] => Some((a, x)),
+                [None, Some(y)] => Some((b, y)),
+                [None, None] => None,
+            };
+        }
+        best
     }
 }
 

@@ -85,10 +85,6 @@ impl PairNode for Node {
     fn children_mut(&mut self) -> &mut [Child; 2] {
         &mut self.children
     }
-
-    fn children(&self) -> [Child; 2] {
-        self.children
-    }
 }
 
 /// Children of a node of the collapsed tree.

@@ -113,9 +113,15 @@ impl Database {
         (run, p as usize - run.stretch.prisms.start)
     }
 
+    /// Where prism `k` of translation `run` keeps its triangle: its
+    /// position in the run's part of [`Database::comoving`].
+    fn stored(&self, run: &Run, k: usize) -> u32 {
+        self.stored_at[run.slot + k]
+    }
+
     /// The comoving triangle of prism `k` of translation `run`.
     fn triangle(&self, run: &Run, k: usize) -> &[DVec3; 3] {
-        &self.comoving[run.slot + self.stored_at[run.slot + k] as usize]
+        &self.comoving[run.slot + self.stored(run, k) as usize]
     }
 
     /// Prism `p`, by index in `0..prism_count()`: its object, triangle,
@@ -302,9 +308,12 @@ impl Database {
                 for (k, run) in self.runs.iter().enumerate() {
                     for p in run.stretch.prisms.clone() {
                         let hi = best.map_or(range.1, |b| b.s);
-                        let j = match run.stretch.translation {
-                            true => self.stored_at[run.slot + p - run.stretch.prisms.start],
-                            false => 0, // keyframe intervals keep mesh order
+                        let local = p - run.stretch.prisms.start;
+                        // Keyframe intervals keep mesh order: no position.
+                        let j = if run.stretch.translation {
+                            self.stored(run, local)
+                        } else {
+                            0
                         };
                         if let Some(h) = tester.prism(k as u32, p as u32, j, (range.0, hi)) {
                             best = Some(nearer(best, h));
