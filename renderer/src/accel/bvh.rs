@@ -84,7 +84,7 @@ pub(super) struct Built<N> {
 /// stretch it meets), that holds all a ray needs in practice, spilling
 /// into a vector beyond it.
 pub(super) struct Stack<E> {
-    fixed: [E; 16],
+    fixed: [E; 8],
     len: usize,
     spill: Vec<E>,
 }
@@ -92,7 +92,7 @@ pub(super) struct Stack<E> {
 impl<E: Copy + Default> Stack<E> {
     pub(super) fn new() -> Stack<E> {
         Stack {
-            fixed: [E::default(); 16],
+            fixed: [E::default(); 8],
             len: 0,
             spill: Vec::new(),
         }
@@ -393,8 +393,9 @@ impl Bvh {
     /// (+inf included) and the upper one otherwise.
     #[inline(always)]
     fn enter(min: DVec4, max: DVec4, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
-        let a = (min - o) * inv;
-        let b = (max - o) * inv;
+        let a = ((min - o) * inv).to_array();
+        let b = ((max - o) * inv).to_array();
+        let inv = inv.to_array();
         let (mut lo, mut hi) = range;
         for k in 0..4 {
             let (near, far) = if inv[k] < 0.0 {

@@ -159,8 +159,10 @@ impl SpaceBvh {
         let ray = WideRay::new(o, DVec3::ONE / d);
         let mut best: Option<Hit> = None;
         let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
+        // The range in f32, rounded outward.
+        let (lo32, mut hi32) = (down(range.0), up(range.1));
         let mut stack = Stack::new();
-        let mut current = Some((self.root, down(range.0)));
+        let mut current = Some((self.root, lo32));
         while let Some((child, entry)) = current.take().or_else(|| stack.pop()) {
             if f64::from(entry) > hi(&best) {
                 continue;
@@ -171,12 +173,13 @@ impl SpaceBvh {
                     let item = self.order[j as usize];
                     if let Some(h) = test(j, item, (range.0, hi(&best))) {
                         best = Some(nearer(best, h));
+                        hi32 = up(hi(&best));
                     }
                 }
                 continue;
             }
             let node = &self.nodes[child.index as usize];
-            let (entries, entered) = ray.enter(node, (range.0, hi(&best)));
+            let (entries, entered) = ray.enter(node, (lo32, hi32));
             current = nearest_first(node, entries, entered, &mut stack);
         }
         best
@@ -327,12 +330,12 @@ impl WideRay {
         ray
     }
 
-    /// Where the ray enters each of a node's four boxes within `range`,
-    /// and which it enters (bit i for child i).
+    /// Where the ray enters each of a node's four boxes within `range`
+    /// (in f32, rounded outward), and which it enters (bit i for child i).
     #[inline(always)]
-    fn enter(&self, node: &WideNode, range: (f64, f64)) -> ([f32; WIDTH], u32) {
-        let mut entry = f32x4::splat(down(range.0));
-        let mut exit = f32x4::splat(up(range.1));
+    fn enter(&self, node: &WideNode, range: (f32, f32)) -> ([f32; WIDTH], u32) {
+        let mut entry = f32x4::splat(range.0);
+        let mut exit = f32x4::splat(range.1);
         for a in 0..3 {
             let near = (node.faces[self.near[a]] - self.near_o[a]) * self.inv[a];
             let far = (node.faces[self.far[a]] - self.far_o[a]) * self.inv[a];
@@ -480,7 +483,7 @@ mod tests {
                 faces: [0, 1, 2, 3, 4, 5].map(|f| f32x4::from(boxes.map(|b| b[f] as f32))),
                 children: [NO_CHILD; WIDTH],
             };
-            let (entries, mask) = WideRay::new(o, inv).enter(&node, range);
+            let (entries, mask) = WideRay::new(o, inv).enter(&node, (down(range.0), up(range.1)));
             for (k, b) in boxes.iter().enumerate() {
                 let Some(exact) = f64_entry(b, o, inv, range) else {
                     continue;

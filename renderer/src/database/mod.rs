@@ -354,19 +354,16 @@ impl<T: Trace> Tester<'_, T> {
         if !run.stretch.translation {
             return self.keyframe_prism(run, p, range);
         }
-        let comoving = match self.comoving {
-            Some((cached, ray)) if cached == k => ray,
-            _ => {
-                let g = &run.stretch;
-                let ray = ComovingRay::new(self.o, self.d, (g.origin.t, g.origin.x), g.velocity);
-                self.comoving = Some((k, ray));
-                ray
-            }
-        };
+        if !matches!(self.comoving, Some((cached, _)) if cached == k) {
+            let g = &run.stretch;
+            let ray = ComovingRay::new(self.o, self.d, (g.origin.t, g.origin.x), g.velocity);
+            self.comoving = Some((k, ray));
+        }
+        let comoving = self.comoving.as_ref().and_then(|(_, ray)| ray.as_ref());
         let corners = &self.db.comoving[run.slot + j as usize];
         let result = match comoving {
             None => Err(Miss::Parallel),
-            Some(c) => intersect_prism(corners, &c, run.stretch.span, range).map(|(s, b)| Hit {
+            Some(c) => intersect_prism(corners, c, run.stretch.span, range).map(|(s, b)| Hit {
                 s,
                 event: Event::from_xyzt(self.o + self.d * s),
                 primitive: PrimitiveId::Prism(p),

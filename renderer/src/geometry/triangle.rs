@@ -28,8 +28,8 @@ use glam::DVec3;
 /// watertight test: prepared once per ray and stretch.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ComovingRay {
-    /// Comoving position at s = 0.
-    origin: DVec3,
+    /// Comoving position at s = 0, its coordinates in the order of `axes`.
+    origin: [f64; 3],
     /// Lab time at s = 0 and its rate along the ray.
     t: f64,
     dt: f64,
@@ -91,7 +91,7 @@ impl ComovingRay {
             std::mem::swap(&mut kx, &mut ky);
         }
         Some(ComovingRay {
-            origin,
+            origin: [origin[kx], origin[ky], origin[kz]],
             t: o.w,
             dt: d.w,
             axes: [kx, ky, kz],
@@ -100,14 +100,18 @@ impl ComovingRay {
     }
 
     /// A corner relative to the ray, sheared: the ray is the third axis.
+    /// The corner's coordinates are read in the order of `axes` straight
+    /// from memory (a DVec3's own index is a branch on the axis).
     #[inline(always)]
-    fn sheared(&self, corner: DVec3) -> DVec3 {
-        let r = corner - self.origin;
+    fn sheared(&self, corner: &DVec3) -> DVec3 {
+        let c: &[f64; 3] = corner.as_ref();
         let [kx, ky, kz] = self.axes;
+        let [ox, oy, oz] = self.origin;
+        let (rx, ry, rz) = (c[kx] - ox, c[ky] - oy, c[kz] - oz);
         DVec3::new(
-            r[kx] - self.shear.x * r[kz],
-            r[ky] - self.shear.y * r[kz],
-            self.shear.z * r[kz],
+            rx - self.shear.x * rz,
+            ry - self.shear.y * rz,
+            self.shear.z * rz,
         )
     }
 }
@@ -138,9 +142,9 @@ pub(crate) fn intersect_prism(
     range: (f64, f64),
 ) -> Result<(f64, [f64; 3]), Miss> {
     let (a, b, c) = (
-        ray.sheared(corners[0]),
-        ray.sheared(corners[1]),
-        ray.sheared(corners[2]),
+        ray.sheared(&corners[0]),
+        ray.sheared(&corners[1]),
+        ray.sheared(&corners[2]),
     );
     let (u, v, w) = (edge(c, b), edge(a, c), edge(b, a));
     if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
