@@ -7,7 +7,7 @@
 //! prisms (in the stretch's comoving coordinates, [`super::space_bvh`]).
 //! Both are built here, binary, each inner node keeping both children's
 //! boxes and stored children first, the root last; the per-stretch tree is
-//! then collapsed into nodes of four children.
+//! then collapsed into nodes of eight children.
 //!
 //! Splits are chosen by the surface area heuristic over binned centroids
 //! on x, y, z and t, with the 4D boundary measure of a box as its area: the
