@@ -35,6 +35,19 @@ impl Bounds4 {
         Bounds4 { min, max }
     }
 
+    /// Entry parameter of the ray `o + s d` (`inv` = 1/d) into the box
+    /// within `range`, if any: the test the hierarchy's nodes make.
+    #[inline]
+    pub(crate) fn entry(&self, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
+        Bvh::enter(self.min, self.max, o, inv, range)
+    }
+
+    /// The box padded as a hierarchy pads a leaf's (see [`pad`]).
+    pub(crate) fn padded(self) -> Bounds4 {
+        let (min, max) = pad(self.min, self.max);
+        Bounds4 { min, max }
+    }
+
     fn centroid(self) -> DVec4 {
         (self.min + self.max) * 0.5
     }

@@ -56,6 +56,8 @@ struct TimeSlice {
     /// Lab times of the slice.
     t0: f64,
     t1: f64,
+    /// The slice's box, padded as the top level pads a leaf's.
+    bounds: Bounds4,
 }
 
 impl TimeSlice {
@@ -76,6 +78,29 @@ impl TimeSlice {
             range.1.min(a.max(b) + margin),
         );
         (lo <= hi).then_some((lo, hi))
+    }
+}
+
+/// Runs of time slices a ray has searched (at most [`Searched::MAX`]
+/// recorded; a run not recorded is searched again, to the same hit).
+#[derive(Default)]
+struct Searched {
+    runs: [(u32, u32); Searched::MAX],
+    len: usize,
+}
+
+impl Searched {
+    const MAX: usize = 4;
+
+    fn holds(&self, k: u32) -> bool {
+        self.runs[..self.len].iter().any(|&(a, b)| a <= k && k <= b)
+    }
+
+    fn add(&mut self, run: std::ops::RangeInclusive<u32>) {
+        if self.len < Self::MAX {
+            self.runs[self.len] = (*run.start(), *run.end());
+            self.len += 1;
+        }
     }
 }
 
@@ -150,6 +175,7 @@ impl TwoLevel {
                     stretch: built.len() as u32,
                     t0: ta,
                     t1: tb,
+                    bounds: bounds.padded(),
                 });
             }
             built.push(StretchBvh {
@@ -164,6 +190,39 @@ impl TwoLevel {
             stretches: built,
             slices: all_slices,
         }
+    }
+
+    /// If the ray `o + s d` (`inv` = 1/d) enters slice `k`'s box within
+    /// `range` (a leaf of the top level holds several slices, and its box
+    /// theirs): slice `k` and the slices before and after it in time, of
+    /// the same stretch, whose boxes the ray enters too. They are searched
+    /// as one, with the union of their windows, so that a ray crossing a
+    /// moving object's slices in a row searches its hierarchy once rather
+    /// than once a slice. A hit is inside the box of the slice of its lab
+    /// time, so the same hit is found.
+    fn entered_run(
+        &self,
+        k: u32,
+        o: DVec4,
+        inv: DVec4,
+        range: (f64, f64),
+    ) -> Option<std::ops::RangeInclusive<u32>> {
+        let stretch = self.slices[k as usize].stretch;
+        let entered = |j: u32| {
+            let slice = &self.slices[j as usize];
+            slice.stretch == stretch && slice.bounds.entry(o, inv, range).is_some()
+        };
+        if !entered(k) {
+            return None;
+        }
+        let (mut first, mut last) = (k, k);
+        while first > 0 && entered(first - 1) {
+            first -= 1;
+        }
+        while last + 1 < self.slices.len() as u32 && entered(last + 1) {
+            last += 1;
+        }
+        Some(first..=last)
     }
 
     /// The order in which stretch `k`'s hierarchy holds its prisms: at
@@ -185,9 +244,21 @@ impl TwoLevel {
         range: (f64, f64),
         mut test: impl FnMut(u32, u32, u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
+        let inv = DVec4::ONE / d;
+        let mut searched = Searched::default();
         self.top.closest(o, d, range, |k, r| {
+            if searched.holds(k) {
+                return None;
+            }
+            let run = self.entered_run(k, o, inv, r)?;
+            searched.add(run.clone());
+            let r = run
+                .map(|j| self.slices[j as usize].window(o, d, r))
+                .reduce(|a, b| match (a, b) {
+                    (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
+                    (a, b) => a.or(b),
+                })??;
             let slice = &self.slices[k as usize];
-            let r = slice.window(o, d, r)?;
             let stretch = &self.stretches[slice.stretch as usize];
             let (oc, dc) = stretch.to_comoving(o, d);
             stretch.bvh.closest(oc, dc, r, |j, p, r| {
