@@ -37,7 +37,7 @@ impl Bounds4 {
 
     /// Entry parameter of the ray `o + s d` (`inv` = 1/d) into the box
     /// within `range`, if any: the test the hierarchy's nodes make.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn entry(&self, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
         Bvh::enter(self.min, self.max, o, inv, range)
     }
@@ -430,22 +430,21 @@ impl Bvh {
     }
 
     /// The closest hit along the ray `o + s d` (both (x, y, z, t), in the
-    /// coordinates the bounds were built in) within `range`: `test(item,
-    /// range)` is called for every item whose box the ray enters, with the
-    /// range shrunk to the best hit so far. The nearer child is searched
-    /// first, the farther waiting on a stack. Ties go to the lower
-    /// primitive, whatever the order.
+    /// coordinates the bounds were built in; `inv` = 1/d) within `range`:
+    /// `test(item, range)` is called for every item whose box the ray
+    /// enters, with the range shrunk to the best hit so far. The nearer
+    /// child is searched first, the farther waiting on a stack. Ties go to
+    /// the lower primitive, whatever the order.
     pub(crate) fn closest(
         &self,
         o: DVec4,
-        d: DVec4,
+        inv: DVec4,
         range: (f64, f64),
         mut test: impl FnMut(u32, (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         if self.0.root.count == 0 && self.0.nodes.is_empty() {
             return None; // no items
         }
-        let inv = DVec4::ONE / d;
         let Built {
             nodes, root, order, ..
         } = &self.0;

@@ -58,6 +58,8 @@ struct TimeSlice {
     t1: f64,
     /// The slice's box, padded as the top level pads a leaf's.
     bounds: Bounds4,
+    /// Whether it is its stretch's only slice.
+    alone: bool,
 }
 
 impl TimeSlice {
@@ -169,13 +171,16 @@ impl TwoLevel {
                 let (a, b) = comoving_box(k, p);
                 Bounds4::new(a.extend(t0), b.extend(t1))
             }));
-            for (ta, tb, bounds) in slices(g, lo, hi) {
+            let cut = slices(g, lo, hi);
+            let alone = cut.len() == 1;
+            for (ta, tb, bounds) in cut {
                 slice_bounds.push(bounds);
                 all_slices.push(TimeSlice {
                     stretch: built.len() as u32,
                     t0: ta,
                     t1: tb,
                     bounds: bounds.padded(),
+                    alone,
                 });
             }
             built.push(StretchBvh {
@@ -192,37 +197,47 @@ impl TwoLevel {
         }
     }
 
-    /// If the ray `o + s d` (`inv` = 1/d) enters slice `k`'s box within
-    /// `range` (a leaf of the top level holds several slices, and its box
-    /// theirs): slice `k` and the slices before and after it in time, of
-    /// the same stretch, whose boxes the ray enters too. They are searched
-    /// as one, with the union of their windows, so that a ray crossing a
-    /// moving object's slices in a row searches its hierarchy once rather
-    /// than once a slice. A hit is inside the box of the slice of its lab
-    /// time, so the same hit is found.
+    /// Slice `k`, whose box the ray `o + s d` (`inv` = 1/d) enters within
+    /// `range`, and the slices before and after it in time, of the same
+    /// stretch, whose boxes it enters too. They are searched as one, with the union of their windows,
+    /// so that a ray crossing a moving object's slices in a row searches
+    /// its hierarchy once rather than once a slice. A hit is inside the
+    /// box of the slice of its lab time, so the same hit is found.
     fn entered_run(
         &self,
         k: u32,
         o: DVec4,
         inv: DVec4,
         range: (f64, f64),
-    ) -> Option<std::ops::RangeInclusive<u32>> {
+    ) -> std::ops::RangeInclusive<u32> {
         let stretch = self.slices[k as usize].stretch;
-        let entered = |j: u32| {
-            let slice = &self.slices[j as usize];
+        let entered = |slice: &TimeSlice| {
             slice.stretch == stretch && slice.bounds.entry(o, inv, range).is_some()
         };
-        if !entered(k) {
-            return None;
+        let before = self.slices[..k as usize].iter().rev();
+        let after = self.slices[k as usize + 1..].iter();
+        let first = k - before.take_while(|s| entered(s)).count() as u32;
+        let last = k + after.take_while(|s| entered(s)).count() as u32;
+        first..=last
+    }
+
+    /// The union of the windows ([`TimeSlice::window`]) of the slices of
+    /// `run` (consecutive in time, so one interval).
+    #[inline]
+    fn run_window(
+        &self,
+        run: std::ops::RangeInclusive<u32>,
+        o: DVec4,
+        d: DVec4,
+        range: (f64, f64),
+    ) -> Option<(f64, f64)> {
+        let mut union: Option<(f64, f64)> = None;
+        for j in run {
+            if let Some((lo, hi)) = self.slices[j as usize].window(o, d, range) {
+                union = Some(union.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))));
+            }
         }
-        let (mut first, mut last) = (k, k);
-        while first > 0 && entered(first - 1) {
-            first -= 1;
-        }
-        while last + 1 < self.slices.len() as u32 && entered(last + 1) {
-            last += 1;
-        }
-        Some(first..=last)
+        union
     }
 
     /// The order in which stretch `k`'s hierarchy holds its prisms: at
@@ -246,19 +261,20 @@ impl TwoLevel {
     ) -> Option<Hit> {
         let inv = DVec4::ONE / d;
         let mut searched = Searched::default();
-        self.top.closest(o, d, range, |k, r| {
-            if searched.holds(k) {
-                return None;
-            }
-            let run = self.entered_run(k, o, inv, r)?;
-            searched.add(run.clone());
-            let r = run
-                .map(|j| self.slices[j as usize].window(o, d, r))
-                .reduce(|a, b| match (a, b) {
-                    (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
-                    (a, b) => a.or(b),
-                })??;
+        self.top.closest(o, inv, range, |k, r| {
             let slice = &self.slices[k as usize];
+            let r = if slice.alone {
+                slice.window(o, d, r)?
+            } else {
+                // A leaf of the top level may hold several slices, and
+                // its box theirs.
+                if searched.holds(k) || slice.bounds.entry(o, inv, r).is_none() {
+                    return None;
+                }
+                let run = self.entered_run(k, o, inv, r);
+                searched.add(run.clone());
+                self.run_window(run, o, d, r)?
+            };
             let stretch = &self.stretches[slice.stretch as usize];
             let (oc, dc) = stretch.to_comoving(o, d);
             stretch.bvh.closest(oc, dc, r, |j, p, r| {
