@@ -37,7 +37,7 @@ impl Node {
 
 /// The f32 at or below `v`.
 #[inline(always)]
-fn down(v: f64) -> f32 {
+pub(super) fn down(v: f64) -> f32 {
     let f = v as f32;
     if f64::from(f) > v {
         -next_up(-f)
@@ -48,7 +48,7 @@ fn down(v: f64) -> f32 {
 
 /// The f32 at or above `v`.
 #[inline(always)]
-fn up(v: f64) -> f32 {
+pub(super) fn up(v: f64) -> f32 {
     let f = v as f32;
     if f64::from(f) < v {
         next_up(f)

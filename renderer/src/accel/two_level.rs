@@ -6,7 +6,7 @@
 //! hierarchy of the lab-frame 4D bounds of their time slices.
 
 use super::bvh::{rounding_margin, Bounds4, Bvh};
-use super::space_bvh::SpaceBvh;
+use super::space_bvh::{down, up, SpaceBvh};
 use crate::geometry::{comoving_line, Hit};
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
@@ -56,13 +56,30 @@ struct TimeSlice {
     /// Lab times of the slice.
     t0: f64,
     t1: f64,
-    /// The slice's box, padded as the top level pads a leaf's.
-    bounds: Bounds4,
+    /// The slice's box, padded as the top level pads a leaf's, in f32
+    /// rounded outward (lower x, y, z, t then upper).
+    bounds: [f32; 8],
     /// Whether it is its stretch's only slice.
     alone: bool,
 }
 
+/// The f32 box that holds `b`, rounded outward (lower then upper).
+fn outward(b: Bounds4) -> [f32; 8] {
+    let (lo, hi) = (b.min.to_array().map(down), b.max.to_array().map(up));
+    [lo[0], lo[1], lo[2], lo[3], hi[0], hi[1], hi[2], hi[3]]
+}
+
 impl TimeSlice {
+    /// Whether the ray `o + s d` (`inv` = 1/d) enters the slice's box
+    /// within `range` (in f64, on its f32 faces: no sooner than its f64
+    /// box).
+    #[inline(always)]
+    fn entered(&self, o: DVec4, inv: DVec4, range: (f64, f64)) -> bool {
+        let b = self.bounds.map(f64::from);
+        let (min, max) = (DVec4::from_slice(&b[..4]), DVec4::from_slice(&b[4..]));
+        Bounds4::new(min, max).entry(o, inv, range).is_some()
+    }
+
     /// The part of `range` where the ray `o + s d` is within the slice's
     /// lab times, widened by a billionth of its ends for the rounding of
     /// both it and the solves (a hit exactly at the time two slices or two
@@ -179,7 +196,7 @@ impl TwoLevel {
                     stretch: built.len() as u32,
                     t0: ta,
                     t1: tb,
-                    bounds: bounds.padded(),
+                    bounds: outward(bounds.padded()),
                     alone,
                 });
             }
@@ -211,9 +228,7 @@ impl TwoLevel {
         range: (f64, f64),
     ) -> std::ops::RangeInclusive<u32> {
         let stretch = self.slices[k as usize].stretch;
-        let entered = |slice: &TimeSlice| {
-            slice.stretch == stretch && slice.bounds.entry(o, inv, range).is_some()
-        };
+        let entered = |slice: &TimeSlice| slice.stretch == stretch && slice.entered(o, inv, range);
         let before = self.slices[..k as usize].iter().rev();
         let after = self.slices[k as usize + 1..].iter();
         let first = k - before.take_while(|s| entered(s)).count() as u32;
@@ -268,7 +283,7 @@ impl TwoLevel {
             } else {
                 // A leaf of the top level may hold several slices, and
                 // its box theirs.
-                if searched.holds(k) || slice.bounds.entry(o, inv, r).is_none() {
+                if searched.holds(k) || !slice.entered(o, inv, r) {
                     return None;
                 }
                 let run = self.entered_run(k, o, inv, r);
