@@ -216,10 +216,11 @@ impl TwoLevel {
 
     /// Slice `k`, whose box the ray `o + s d` (`inv` = 1/d) enters within
     /// `range`, and the slices before and after it in time, of the same
-    /// stretch, whose boxes it enters too. They are searched as one, with the union of their windows,
-    /// so that a ray crossing a moving object's slices in a row searches
-    /// its hierarchy once rather than once a slice. A hit is inside the
-    /// box of the slice of its lab time, so the same hit is found.
+    /// stretch, whose boxes it enters too. They are searched as one, with
+    /// the union of their windows, so that a ray crossing a moving object's
+    /// slices in a row searches its hierarchy once rather than once a
+    /// slice. A hit is inside the box of the slice of its lab time, so the
+    /// same hit is found.
     fn entered_run(
         &self,
         k: u32,
@@ -296,5 +297,63 @@ impl TwoLevel {
                 test(slice.stretch, stretch.first_prism + p, j, r)
             })
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A stretch of 20 prisms, each box the comoving cube [-1, 1]^3,
+    /// moving at 0.9 along x over lab times 0..100: 45 time slices.
+    fn moving_cubes() -> TwoLevel {
+        let stretch = StretchPrisms {
+            origin: Event::new(0.0, DVec3::ZERO),
+            velocity: DVec3::new(0.9, 0.0, 0.0),
+            span: (0.0, 100.0),
+            prisms: 0..20,
+            translation: true,
+        };
+        TwoLevel::build(std::iter::once(&stretch), |_, _| {
+            (DVec3::splat(-1.0), DVec3::splat(1.0))
+        })
+    }
+
+    /// A ray that keeps pace with a moving object crosses all its time
+    /// slices inside their boxes: its stretch's tree is searched once, so
+    /// each prism is tested once (searched slice by slice, each would be
+    /// tested once a slice, 45 times).
+    #[test]
+    fn a_ray_crossing_a_moving_objects_slices_tests_each_prism_once() {
+        let two = moving_cubes();
+        assert_eq!(two.slices.len(), 45);
+        // At lab time t the ray is at x = 0.9 t, the object's centre.
+        let (o, d) = (
+            DVec4::new(90.0, 0.0, 0.0, 100.0),
+            DVec4::new(-0.9, 0.0, 1e-3, -1.0),
+        );
+        let mut tested = [0; 20];
+        two.closest(o, d, (0.0, f64::INFINITY), |_, p, _, _| {
+            tested[p as usize] += 1;
+            None
+        });
+        assert_eq!(tested, [1; 20]);
+    }
+
+    /// A ray at one lab time (infinite light speed) meets one slice of
+    /// the moving object, and every prism once.
+    #[test]
+    fn a_ray_at_one_time_meets_one_slice() {
+        let two = moving_cubes();
+        let (o, d) = (
+            DVec4::new(45.0, 0.0, 5.0, 50.5),
+            DVec4::new(0.0, 0.0, -1.0, 0.0),
+        );
+        let mut tested = [0; 20];
+        two.closest(o, d, (0.0, f64::INFINITY), |_, p, _, _| {
+            tested[p as usize] += 1;
+            None
+        });
+        assert_eq!(tested, [1; 20]);
     }
 }
