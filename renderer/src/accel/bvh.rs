@@ -220,16 +220,18 @@ const BINS: usize = 16;
 fn sah_split(items: &mut [Item], ext: &Extent) -> Option<(usize, Extent, Extent)> {
     let (min, max, cmin, extent) = (ext.min, ext.max, ext.cmin, ext.cmax - ext.cmin);
     let scale = DVec4::select(extent.cmpgt(DVec4::ZERO), BINS as f64 / extent, DVec4::ZERO);
-    let bin =
-        |c: DVec4, axis: usize| (((c[axis] - cmin[axis]) * scale[axis]) as usize).min(BINS - 1);
+    // A centroid's place in the bins of every axis (an array: glam's own
+    // index is a branch on the axis), and its bin on one.
+    let place = |c: DVec4| ((c - cmin) * scale).to_array();
+    let bin = |place: &[f64; 4], axis: usize| (place[axis] as usize).min(BINS - 1);
     let axes: Vec<usize> = (0..4).filter(|&a| extent[a] > 0.0).collect();
     let mut count = [[0usize; BINS]; 4];
     let mut bmin = [[DVec4::splat(f64::INFINITY); BINS]; 4];
     let mut bmax = [[DVec4::splat(f64::NEG_INFINITY); BINS]; 4];
     for item in items.iter() {
-        let c = item.bounds.centroid();
+        let c = place(item.bounds.centroid());
         for &axis in &axes {
-            let b = bin(c, axis);
+            let b = bin(&c, axis);
             count[axis][b] += 1;
             bmin[axis][b] = bmin[axis][b].min(item.bounds.min);
             bmax[axis][b] = bmax[axis][b].max(item.bounds.max);
@@ -276,7 +278,7 @@ fn sah_split(items: &mut [Item], ext: &Extent) -> Option<(usize, Extent, Extent)
     let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
     for i in 0..items.len() {
         let b = items[i].bounds;
-        if bin(b.centroid(), axis) < split {
+        if bin(&place(b.centroid()), axis) < split {
             left.add(&b);
             items.swap(i, mid);
             mid += 1;
