@@ -230,9 +230,8 @@ fn sah_split(items: &mut [Item], ext: &Extent) -> Option<(usize, Extent, Extent)
     let (min, max, cmin, extent) = (ext.min, ext.max, ext.cmin, ext.cmax - ext.cmin);
     let scale = DVec4::select(extent.cmpgt(DVec4::ZERO), BINS as f64 / extent, DVec4::ZERO);
     // A centroid's place in the bins of every axis (an array: glam's own
-    // index is a branch on the axis), and its bin on one.
+    // index is a branch on the axis).
     let place = |c: DVec4| ((c - cmin) * scale).to_array();
-    let bin = |place: &[f64; 4], axis: usize| bin_at(place[axis]);
     let axes: Vec<usize> = (0..4).filter(|&a| extent[a] > 0.0).collect();
     let mut count = [[0usize; BINS]; 4];
     let mut bmin = [[DVec4::splat(f64::INFINITY); BINS]; 4];
@@ -240,7 +239,7 @@ fn sah_split(items: &mut [Item], ext: &Extent) -> Option<(usize, Extent, Extent)
     for item in items.iter() {
         let c = place(item.bounds.centroid());
         for &axis in &axes {
-            let b = bin(&c, axis);
+            let b = bin_at(c[axis]);
             count[axis][b] += 1;
             bmin[axis][b] = bmin[axis][b].min(item.bounds.min);
             bmax[axis][b] = bmax[axis][b].max(item.bounds.max);
@@ -287,7 +286,7 @@ fn sah_split(items: &mut [Item], ext: &Extent) -> Option<(usize, Extent, Extent)
     let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
     for i in 0..items.len() {
         let b = items[i].bounds;
-        if bin(&place(b.centroid()), axis) < split {
+        if bin_at(place(b.centroid())[axis]) < split {
             left.add(&b);
             items.swap(i, mid);
             mid += 1;

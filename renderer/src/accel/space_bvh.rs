@@ -379,25 +379,15 @@ mod tests {
     use glam::DVec4;
 
     /// Entry parameter of the ray `o + s d` (`inv` = 1/d) into the box (f64)
-    /// within `range`: the reference the f32 test is held to. A NaN (0 * inf: the origin on a slab face of an
-    /// axis the ray is parallel to) fails both comparisons and is dropped,
-    /// which keeps the test conservative.
+    /// within `range`: the reference the f32 test is held to, the top
+    /// level's own f64 slab test (the box at one lab time, met by a ray of
+    /// constant time, so that t constrains nothing).
     fn f64_entry(bounds: &[f64; 6], o: DVec3, inv: DVec3, range: (f64, f64)) -> Option<f64> {
-        let (mut lo, mut hi) = range;
-        for a in 0..3 {
-            let (near, far) = if inv[a] < 0.0 { (a + 3, a) } else { (a, a + 3) };
-            let (t_near, t_far) = (
-                (bounds[near] - o[a]) * inv[a],
-                (bounds[far] - o[a]) * inv[a],
-            );
-            if t_near > lo {
-                lo = t_near;
-            }
-            if t_far < hi {
-                hi = t_far;
-            }
-        }
-        (lo <= hi).then_some(lo)
+        let (min, max) = (
+            DVec4::new(bounds[0], bounds[1], bounds[2], 0.0),
+            DVec4::new(bounds[3], bounds[4], bounds[5], 0.0),
+        );
+        Bounds4::new(min, max).entry(o.extend(0.0), inv.extend(f64::INFINITY), range)
     }
 
     /// A box (lower then upper x, y, z) with f32 faces, at a random place
