@@ -140,9 +140,10 @@ impl SpaceBvh {
     }
 
     /// The closest hit along the ray `o + s d` (comoving x, y, z) within
-    /// `range`: `test(position, item, range)` is called for every item
-    /// whose box the ray enters, with its position in [`SpaceBvh::order`]
-    /// and the range shrunk to the best hit so far. The
+    /// `range`: `leaf(first, items, range)` is called for every leaf whose
+    /// box the ray enters, with the position in [`SpaceBvh::order`] of its
+    /// first item, its items (side by side there) and the range shrunk to
+    /// the best hit so far, and returns the best hit among its items. The
     /// nearest entered child is searched first, the others wait on a
     /// stack. Ties go to the lower primitive, whatever the order.
     pub(crate) fn closest(
@@ -150,7 +151,7 @@ impl SpaceBvh {
         o: DVec3,
         d: DVec3,
         range: (f64, f64),
-        mut test: impl FnMut(u32, u32, (f64, f64)) -> Option<Hit>,
+        mut leaf: impl FnMut(u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         if self.root.count == 0 && self.nodes.is_empty() {
             return None; // no items
@@ -169,13 +170,11 @@ impl SpaceBvh {
                 continue;
             }
             if child.count > 0 {
-                let start = child.index;
-                for j in start..start + child.count {
-                    let item = self.order[j as usize];
-                    if let Some(h) = test(j, item, (range.0, hi(&best))) {
-                        best = Some(nearer(best, h));
-                        hi32 = up(hi(&best));
-                    }
+                let start = child.index as usize;
+                let items = &self.order[start..start + child.count as usize];
+                if let Some(h) = leaf(child.index, items, (range.0, hi(&best))) {
+                    best = Some(nearer(best, h));
+                    hi32 = up(hi(&best));
                 }
                 continue;
             }
@@ -512,8 +511,8 @@ mod tests {
                 let (o, d) = aimed_ray(&mut rng, &items[aim], scale);
                 let range = (0.0, f64::INFINITY);
                 let mut tested = vec![false; items.len()];
-                bvh.closest(o, d, range, |_, item, _| {
-                    tested[item as usize] = true;
+                bvh.closest(o, d, range, |_, items, _| {
+                    items.iter().for_each(|&item| tested[item as usize] = true);
                     None
                 });
                 let inv = DVec3::ONE / d;

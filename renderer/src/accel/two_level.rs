@@ -35,7 +35,6 @@ pub(crate) struct StretchPrisms {
 struct StretchBvh {
     origin: Event,
     velocity: DVec3,
-    first_prism: u32,
     bvh: SpaceBvh,
 }
 
@@ -203,7 +202,6 @@ impl TwoLevel {
             built.push(StretchBvh {
                 origin: g.origin,
                 velocity: g.velocity,
-                first_prism: g.prisms.start as u32,
                 bvh: tree,
             });
         }
@@ -264,16 +262,18 @@ impl TwoLevel {
     }
 
     /// The closest hit along the ray `o + s d` (lab frame, (x, y, z, t))
-    /// within `range`: `test(stretch, prism, position, range)` is called
-    /// for every prism whose boxes the ray enters, with its stretch's
-    /// index, its position in [`TwoLevel::order`] and the range shrunk to
-    /// the best hit so far.
+    /// within `range`: `leaf(stretch, first, items, range)` is called for
+    /// every leaf of a stretch's hierarchy whose boxes the ray enters, with
+    /// the stretch's index, the position in [`TwoLevel::order`] of the
+    /// leaf's first item, its items (prisms counted from the stretch's
+    /// first, side by side there) and the range shrunk to the best hit so
+    /// far, and returns the best hit among them.
     pub(crate) fn closest(
         &self,
         o: DVec4,
         d: DVec4,
         range: (f64, f64),
-        mut test: impl FnMut(u32, u32, u32, (f64, f64)) -> Option<Hit>,
+        mut leaf: impl FnMut(u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         let inv = DVec4::ONE / d;
         let mut searched = Searched::default();
@@ -293,8 +293,8 @@ impl TwoLevel {
             };
             let stretch = &self.stretches[slice.stretch as usize];
             let (oc, dc) = stretch.to_comoving(o, d);
-            stretch.bvh.closest(oc, dc, r, |j, p, r| {
-                test(slice.stretch, stretch.first_prism + p, j, r)
+            stretch.bvh.closest(oc, dc, r, |first, items, r| {
+                leaf(slice.stretch, first, items, r)
             })
         })
     }
@@ -333,8 +333,8 @@ mod tests {
             DVec4::new(-0.9, 0.0, 1e-3, -1.0),
         );
         let mut tested = [0; 20];
-        two.closest(o, d, (0.0, f64::INFINITY), |_, p, _, _| {
-            tested[p as usize] += 1;
+        two.closest(o, d, (0.0, f64::INFINITY), |_, _, items, _| {
+            items.iter().for_each(|&p| tested[p as usize] += 1);
             None
         });
         assert_eq!(tested, [1; 20]);
@@ -350,8 +350,8 @@ mod tests {
             DVec4::new(0.0, 0.0, -1.0, 0.0),
         );
         let mut tested = [0; 20];
-        two.closest(o, d, (0.0, f64::INFINITY), |_, p, _, _| {
-            tested[p as usize] += 1;
+        two.closest(o, d, (0.0, f64::INFINITY), |_, _, items, _| {
+            items.iter().for_each(|&p| tested[p as usize] += 1);
             None
         });
         assert_eq!(tested, [1; 20]);

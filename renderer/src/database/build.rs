@@ -3,7 +3,9 @@
 
 use super::{Database, Keyframed, ObjectRecord, Run, Stretch, Traversal};
 use crate::accel::{rounding_margin, StretchPrisms, TwoLevel};
-use crate::geometry::{self, extrude_between, piece, Pose, PreparedTet, PrismCorners, Sphere};
+use crate::geometry::{
+    self, extrude_between, piece, CornerRows, Pose, PreparedTet, PrismCorners, Sphere,
+};
 use crate::scene::{
     Fault, Mesh, Motion, ObjectKind, Scene, SceneError, SceneErrorKind as K, SceneField as F,
     SceneObject, Shape, NO_MESH,
@@ -141,6 +143,7 @@ impl Builder {
                 },
                 extrusion: worldline.extrusion,
                 slot,
+                reach: 0.0,
             });
             stretches.push(Stretch {
                 worldline,
@@ -172,6 +175,10 @@ impl Builder {
             let (first, slot) = (self.prism_count(), self.comoving.len());
             self.comoving
                 .extend((0..mesh.triangles.len()).map(|t| mesh.corners(t)));
+            let reach = self.comoving[slot..]
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, c| m.max(c.abs().max_element()));
             self.runs.push(Run {
                 object: i as u32,
                 stretch: StretchPrisms {
@@ -183,6 +190,7 @@ impl Builder {
                 },
                 extrusion: worldline.extrusion,
                 slot,
+                reach,
             });
         }
         Ok(Stretch {
@@ -352,6 +360,7 @@ impl Database {
         Ok(Database {
             records,
             runs: b.runs,
+            rows: CornerRows::new(&comoving),
             comoving,
             stored_at,
             keyframed: b.keyframed,

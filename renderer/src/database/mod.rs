@@ -8,8 +8,9 @@ pub use object::{ObjectRecord, Stretch};
 
 use crate::accel::{StretchPrisms, TwoLevel};
 use crate::geometry::{
-    corner_order, corners_between, intersect_prism, nearer, piece, Barycentric, ComovingRay, Hit,
-    Miss, PreparedTet, PrimitiveId, Prism, PrismCorners, Sphere, Tetrahedron,
+    corner_order, corners_between, intersect_prism, nearer, piece, Barycentric, ComovingRay,
+    CornerRows, FilterRay, Hit, Miss, PreparedTet, PrimitiveId, Prism, PrismCorners, Sphere,
+    Tetrahedron, LANES,
 };
 use crate::spacetime::{Event, FourVector, Ray};
 use crate::trace::{NoTrace, Outcome, Step, Trace};
@@ -36,6 +37,9 @@ struct Run {
     /// Index of the run's first prism in [`Database::comoving`] (a
     /// translation) or [`Database::keyframed`] (a keyframe interval).
     slot: usize,
+    /// The largest magnitude of a comoving coordinate of a translation's
+    /// triangles (0 for a keyframe interval).
+    reach: f64,
 }
 
 /// The prisms of keyframe intervals, which may turn or deform their
@@ -63,6 +67,9 @@ pub struct Database {
     /// prism k of a run at `slot` at `slot + stored_at[slot + k]`, its
     /// position in its stretch's hierarchy (a leaf's side by side).
     stored_at: Vec<u32>,
+    /// The same triangles in f32, for the filter in front of their exact
+    /// test.
+    rows: CornerRows,
     keyframed: Keyframed,
     /// The two-level hierarchy over the prisms.
     accel: TwoLevel,
@@ -299,7 +306,9 @@ impl Database {
             ray,
             o: ray.origin.to_xyzt(),
             d: ray.direction.to_xyzt(),
+            stretch: NO_STRETCH,
             comoving: None,
+            filter: None,
             trace,
         };
         match self.traversal {
@@ -324,8 +333,9 @@ impl Database {
             }
             Traversal::Bvh => {
                 let (o, d) = (tester.o, tester.d);
-                self.accel
-                    .closest(o, d, range, |run, p, j, r| tester.prism(run, p, j, r))
+                self.accel.closest(o, d, range, |run, first, items, r| {
+                    tester.leaf(run, first, items, r)
+                })
             }
         }
     }
@@ -338,13 +348,129 @@ struct Tester<'a, T> {
     ray: &'a Ray,
     o: DVec4,
     d: DVec4,
-    /// The stretch the comoving ray is of, and the ray (none when it is at
-    /// rest there).
-    comoving: Option<(u32, Option<ComovingRay>)>,
+    /// The stretch the comoving ray is of ([`NO_STRETCH`] before the
+    /// first), the ray (none when it is at rest there) and its f32 filter
+    /// (none where it is not filtered).
+    stretch: u32,
+    comoving: Option<ComovingRay>,
+    filter: Option<FilterRay>,
     trace: &'a mut T,
 }
 
+/// The hit on prism `p` of the ray `o + s d` where the exact test found
+/// it: at ray parameter s, with barycentric coordinates `bary`.
+#[inline(always)]
+fn hit(o: DVec4, d: DVec4, p: u32, (s, bary): (f64, [f64; 3])) -> Hit {
+    Hit {
+        s,
+        event: Event::from_xyzt(o + d * s),
+        primitive: PrimitiveId::Prism(p),
+        bary: Barycentric::Triangle(bary.map(|x| x.clamp(0.0, 1.0))),
+    }
+}
+
+/// The closest hit within `range` on the prisms `items` of translation
+/// `run`, stored side by side from position `first` of the run: filtered
+/// four at a time, and those the filter lets through tested exactly, in
+/// order (`hit` makes the hit on a prism from what the exact test found).
+#[inline(always)]
+fn filtered_leaf(
+    db: &Database,
+    run: &Run,
+    (ray, filter): (&ComovingRay, &FilterRay),
+    first: u32,
+    items: &[u32],
+    range: (f64, f64),
+    hit: impl Fn(u32, (f64, [f64; 3])) -> Hit,
+) -> Option<Hit> {
+    let (p0, at) = (run.stretch.prisms.start as u32, run.slot + first as usize);
+    let mut best: Option<Hit> = None;
+    let mut chunk = 0;
+    while chunk < items.len() {
+        let lanes = (1u32 << (items.len() - chunk).min(LANES)) - 1;
+        let mut candidates = db.rows.candidates(filter, at + chunk) & lanes;
+        while candidates != 0 {
+            let i = chunk + candidates.trailing_zeros() as usize;
+            candidates &= candidates - 1;
+            let hi = best.map_or(range.1, |b| b.s);
+            let corners = &db.comoving[at + i];
+            let exact = intersect_prism(corners, ray, run.stretch.span, (range.0, hi));
+            if let Ok(found) = exact {
+                best = Some(nearer(best, hit(p0 + items[i], found)));
+            }
+        }
+        chunk += LANES;
+    }
+    best
+}
+
+/// [`Tester::stretch`] before any stretch is prepared.
+const NO_STRETCH: u32 = u32::MAX;
+
 impl<T: Trace> Tester<'_, T> {
+    /// The closest hit within `range` on the prisms `items` (counted from
+    /// the run's first) of a leaf of run `k`'s hierarchy, which are stored
+    /// side by side from position `first` of the run. A translation's are
+    /// filtered four at a time (in f32, conservatively) and only those the
+    /// filter lets through are tested exactly, in order; when recording,
+    /// every one is tested.
+    #[inline(never)]
+    fn leaf(&mut self, k: u32, first: u32, items: &[u32], range: (f64, f64)) -> Option<Hit> {
+        let run = &self.db.runs[k as usize];
+        if T::ENABLED || !run.stretch.translation {
+            return self.each(k, first, items, range);
+        }
+        self.prepare(k);
+        let (o, d) = (self.o, self.d);
+        match (&self.comoving, &self.filter) {
+            (Some(ray), Some(filter)) => filtered_leaf(
+                self.db,
+                run,
+                (ray, filter),
+                first,
+                items,
+                range,
+                |p, found| hit(o, d, p, found),
+            ),
+            (Some(_), None) => self.each(k, first, items, range),
+            // At rest in the comoving frame: parallel to every triangle.
+            (None, _) => None,
+        }
+    }
+
+    /// The closest hit within `range` on the prisms `items` of run `k`
+    /// stored side by side from position `first`, each tested exactly.
+    #[inline(never)]
+    fn each(&mut self, k: u32, first: u32, items: &[u32], range: (f64, f64)) -> Option<Hit> {
+        let p0 = self.db.runs[k as usize].stretch.prisms.start as u32;
+        let mut best: Option<Hit> = None;
+        for (i, &item) in items.iter().enumerate() {
+            let hi = best.map_or(range.1, |b| b.s);
+            if let Some(h) = self.prism(k, p0 + item, first + i as u32, (range.0, hi)) {
+                best = Some(nearer(best, h));
+            }
+        }
+        best
+    }
+
+    /// Prepares the ray in the comoving coordinates of translation run `k`
+    /// and its filter, unless they are the last prepared.
+    #[inline(always)]
+    fn prepare(&mut self, k: u32) {
+        if self.stretch != k {
+            self.prepare_new(k);
+        }
+    }
+
+    #[inline(never)]
+    fn prepare_new(&mut self, k: u32) {
+        let run = &self.db.runs[k as usize];
+        let g = &run.stretch;
+        self.stretch = k;
+        self.comoving = ComovingRay::new(self.o, self.d, (g.origin.t, g.origin.x), g.velocity);
+        self.filter = (self.comoving.as_ref()).and_then(|ray| self.db.rows.prepare(ray, run.reach));
+    }
+
     /// The closest hit on prism `p` of run `k` within `range`: a
     /// translation's whole (its triangle stored at position `j` of the run),
     /// or a keyframe interval's three tetrahedra.
@@ -354,21 +480,12 @@ impl<T: Trace> Tester<'_, T> {
         if !run.stretch.translation {
             return self.keyframe_prism(run, p, range);
         }
-        if !matches!(self.comoving, Some((cached, _)) if cached == k) {
-            let g = &run.stretch;
-            let ray = ComovingRay::new(self.o, self.d, (g.origin.t, g.origin.x), g.velocity);
-            self.comoving = Some((k, ray));
-        }
-        let comoving = self.comoving.as_ref().and_then(|(_, ray)| ray.as_ref());
+        self.prepare(k);
         let corners = &self.db.comoving[run.slot + j as usize];
-        let result = match comoving {
+        let result = match &self.comoving {
             None => Err(Miss::Parallel),
-            Some(c) => intersect_prism(corners, c, run.stretch.span, range).map(|(s, b)| Hit {
-                s,
-                event: Event::from_xyzt(self.o + self.d * s),
-                primitive: PrimitiveId::Prism(p),
-                bary: Barycentric::Triangle(b.map(|x| x.clamp(0.0, 1.0))),
-            }),
+            Some(c) => intersect_prism(corners, c, run.stretch.span, range)
+                .map(|found| hit(self.o, self.d, p, found)),
         };
         self.record(run, PrimitiveId::Prism(p), &result);
         result.ok()

@@ -99,6 +99,12 @@ impl ComovingRay {
         })
     }
 
+    /// The comoving origin and the axes, in the ray's axis order, and the
+    /// shear's first two components (each at most 1 in magnitude).
+    pub(crate) fn parts(&self) -> ([f64; 3], [usize; 3], [f64; 2]) {
+        (self.origin, self.axes, [self.shear.x, self.shear.y])
+    }
+
     /// A corner relative to the ray, sheared: the ray is the third axis.
     /// The corner's coordinates are read in the order of `axes` straight
     /// from memory (a DVec3's own index is a branch on the axis).

@@ -1,0 +1,269 @@
+//! A conservative f32 pre-test of four comoving triangles at once, one SIMD
+//! lane each, in front of the exact test of [`intersect_prism`]. It rejects
+//! a triangle only where the exact test certainly rejects it as outside:
+//! two of the three edge functions of opposite signs, each farther from
+//! zero than the bound on what f32 can have changed it by. Every other
+//! triangle goes on to the exact test, so which triangles are hit, and
+//! where, is decided by that test alone, to the bit.
+//!
+//! The bound. Let u = 2^-24 (f32's unit roundoff) and K bound |c| + |o| on
+//! every axis, for the stretch's comoving corners c and the ray's comoving
+//! origin o. The exact test sees the f64 sheared corner X = (c_x - o_x) -
+//! s_x (c_z - o_z) (and Y alike), with |s_x|, |s_y| <= 1 (z is the axis the
+//! direction is largest along). Here c, o and s are rounded to f32 (each
+//! moved by at most u times itself) and every operation rounds again: the
+//! f32 value X' is within 8.1 u K of X. Take E = 2^-20 K (16 u K). An edge
+//! function e = X_C Y_B - Y_C X_B then moves by at most
+//! E (m_C + m_B + 2E) + 2.01 u m_C m_B, with m = |X'| + |Y'| of each
+//! corner, from its inputs and its three roundings; the bound used is
+//! E (m_C + m_B + 2E) + 2^-22 m_C m_B (the slack covers the rounding of
+//! the bound itself), plus 2^-120 for results in f32's subnormal range,
+//! where rounding is absolute. A NaN anywhere fails both comparisons, so
+//! its triangle goes on to the exact test. Rays and stretches with K of
+//! 10^15 or more (or not finite) are not filtered: nothing overflows f32.
+
+use super::triangle::ComovingRay;
+use glam::DVec3;
+use wide::{f32x4, CmpGt, CmpLt};
+
+/// Triangles a test covers.
+pub(crate) const LANES: usize = 4;
+
+/// Largest K (see the module's doc) for which rays are filtered.
+const MAX_REACH: f64 = 1e15;
+
+/// Relative bound of the rounding of an edge function's products and
+/// difference (2.01 u needed).
+const ROUNDING: f32 = 1.0 / (1u32 << 22) as f32;
+
+/// Absolute bound for edge functions in f32's subnormal range.
+const TINY: f32 = f32::MIN_POSITIVE * 64.0; // 2^-120
+
+/// Comoving triangles' corners in f32 (rounded to nearest), row by row:
+/// row 3 c + a holds coordinate a of corner c of every triangle, so that
+/// the same coordinate of consecutive triangles is one 16-byte load.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct CornerRows {
+    /// Length of a row: the triangles, and [`LANES`] - 1 of padding so
+    /// that a load at any triangle stays inside it.
+    stride: usize,
+    rows: Vec<f32>,
+}
+
+impl CornerRows {
+    /// The rows of `triangles`, in their order.
+    pub(crate) fn new(triangles: &[[DVec3; 3]]) -> CornerRows {
+        let stride = triangles.len() + LANES - 1;
+        let mut rows = vec![0.0f32; 9 * stride];
+        for (t, corners) in triangles.iter().enumerate() {
+            for (c, corner) in corners.iter().enumerate() {
+                for (a, &v) in corner.to_array().iter().enumerate() {
+                    rows[(3 * c + a) * stride + t] = v as f32;
+                }
+            }
+        }
+        CornerRows { stride, rows }
+    }
+
+    /// `ray` prepared for triangles whose comoving coordinates are at most
+    /// `reach` in magnitude; `None` where it is not filtered (see the
+    /// module's doc).
+    pub(crate) fn prepare(&self, ray: &ComovingRay, reach: f64) -> Option<FilterRay> {
+        let (origin, axes, [sx, sy]) = ray.parts();
+        let k = reach + origin.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        // A NaN fails the first test.
+        if !(k < MAX_REACH && sx.abs() <= 1.0 && sy.abs() <= 1.0) {
+            return None;
+        }
+        // Rounded to nearest: at most u below, well within the slack.
+        let e = (k * (1.0 / f64::from(1u32 << 20))) as f32;
+        Some(FilterRay {
+            rows: [
+                self.rows_of(0, axes),
+                self.rows_of(1, axes),
+                self.rows_of(2, axes),
+            ],
+            origin: [
+                f32x4::splat(origin[0] as f32),
+                f32x4::splat(origin[1] as f32),
+                f32x4::splat(origin[2] as f32),
+            ],
+            shear: [f32x4::splat(sx as f32), f32x4::splat(sy as f32)],
+            e: f32x4::splat(e),
+            e2: f32x4::splat(2.0 * e),
+        })
+    }
+
+    /// Where corner `c`'s coordinates start, on `axes` in order.
+    #[inline(always)]
+    fn rows_of(&self, c: usize, [x, y, z]: [usize; 3]) -> [u32; 3] {
+        let row = |a: usize| ((3 * c + a) * self.stride) as u32;
+        [row(x), row(y), row(z)]
+    }
+
+    /// Of the [`LANES`] triangles from `first` on, those (bit i for
+    /// triangle `first + i`) the exact test might not reject as outside.
+    /// (Not inlined: its many vector registers would otherwise be saved
+    /// around the exact tests that follow it.)
+    #[inline(never)]
+    pub(crate) fn candidates(&self, ray: &FilterRay, first: usize) -> u32 {
+        let load = |row: u32| {
+            let at = row as usize + first;
+            let lanes: [f32; LANES] = self.rows[at..at + LANES].try_into().expect("four lanes");
+            f32x4::from(lanes)
+        };
+        // (No array map here: it is not inlined.)
+        let sheared = |c: usize| {
+            let [rx, ry, rz] = ray.rows[c];
+            let z = load(rz) - ray.origin[2];
+            let x = (load(rx) - ray.origin[0]) - ray.shear[0] * z;
+            let y = (load(ry) - ray.origin[1]) - ray.shear[1] * z;
+            (x, y, x.abs() + y.abs())
+        };
+        let (a, b, c) = (sheared(0), sheared(1), sheared(2));
+        // Edge function p x q: certainly negative, certainly positive.
+        let edge = |p: (f32x4, f32x4, f32x4), q: (f32x4, f32x4, f32x4)| {
+            let e = p.0 * q.1 - p.1 * q.0;
+            let bound = ray.e * (p.2 + q.2 + ray.e2)
+                + f32x4::splat(ROUNDING) * p.2 * q.2
+                + f32x4::splat(TINY);
+            (e.cmp_lt(f32x4::ZERO - bound), e.cmp_gt(bound))
+        };
+        let (u, v, w) = (edge(c, b), edge(a, c), edge(b, a));
+        let outside = (u.0 | v.0 | w.0) & (u.1 | v.1 | w.1);
+        !(outside.move_mask() as u32) & ((1 << LANES) - 1)
+    }
+}
+
+/// A comoving ray prepared for [`CornerRows::candidates`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FilterRay {
+    /// Where each corner's coordinates start, in the ray's axis order.
+    rows: [[u32; 3]; 3],
+    /// The comoving origin in f32, in the ray's axis order.
+    origin: [f32x4; 3],
+    /// The shear's first two components in f32.
+    shear: [f32x4; 2],
+    /// E (see the module's doc) and 2E.
+    e: f32x4,
+    e2: f32x4,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::intersect_prism;
+    use crate::geometry::Miss;
+    use crate::rng::SplitMix64;
+    use glam::DVec4;
+
+    /// A triangle at a random place of scale `scale`, of size `size`.
+    fn triangle(rng: &mut SplitMix64, scale: f64, size: f64) -> [DVec3; 3] {
+        let mut at = || DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) - 0.5;
+        let centre = at() * scale;
+        [
+            centre + at() * size,
+            centre + at() * size,
+            centre + at() * size,
+        ]
+    }
+
+    /// A ray from a random origin (up to 1000 sizes away) aimed at a corner
+    /// or an edge of `t` or near it, at a random lab time and light speed.
+    fn aimed(rng: &mut SplitMix64, t: &[DVec3; 3], size: f64) -> (DVec4, DVec4) {
+        let (i, j) = ((rng.next_u64() % 3) as usize, (rng.next_u64() % 3) as usize);
+        let f = [0.0, 1.0, rng.next_f64()][(rng.next_u64() % 3) as usize];
+        let nudge = [0.0, 1e-7, -1e-7, 1e-15][(rng.next_u64() % 4) as usize] * size;
+        let target = t[i] + (t[j] - t[i]) * f + DVec3::splat(nudge);
+        let from = target
+            + (DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) - 0.5)
+                * size
+                * 10f64.powf(3.0 * rng.next_f64());
+        let d = (target - from).extend(-(target - from).length() * rng.next_f64());
+        (from.extend(rng.next_f64()), d)
+    }
+
+    /// Counts triangles the filter rejects, and of those the ones the exact
+    /// test does not reject as outside, with the bound's coefficient E
+    /// scaled by `slack` (1 in use).
+    fn rejections(slack: f32, seed: u64) -> (usize, usize) {
+        let mut rng = SplitMix64::new(seed);
+        let (mut rejected, mut wrong) = (0, 0);
+        for scale in [0.05, 1.0, 1e5] {
+            for size in [scale * 1e-6, scale * 1e-3, scale] {
+                for _ in 0..2000 {
+                    let tris: Vec<[DVec3; 3]> = (0..LANES)
+                        .map(|_| triangle(&mut rng, scale, size))
+                        .collect();
+                    let rows = CornerRows::new(&tris);
+                    let reach = tris
+                        .iter()
+                        .flatten()
+                        .fold(0.0f64, |m, c| m.max(c.abs().max_element()));
+                    let aim = (rng.next_u64() % LANES as u64) as usize;
+                    let (o, d) = aimed(&mut rng, &tris[aim], size);
+                    let v = DVec3::new(rng.next_f64() - 0.5, 0.0, 0.0) * 1.8;
+                    let Some(ray) = ComovingRay::new(o, d, (0.0, DVec3::ZERO), v) else {
+                        continue;
+                    };
+                    let mut filter = rows.prepare(&ray, reach).expect("filtered");
+                    filter.e *= f32x4::splat(slack);
+                    filter.e2 *= f32x4::splat(slack);
+                    let mask = rows.candidates(&filter, 0);
+                    for (i, t) in tris.iter().enumerate() {
+                        if mask & (1 << i) == 0 {
+                            rejected += 1;
+                            let exact = intersect_prism(t, &ray, (-1e300, 1e300), (-1e300, 1e300));
+                            if !matches!(exact, Err(Miss::Outside { .. })) {
+                                wrong += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        (rejected, wrong)
+    }
+
+    /// Every triangle the filter rejects, the exact test rejects as
+    /// outside, for rays aimed at corners and edges at every scale; and the
+    /// filter does reject most triangles a ray misses.
+    #[test]
+    fn the_filter_rejects_only_what_the_exact_test_rejects() {
+        let (rejected, wrong) = rejections(1.0, 7);
+        assert_eq!(wrong, 0, "of {rejected} rejected");
+        assert!(rejected > 40_000, "{rejected}");
+    }
+
+    /// Negative control: with no allowance for rounding the same rays find
+    /// triangles rejected that the exact test does not reject.
+    #[test]
+    fn without_its_bound_the_filter_rejects_wrongly() {
+        let (_, wrong) = rejections(0.0, 7);
+        assert!(wrong > 0);
+    }
+
+    /// A ray or stretch too far out for f32 is not filtered.
+    #[test]
+    fn far_rays_are_not_filtered() {
+        let rows = CornerRows::new(&[[DVec3::X, DVec3::Y, DVec3::Z]]);
+        let ray = |o: DVec4| {
+            ComovingRay::new(
+                o,
+                DVec4::new(0.0, 0.0, -1.0, -1.0),
+                (0.0, DVec3::ZERO),
+                DVec3::ZERO,
+            )
+            .unwrap()
+        };
+        assert!(rows
+            .prepare(&ray(DVec4::new(0.0, 0.0, 5.0, 0.0)), 1.0)
+            .is_some());
+        assert!(rows
+            .prepare(&ray(DVec4::new(0.0, 0.0, 2e15, 0.0)), 1.0)
+            .is_none());
+        assert!(rows
+            .prepare(&ray(DVec4::new(0.0, 0.0, 5.0, 0.0)), f64::NAN)
+            .is_none());
+    }
+}
