@@ -462,6 +462,16 @@ impl Bvh {
         let entry = Self::enter(bounds.min, bounds.max, o, inv, range)?;
         let mut best: Option<Hit> = None;
         let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
+        if root.count > 0 {
+            // A root leaf (a scene of few objects): no stack to set up.
+            let start = root.index as usize;
+            for &i in &order[start..start + root.count as usize] {
+                if let Some(h) = test(i, (range.0, hi(&best))) {
+                    best = Some(nearer(best, h));
+                }
+            }
+            return best;
+        }
         let mut stack = Stack::new();
         let mut current = Some((*root, entry));
         while let Some((child, entry)) = current.take().or_else(|| stack.pop()) {
