@@ -145,7 +145,8 @@ impl SpaceBvh {
     /// first item, its items (side by side there) and the range shrunk to
     /// the best hit so far, and returns the best hit among its items. The
     /// nearest entered child is searched first, the others wait on a
-    /// stack. Ties go to the lower primitive, whatever the order.
+    /// stack. Ties go to the lower primitive, whatever the order. The
+    /// range starts at zero or later (see [`WideRay`]).
     pub(crate) fn closest(
         &self,
         o: DVec3,
@@ -158,6 +159,7 @@ impl SpaceBvh {
         }
         // No test of the root's own box: the top level has tested the time
         // slice's, and the root node tests its children's.
+        debug_assert!(range.0 >= 0.0, "searched from {}", range.0);
         let ray = WideRay::new(o, DVec3::ONE / d);
         let mut best: Option<Hit> = None;
         let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
@@ -271,7 +273,7 @@ fn area(b: &[f32; 6]) -> f32 {
 /// Relative margin of the f32 slab parameters: each is (face - origin) *
 /// (1/d) with three roundings to nearest of at most 2^-24 each (the
 /// subtraction, 1/d to f32, the product), and the margin itself is applied
-/// with one more; 2^-20 covers them with room to spare.
+/// to 1/d with one more; 2^-20 covers them with room to spare.
 const MARGIN: f32 = 1.0 / (1u32 << 20) as f32;
 /// Absolute margin, for parameters in f32's subnormal range (where the
 /// roundings are absolute, at most 2^-150 each).
@@ -284,9 +286,13 @@ const TINY: f32 = f32::MIN_POSITIVE;
 ///   moves the crossing outward (for a near face, so that it is crossed no
 ///   later; for a far face, no sooner): per axis, one origin for the near
 ///   faces and one for the far;
-/// - the entry and exit so found are moved out by [`MARGIN`] of their size
-///   and by [`TINY`], which covers the rounding of the subtraction, of 1/d
-///   and of the product;
+/// - the crossings are found with 1/d made smaller in magnitude by
+///   [`MARGIN`] for the near faces and larger for the far ones, which
+///   covers the rounding of the subtraction, of 1/d and of the product:
+///   a crossing at a positive parameter (the only kind that can decide,
+///   the searched range starting at zero or later) is so found no later
+///   at a near face and no sooner at a far one; the entry and exit are
+///   then moved out by [`TINY`], for parameters in f32's subnormal range;
 /// - a NaN (0 * inf: an axis the ray is parallel to, its origin exactly on
 ///   a face) is dropped, as in f64.
 ///
@@ -296,10 +302,13 @@ const TINY: f32 = f32::MIN_POSITIVE;
 /// lies within 2^-128 times the longest searched ray parameter of the
 /// origin.
 struct WideRay {
-    /// Per axis: the origin for the near faces, for the far faces, and 1/d.
+    /// Per axis: the origin for the near faces and for the far faces, and
+    /// 1/d for each, moved by [`MARGIN`] toward zero (near) and away from
+    /// it (far).
     near_o: [f32x8; 3],
     far_o: [f32x8; 3],
-    inv: [f32x8; 3],
+    near_inv: [f32x8; 3],
+    far_inv: [f32x8; 3],
     /// Per axis, the index into a node's faces of the near face and of the
     /// far one (lower then upper when the direction is positive).
     near: [usize; 3],
@@ -312,13 +321,16 @@ impl WideRay {
         let mut ray = WideRay {
             near_o: [f32x8::ZERO; 3],
             far_o: [f32x8::ZERO; 3],
-            inv: [f32x8::ZERO; 3],
+            near_inv: [f32x8::ZERO; 3],
+            far_inv: [f32x8::ZERO; 3],
             near: [0, 1, 2],
             far: [3, 4, 5],
         };
         for a in 0..3 {
             let (lower, upper) = (f32x8::splat(down(o[a])), f32x8::splat(up(o[a])));
-            ray.inv[a] = f32x8::splat(inv[a] as f32);
+            let inv32 = inv[a] as f32;
+            ray.near_inv[a] = f32x8::splat(inv32 * (1.0 - MARGIN));
+            ray.far_inv[a] = f32x8::splat(inv32 * (1.0 + MARGIN));
             // 1/(-0) = -inf: a direction of -0 is negative here.
             if inv[a].is_sign_negative() {
                 (ray.near_o[a], ray.far_o[a]) = (lower, upper);
@@ -337,15 +349,13 @@ impl WideRay {
         let mut entry = f32x8::splat(range.0);
         let mut exit = f32x8::splat(range.1);
         for a in 0..3 {
-            let near = (node.faces[self.near[a]] - self.near_o[a]) * self.inv[a];
-            let far = (node.faces[self.far[a]] - self.far_o[a]) * self.inv[a];
+            let near = (node.faces[self.near[a]] - self.near_o[a]) * self.near_inv[a];
+            let far = (node.faces[self.far[a]] - self.far_o[a]) * self.far_inv[a];
             entry = max_dropping_nan(entry, near);
             exit = min_dropping_nan(exit, far);
         }
-        let (less, more) = (f32x8::splat(1.0 - MARGIN), f32x8::splat(1.0 + MARGIN));
         let tiny = f32x8::splat(TINY);
-        let entry = (entry * less).fast_min(entry * more) - tiny;
-        let exit = (exit * less).fast_max(exit * more) + tiny;
+        let (entry, exit) = (entry - tiny, exit + tiny);
         (entry.to_array(), entry.cmp_le(exit).move_mask() as u32)
     }
 }
@@ -466,7 +476,7 @@ mod tests {
             let inv = DVec3::ONE / d;
             let range = match n % 3 {
                 0 => (0.0, f64::INFINITY),
-                1 => (-scale, 1e3 * scale),
+                1 => (0.25 * scale, 1e3 * scale),
                 _ => (0.0, (boxes[lane][0] - o.x).abs() + scale),
             };
             let node = WideNode {

@@ -271,7 +271,8 @@ impl Database {
     }
 
     /// The hit with the smallest ray parameter in `range`: on a light-cone
-    /// ray, the most recent event (paper 3.2).
+    /// ray, the most recent event (paper 3.2). A ray runs forward from its
+    /// origin: a range starting below zero is searched from zero.
     pub fn closest_hit(&self, ray: &Ray, range: (f64, f64)) -> Option<Hit> {
         self.closest_hit_traced(ray, range, &mut NoTrace)
     }
@@ -284,6 +285,8 @@ impl Database {
         range: (f64, f64),
         trace: &mut T,
     ) -> Option<Hit> {
+        // (NaN included.)
+        let range = (range.0.max(0.0), range.1);
         let mut best = self.closest_in_runs(ray, range, trace);
         // Analytic spheres (few): the same for every traversal.
         for (k, sphere) in self.spheres.iter().enumerate() {

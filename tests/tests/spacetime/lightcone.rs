@@ -222,3 +222,51 @@ fn tetrahedron_solve_agrees_with_comoving_closed_form() {
     assert!(hits > 25_000, "only {hits} hits");
     assert!(boundary < rays / 1000, "{boundary} boundary disagreements");
 }
+
+/// A ray runs forward from its origin, whatever range it is given: moved
+/// past the event it met, to where that event lies behind it (s = -1), a
+/// range starting far below zero finds neither it nor anything else behind,
+/// and finds what the range from zero finds, through the hierarchy and by
+/// brute force alike.
+#[test]
+fn a_range_starting_below_zero_is_searched_from_zero() {
+    let mut rng = SplitMix64::new(29);
+    let (mut behind, mut ahead) = (0, 0);
+    for k in 0..100 {
+        let mesh = random_mesh(&mut rng, 6, 2.0);
+        let motion = random_motion(&mut rng, k % 5 == 0);
+        let (start, ext) = match motion {
+            Motion::Extrusion { start, extrusion } => (start, extrusion),
+            _ => unreachable!(),
+        };
+        let mut db = Database::build(
+            &scene(vec![object("o", ObjectKind::HObj, mesh.clone(), motion)]),
+            false,
+        )
+        .unwrap();
+        for _ in 0..50 {
+            let ray = aimed_ray(&mut rng, &mesh, start, ext);
+            let Some(hit) = db.closest_hit(&ray, (0.0, f64::INFINITY)) else {
+                continue;
+            };
+            behind += 1;
+            let moved = Ray {
+                origin: ray.at(hit.s + 1.0),
+                ..ray
+            };
+            for traversal in [Traversal::Bvh, Traversal::BruteForce] {
+                db.set_traversal(traversal);
+                let from_below = db.closest_hit(&moved, (-1e9, f64::INFINITY));
+                let from_zero = db.closest_hit(&moved, (0.0, f64::INFINITY));
+                assert_eq!(from_below, from_zero, "{traversal:?}");
+                if let Some(h) = from_below {
+                    assert!(h.s >= 0.0, "{traversal:?}: a hit behind, at s = {}", h.s);
+                    ahead += 1;
+                }
+            }
+            db.set_traversal(Traversal::Bvh);
+        }
+    }
+    assert!(behind > 1000, "{behind} rays moved past their hit");
+    assert!(ahead < behind, "{ahead} of {behind} met something ahead");
+}
