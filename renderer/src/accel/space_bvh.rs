@@ -168,7 +168,8 @@ impl SpaceBvh {
         let mut stack = Stack::new();
         let mut current = Some((self.root, lo32));
         while let Some((child, entry)) = current.take().or_else(|| stack.pop()) {
-            if f64::from(entry) > hi(&best) {
+            // hi32 holds the best hit's parameter, rounded up.
+            if entry > hi32 {
                 continue;
             }
             if child.count > 0 {
@@ -198,28 +199,37 @@ fn nearest_first(
     stack: &mut Stack<(Child, f32)>,
 ) -> Option<(Child, f32)> {
     let at = |i: u32| (node.children[i as usize], entries[i as usize]);
-    match entered.count_ones() {
-        0 => None,
-        1 => Some(at(entered.trailing_zeros())),
-        _ => {
-            let mut found = [(NO_CHILD, 0.0f32); WIDTH];
-            let mut n = 0;
-            let mut bits = entered;
-            while bits != 0 {
-                let (child, e) = at(bits.trailing_zeros());
-                bits &= bits - 1;
-                let mut j = n;
-                while j > 0 && found[j - 1].1 < e {
-                    found[j] = found[j - 1];
-                    j -= 1;
-                }
-                found[j] = (child, e);
-                n += 1;
-            }
-            found[..n - 1].iter().for_each(|&f| stack.push(f));
-            Some(found[n - 1])
-        }
+    // (Bit tricks rather than a count: x86-64's baseline has no popcnt.)
+    let rest = entered & entered.wrapping_sub(1);
+    if entered == 0 {
+        return None;
     }
+    if rest == 0 {
+        return Some(at(entered.trailing_zeros()));
+    }
+    if rest & (rest - 1) == 0 {
+        // Two: the nearer (on a tie the later child, as below) first.
+        let (a, b) = (at(entered.trailing_zeros()), at(rest.trailing_zeros()));
+        let (near, far) = if b.1 <= a.1 { (b, a) } else { (a, b) };
+        stack.push(far);
+        return Some(near);
+    }
+    let mut found = [(NO_CHILD, 0.0f32); WIDTH];
+    let mut n = 0;
+    let mut bits = entered;
+    while bits != 0 {
+        let (child, e) = at(bits.trailing_zeros());
+        bits &= bits - 1;
+        let mut j = n;
+        while j > 0 && found[j - 1].1 < e {
+            found[j] = found[j - 1];
+            j -= 1;
+        }
+        found[j] = (child, e);
+        n += 1;
+    }
+    found[..n - 1].iter().for_each(|&f| stack.push(f));
+    Some(found[n - 1])
 }
 
 /// Collapses the binary subtree under inner node `n` into nodes of eight
