@@ -391,7 +391,7 @@ fn filtered_leaf(
     let mut chunk = 0;
     while chunk < items.len() {
         let lanes = (1u32 << (items.len() - chunk).min(LANES)) - 1;
-        let mut candidates = db.rows.candidates(filter, at + chunk) & lanes;
+        let mut candidates = db.rows.candidates(filter, (at + chunk) as u32) & lanes;
         while candidates != 0 {
             let i = chunk + candidates.trailing_zeros() as usize;
             candidates &= candidates - 1;

@@ -51,9 +51,13 @@ pub(crate) struct CornerRows {
 }
 
 impl CornerRows {
-    /// The rows of `triangles`, in their order.
+    /// The rows of `triangles`, in their order; none (and no filtering)
+    /// when the rows would not be indexed by u32.
     pub(crate) fn new(triangles: &[[DVec3; 3]]) -> CornerRows {
         let stride = triangles.len() + LANES - 1;
+        if 9 * stride > u32::MAX as usize {
+            return CornerRows::default();
+        }
         let mut rows = vec![0.0f32; 9 * stride];
         for (t, corners) in triangles.iter().enumerate() {
             for (c, corner) in corners.iter().enumerate() {
@@ -72,7 +76,7 @@ impl CornerRows {
         let (origin, axes, [sx, sy]) = ray.parts();
         let k = reach + origin.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         // A NaN fails the first test.
-        if !(k < MAX_REACH && sx.abs() <= 1.0 && sy.abs() <= 1.0) {
+        if !(k < MAX_REACH && sx.abs() <= 1.0 && sy.abs() <= 1.0) || self.rows.is_empty() {
             return None;
         }
         // Rounded to nearest: at most u below, well within the slack.
@@ -106,9 +110,10 @@ impl CornerRows {
     /// (Not inlined: its many vector registers would otherwise be saved
     /// around the exact tests that follow it.)
     #[inline(never)]
-    pub(crate) fn candidates(&self, ray: &FilterRay, first: usize) -> u32 {
+    pub(crate) fn candidates(&self, ray: &FilterRay, first: u32) -> u32 {
         let load = |row: u32| {
-            let at = row as usize + first;
+            // Both u32: the sum cannot overflow, one bound to check.
+            let at = row as usize + first as usize;
             let lanes: [f32; LANES] = self.rows[at..at + LANES].try_into().expect("four lanes");
             f32x4::from(lanes)
         };
