@@ -89,6 +89,27 @@ fn aimed_ray(
     )
 }
 
+/// A random H_obj of `triangles` triangles moving uniformly (at rest when
+/// `at_rest`), its mesh, start event and extrusion, and its database.
+fn random_object(
+    rng: &mut SplitMix64,
+    triangles: usize,
+    at_rest: bool,
+) -> (renderer::Mesh, Event, renderer::FourVector, Database) {
+    let mesh = random_mesh(rng, triangles, 2.0);
+    let motion = random_motion(rng, at_rest);
+    let (start, ext) = match motion {
+        Motion::Extrusion { start, extrusion } => (start, extrusion),
+        _ => unreachable!(),
+    };
+    let db = Database::build(
+        &scene(vec![object("o", ObjectKind::HObj, mesh.clone(), motion)]),
+        false,
+    )
+    .unwrap();
+    (mesh, start, ext, db)
+}
+
 #[test]
 fn normalized_light_cone_direction_has_t_minus_sqrt2_over_2() {
     let mut rng = SplitMix64::new(3);
@@ -105,17 +126,7 @@ fn hits_lie_on_the_light_cone_inside_their_prism() {
     let mut rng = SplitMix64::new(5);
     let mut hits = 0;
     for k in 0..200 {
-        let mesh = random_mesh(&mut rng, 6, 2.0);
-        let motion = random_motion(&mut rng, k % 5 == 0);
-        let (start, ext) = match motion {
-            Motion::Extrusion { start, extrusion } => (start, extrusion),
-            _ => unreachable!(),
-        };
-        let db = Database::build(
-            &scene(vec![object("o", ObjectKind::HObj, mesh.clone(), motion)]),
-            false,
-        )
-        .unwrap();
+        let (mesh, start, ext, db) = random_object(&mut rng, 6, k % 5 == 0);
         for _ in 0..200 {
             let ray = aimed_ray(&mut rng, &mesh, start, ext);
             let Some(hit) = db.closest_hit(&ray, (0.0, f64::INFINITY)) else {
@@ -169,17 +180,7 @@ fn tetrahedron_solve_agrees_with_comoving_closed_form() {
     let mut rng = SplitMix64::new(17);
     let (mut rays, mut hits, mut boundary) = (0, 0, 0);
     for k in 0..250 {
-        let mesh = random_mesh(&mut rng, 4, 2.0);
-        let motion = random_motion(&mut rng, k % 4 == 0);
-        let (start, ext) = match motion {
-            Motion::Extrusion { start, extrusion } => (start, extrusion),
-            _ => unreachable!(),
-        };
-        let mut db = Database::build(
-            &scene(vec![object("o", ObjectKind::HObj, mesh.clone(), motion)]),
-            false,
-        )
-        .unwrap();
+        let (mesh, start, ext, mut db) = random_object(&mut rng, 4, k % 4 == 0);
         db.set_traversal(Traversal::BruteForce);
         for i in 0..400 {
             let ray = if i % 2 == 0 {
@@ -233,17 +234,7 @@ fn a_range_starting_below_zero_is_searched_from_zero() {
     let mut rng = SplitMix64::new(29);
     let (mut behind, mut ahead) = (0, 0);
     for k in 0..100 {
-        let mesh = random_mesh(&mut rng, 6, 2.0);
-        let motion = random_motion(&mut rng, k % 5 == 0);
-        let (start, ext) = match motion {
-            Motion::Extrusion { start, extrusion } => (start, extrusion),
-            _ => unreachable!(),
-        };
-        let mut db = Database::build(
-            &scene(vec![object("o", ObjectKind::HObj, mesh.clone(), motion)]),
-            false,
-        )
-        .unwrap();
+        let (mesh, start, ext, mut db) = random_object(&mut rng, 6, k % 5 == 0);
         for _ in 0..50 {
             let ray = aimed_ray(&mut rng, &mesh, start, ext);
             let Some(hit) = db.closest_hit(&ray, (0.0, f64::INFINITY)) else {
