@@ -35,6 +35,8 @@ pub(crate) struct StretchPrisms {
 struct StretchBvh {
     origin: Event,
     velocity: DVec3,
+    /// Lab times covered.
+    span: (f64, f64),
     bvh: SpaceBvh,
 }
 
@@ -86,24 +88,32 @@ impl TimeSlice {
     /// `None` if it never is.
     #[inline]
     fn window(&self, o: DVec4, d: DVec4, range: (f64, f64)) -> Option<(f64, f64)> {
-        if d.w == 0.0 {
-            return (self.t0 <= o.w && o.w <= self.t1).then_some(range);
-        }
-        let (a, b) = ((self.t0 - o.w) / d.w, (self.t1 - o.w) / d.w);
-        let margin = (a.abs() + b.abs()) * 1e-9;
-        let (lo, hi) = (
-            range.0.max(a.min(b) - margin),
-            range.1.min(a.max(b) + margin),
-        );
-        (lo <= hi).then_some((lo, hi))
+        window((self.t0, self.t1), o, d, range)
     }
 }
 
-/// Runs of time slices a ray has searched (at most [`Searched::MAX`]
-/// recorded; a run not recorded is searched again, to the same hit).
+/// The part of `range` where the ray `o + s d` is within the lab times
+/// `t0..t1`, widened by a billionth of its ends (see [`TimeSlice::window`]).
+#[inline]
+fn window((t0, t1): (f64, f64), o: DVec4, d: DVec4, range: (f64, f64)) -> Option<(f64, f64)> {
+    if d.w == 0.0 {
+        return (t0 <= o.w && o.w <= t1).then_some(range);
+    }
+    let (a, b) = ((t0 - o.w) / d.w, (t1 - o.w) / d.w);
+    let margin = (a.abs() + b.abs()) * 1e-9;
+    let (lo, hi) = (
+        range.0.max(a.min(b) - margin),
+        range.1.min(a.max(b) + margin),
+    );
+    (lo <= hi).then_some((lo, hi))
+}
+
+/// Stretches a ray has searched over all their lab times (at most
+/// [`Searched::MAX`] recorded; a stretch not recorded is searched again, to
+/// the same hit).
 #[derive(Default)]
 struct Searched {
-    runs: [(u32, u32); Searched::MAX],
+    stretches: [u32; Searched::MAX],
     len: usize,
 }
 
@@ -111,12 +121,12 @@ impl Searched {
     const MAX: usize = 4;
 
     fn holds(&self, k: u32) -> bool {
-        self.runs[..self.len].iter().any(|&(a, b)| a <= k && k <= b)
+        self.stretches[..self.len].contains(&k)
     }
 
-    fn add(&mut self, run: std::ops::RangeInclusive<u32>) {
+    fn add(&mut self, k: u32) {
         if self.len < Self::MAX {
-            self.runs[self.len] = (*run.start(), *run.end());
+            self.stretches[self.len] = k;
             self.len += 1;
         }
     }
@@ -202,6 +212,7 @@ impl TwoLevel {
             built.push(StretchBvh {
                 origin: g.origin,
                 velocity: g.velocity,
+                span: g.span,
                 bvh: tree,
             });
         }
@@ -210,48 +221,6 @@ impl TwoLevel {
             stretches: built,
             slices: all_slices,
         }
-    }
-
-    /// Slice `k`, whose box the ray `o + s d` (`inv` = 1/d) enters within
-    /// `range`, and the slices before and after it in time, of the same
-    /// stretch, whose boxes it enters too. They are searched as one, with
-    /// the union of their windows, so that a ray crossing a moving object's
-    /// slices in a row searches its hierarchy once rather than once a
-    /// slice. A hit is inside the box of the slice of its lab time, so the
-    /// same hit is found.
-    fn entered_run(
-        &self,
-        k: u32,
-        o: DVec4,
-        inv: DVec4,
-        range: (f64, f64),
-    ) -> std::ops::RangeInclusive<u32> {
-        let stretch = self.slices[k as usize].stretch;
-        let entered = |slice: &TimeSlice| slice.stretch == stretch && slice.entered(o, inv, range);
-        let before = self.slices[..k as usize].iter().rev();
-        let after = self.slices[k as usize + 1..].iter();
-        let first = k - before.take_while(|s| entered(s)).count() as u32;
-        let last = k + after.take_while(|s| entered(s)).count() as u32;
-        first..=last
-    }
-
-    /// The union of the windows ([`TimeSlice::window`]) of the slices of
-    /// `run` (consecutive in time, so one interval).
-    #[inline]
-    fn run_window(
-        &self,
-        run: std::ops::RangeInclusive<u32>,
-        o: DVec4,
-        d: DVec4,
-        range: (f64, f64),
-    ) -> Option<(f64, f64)> {
-        let mut union: Option<(f64, f64)> = None;
-        for j in run {
-            if let Some((lo, hi)) = self.slices[j as usize].window(o, d, range) {
-                union = Some(union.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))));
-            }
-        }
-        union
     }
 
     /// The order in which stretch `k`'s hierarchy holds its prisms: at
@@ -279,19 +248,22 @@ impl TwoLevel {
         let mut searched = Searched::default();
         self.top.closest(o, inv, range, |k, r| {
             let slice = &self.slices[k as usize];
+            let stretch = &self.stretches[slice.stretch as usize];
             let r = if slice.alone {
                 slice.window(o, d, r)?
             } else {
                 // A leaf of the top level may hold several slices, and
-                // its box theirs.
-                if searched.holds(k) || !slice.entered(o, inv, r) {
+                // its box theirs. The first slice of a stretch the ray
+                // enters has the stretch searched over all its lab times:
+                // its hierarchy's boxes hold its prisms at every one of
+                // them, so it is entered only where the ray meets the
+                // stretch's sweep, and each prism is tested once.
+                if searched.holds(slice.stretch) || !slice.entered(o, inv, r) {
                     return None;
                 }
-                let run = self.entered_run(k, o, inv, r);
-                searched.add(run.clone());
-                self.run_window(run, o, d, r)?
+                searched.add(slice.stretch);
+                window(stretch.span, o, d, r)?
             };
-            let stretch = &self.stretches[slice.stretch as usize];
             let (oc, dc) = stretch.to_comoving(o, d);
             stretch.bvh.closest(oc, dc, r, |first, items, r| {
                 leaf(slice.stretch, first, items, r)
