@@ -372,19 +372,18 @@ fn hit(o: DVec4, d: DVec4, p: u32, (s, bary): (f64, [f64; 3])) -> Hit {
     }
 }
 
-/// The closest hit within `range` on the prisms `items` of translation
-/// `run`, stored side by side from position `first` of the run: filtered
-/// four at a time, and those the filter lets through tested exactly, in
-/// order (`hit` makes the hit on a prism from what the exact test found).
+/// The closest hit within `range` of the lab ray `o + s d` on the prisms
+/// `items` of translation `run`, stored side by side from position `first`
+/// of the run: filtered four at a time, and those the filter lets through
+/// tested exactly (the ray in the run's comoving form), in order.
 #[inline(always)]
 fn filtered_leaf(
-    db: &Database,
-    run: &Run,
+    (db, run): (&Database, &Run),
+    (o, d): (DVec4, DVec4),
     (ray, filter): (&ComovingRay, &FilterRay),
     first: u32,
     items: &[u32],
     range: (f64, f64),
-    hit: impl Fn(u32, (f64, [f64; 3])) -> Hit,
 ) -> Option<Hit> {
     let (p0, at) = (run.stretch.prisms.start as u32, run.slot + first as usize);
     let mut best: Option<Hit> = None;
@@ -399,7 +398,7 @@ fn filtered_leaf(
             let corners = &db.comoving[at + i];
             let exact = intersect_prism(corners, ray, run.stretch.span, (range.0, hi));
             if let Ok(found) = exact {
-                best = Some(nearer(best, hit(p0 + items[i], found)));
+                best = Some(nearer(best, hit(o, d, p0 + items[i], found)));
             }
         }
         chunk += LANES;
@@ -424,16 +423,14 @@ impl<T: Trace> Tester<'_, T> {
             return self.each(k, first, items, range);
         }
         self.prepare(k);
-        let (o, d) = (self.o, self.d);
         match (&self.comoving, &self.filter) {
             (Some(ray), Some(filter)) => filtered_leaf(
-                self.db,
-                run,
+                (self.db, run),
+                (self.o, self.d),
                 (ray, filter),
                 first,
                 items,
                 range,
-                |p, found| hit(o, d, p, found),
             ),
             (Some(_), None) => self.each(k, first, items, range),
             // At rest in the comoving frame: parallel to every triangle.
@@ -465,6 +462,7 @@ impl<T: Trace> Tester<'_, T> {
         }
     }
 
+    /// [`Tester::prepare`] for a stretch other than the last prepared.
     #[inline(never)]
     fn prepare_new(&mut self, k: u32) {
         let run = &self.db.runs[k as usize];
