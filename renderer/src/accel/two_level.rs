@@ -54,9 +54,6 @@ impl StretchBvh {
 /// long-lived object does not cover the whole scene; cf. STBVH).
 struct TimeSlice {
     stretch: u32,
-    /// Lab times of the slice.
-    t0: f64,
-    t1: f64,
     /// The slice's box, padded as the top level pads a leaf's, in f32
     /// rounded outward (lower x, y, z, t then upper).
     bounds: [f32; 8],
@@ -80,20 +77,13 @@ impl TimeSlice {
         let (min, max) = (DVec4::from_slice(&b[..4]), DVec4::from_slice(&b[4..]));
         Bounds4::new(min, max).entry(o, inv, range).is_some()
     }
-
-    /// The part of `range` where the ray `o + s d` is within the slice's
-    /// lab times, widened by a billionth of its ends for the rounding of
-    /// both it and the solves (a hit exactly at the time two slices or two
-    /// stretches meet is then tested on both sides, as brute force would);
-    /// `None` if it never is.
-    #[inline]
-    fn window(&self, o: DVec4, d: DVec4, range: (f64, f64)) -> Option<(f64, f64)> {
-        window((self.t0, self.t1), o, d, range)
-    }
 }
 
 /// The part of `range` where the ray `o + s d` is within the lab times
-/// `t0..t1`, widened by a billionth of its ends (see [`TimeSlice::window`]).
+/// `t0..t1` (a stretch's), widened by a billionth of its ends for the
+/// rounding of both it and the solves (a hit exactly at the time two
+/// stretches meet is then tested on both sides, as brute force would);
+/// `None` if it never is.
 #[inline]
 fn window((t0, t1): (f64, f64), o: DVec4, d: DVec4, range: (f64, f64)) -> Option<(f64, f64)> {
     if d.w == 0.0 {
@@ -143,8 +133,8 @@ pub(crate) struct TwoLevel {
 
 /// Cuts a stretch into as many time slices as it takes for each to sweep
 /// about its own size (at most [`MAX_SLICES`]), given the comoving box
-/// `lo..hi` of all its prisms; returns each slice's lab times and bounds.
-fn slices(g: &StretchPrisms, lo: DVec3, hi: DVec3) -> Vec<(f64, f64, Bounds4)> {
+/// `lo..hi` of all its prisms; returns each slice's bounds.
+fn slices(g: &StretchPrisms, lo: DVec3, hi: DVec3) -> Vec<Bounds4> {
     let (t0, t1) = g.span;
     let v = g.velocity;
     let size = (hi - lo).max_element().max(1e-9);
@@ -165,11 +155,7 @@ fn slices(g: &StretchPrisms, lo: DVec3, hi: DVec3) -> Vec<(f64, f64, Bounds4)> {
             // Pad for the rounding of positions computed along the worldline.
             let pad =
                 rounding_margin(bl.extend(0.0), bh.extend(0.0)).truncate() + DVec3::splat(1e-300);
-            (
-                ta,
-                tb,
-                Bounds4::new((bl - pad).extend(ta), (bh + pad).extend(tb)),
-            )
+            Bounds4::new((bl - pad).extend(ta), (bh + pad).extend(tb))
         })
         .collect()
 }
@@ -199,12 +185,10 @@ impl TwoLevel {
             }));
             let cut = slices(g, lo, hi);
             let alone = cut.len() == 1;
-            for (ta, tb, bounds) in cut {
+            for bounds in cut {
                 slice_bounds.push(bounds);
                 all_slices.push(TimeSlice {
                     stretch: built.len() as u32,
-                    t0: ta,
-                    t1: tb,
                     bounds: outward(bounds.padded()),
                     alone,
                 });
@@ -249,9 +233,7 @@ impl TwoLevel {
         self.top.closest(o, inv, range, |k, r| {
             let slice = &self.slices[k as usize];
             let stretch = &self.stretches[slice.stretch as usize];
-            let r = if slice.alone {
-                slice.window(o, d, r)?
-            } else {
+            if !slice.alone {
                 // A leaf of the top level may hold several slices, and
                 // its box theirs. The first slice of a stretch the ray
                 // enters has the stretch searched over all its lab times:
@@ -262,8 +244,8 @@ impl TwoLevel {
                     return None;
                 }
                 searched.add(slice.stretch);
-                window(stretch.span, o, d, r)?
-            };
+            }
+            let r = window(stretch.span, o, d, r)?;
             let (oc, dc) = stretch.to_comoving(o, d);
             stretch.bvh.closest(oc, dc, r, |first, items, r| {
                 leaf(slice.stretch, first, items, r)
