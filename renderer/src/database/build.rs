@@ -175,10 +175,7 @@ impl Builder {
             let (first, slot) = (self.prism_count(), self.comoving.len());
             self.comoving
                 .extend((0..mesh.triangles.len()).map(|t| mesh.corners(t)));
-            let reach = self.comoving[slot..]
-                .iter()
-                .flatten()
-                .fold(0.0f64, |m, c| m.max(c.abs().max_element()));
+            let reach = geometry::reach(&self.comoving[slot..]);
             self.runs.push(Run {
                 object: i as u32,
                 stretch: StretchPrisms {

@@ -50,6 +50,15 @@ pub(crate) struct CornerRows {
     rows: Vec<f32>,
 }
 
+/// The largest magnitude of a coordinate of `triangles`: their part of K
+/// (see the module's doc).
+pub(crate) fn reach(triangles: &[[DVec3; 3]]) -> f64 {
+    triangles
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, c| m.max(c.abs().max_element()))
+}
+
 impl CornerRows {
     /// The rows of `triangles`, in their order; none (and no filtering)
     /// when the rows would not be indexed by u32.
@@ -201,10 +210,7 @@ mod tests {
                         .map(|_| triangle(&mut rng, scale, size))
                         .collect();
                     let rows = CornerRows::new(&tris);
-                    let reach = tris
-                        .iter()
-                        .flatten()
-                        .fold(0.0f64, |m, c| m.max(c.abs().max_element()));
+                    let reach = reach(&tris);
                     let aim = (rng.next_u64() % LANES as u64) as usize;
                     let (o, d) = aimed(&mut rng, &tris[aim], size);
                     let v = DVec3::new(rng.next_f64() - 0.5, 0.0, 0.0) * 1.8;

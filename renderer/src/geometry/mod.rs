@@ -16,7 +16,7 @@ pub use extrude::{
     corner_order, corners_between, extrude, extrude_between, piece, split_between, split_prism,
     tetrahedron_volume, Prism, PrismCorners, Tetrahedron,
 };
-pub(crate) use filter::{CornerRows, FilterRay, LANES};
+pub(crate) use filter::{reach, CornerRows, FilterRay, LANES};
 pub use hit::{nearer, Barycentric, Hit, Miss, PrimitiveId};
 pub(crate) use poses::resolve;
 pub use poses::Pose;
