@@ -13,6 +13,7 @@ mod spacetime {
     mod extrusion;
     mod keyframes;
     mod lightcone;
+    mod packets;
     mod sphere;
     mod watertight;
 }

@@ -15,6 +15,7 @@
 //! objects (which all live for the whole scene) a split along t gains
 //! nothing and is not chosen.
 
+use super::packet::{Lanes, PACKET};
 use crate::geometry::{nearer, Hit};
 use glam::DVec4;
 
@@ -511,6 +512,95 @@ impl Bvh {
         }
         best
     }
+
+    /// [`Bvh::closest`] for a packet of rays (`o[i]`, `inv[i]` = 1/d),
+    /// those of `lanes` searching within `range`: `test(item, lanes, hi)`
+    /// is called for every item whose box any of `lanes` enters, with those
+    /// that do; `hi[i]` is the upper end of ray i's range, which `test`
+    /// lowers to the ray's best hit so far.
+    pub(crate) fn closest_packet(
+        &self,
+        (o, inv): (&[DVec4; PACKET], &[DVec4; PACKET]),
+        lanes: Lanes,
+        range: (f64, f64),
+        mut test: impl FnMut(u32, Lanes, &mut [f64; PACKET]),
+    ) {
+        if self.0.root.count == 0 && self.0.nodes.is_empty() {
+            return; // no items
+        }
+        let Built {
+            nodes, root, order, ..
+        } = &self.0;
+        let mut hi = [range.1; PACKET];
+        let mut entries = [range.0; PACKET];
+        let bounds = &self.0.root_bounds;
+        let lanes = lanes.filter(|i| {
+            let entry = Self::enter(bounds.min, bounds.max, o[i], inv[i], range);
+            entries[i] = entry.unwrap_or(range.0);
+            entry.is_some()
+        });
+        let mut stack = Stack::new();
+        let mut current = Some(TopWaiting {
+            child: *root,
+            lanes,
+            entries,
+        });
+        while let Some(w) = current.take().or_else(|| stack.pop()) {
+            let lanes = w.lanes.filter(|i| w.entries[i] <= hi[i]);
+            if lanes.is_empty() {
+                continue;
+            }
+            if w.child.count > 0 {
+                let start = w.child.index as usize;
+                for &item in &order[start..start + w.child.count as usize] {
+                    test(item, lanes, &mut hi);
+                }
+                continue;
+            }
+            let node = &nodes[w.child.index as usize];
+            let [a, b] = [0, 1].map(|c| {
+                let mut entries = [0.0; PACKET];
+                let entered = lanes.filter(|i| {
+                    let r = (range.0, hi[i]);
+                    let entry = Self::enter(node.min[c], node.max[c], o[i], inv[i], r);
+                    entries[i] = entry.unwrap_or(0.0);
+                    entry.is_some()
+                });
+                let key = entered
+                    .iter()
+                    .map(|i| entries[i])
+                    .fold(f64::INFINITY, f64::min);
+                let child = node.children[c];
+                (
+                    TopWaiting {
+                        child,
+                        lanes: entered,
+                        entries,
+                    },
+                    key,
+                )
+            });
+            current = match (a.0.lanes.is_empty(), b.0.lanes.is_empty()) {
+                (false, false) => {
+                    let (near, far) = if a.1 <= b.1 { (a.0, b.0) } else { (b.0, a.0) };
+                    stack.push(far);
+                    Some(near)
+                }
+                (false, true) => Some(a.0),
+                (true, false) => Some(b.0),
+                (true, true) => None,
+            };
+        }
+    }
+}
+
+/// A child waiting on a packet's stack: the rays that entered it and where
+/// each did.
+#[derive(Clone, Copy, Debug, Default)]
+struct TopWaiting {
+    child: Child,
+    lanes: Lanes,
+    entries: [f64; PACKET],
 }
 
 #[cfg(test)]

@@ -3,8 +3,10 @@
 //! path, and over all stretches). Never changes which hit is found.
 
 mod bvh;
+mod packet;
 mod space_bvh;
 mod two_level;
 
 pub(crate) use bvh::rounding_margin;
+pub(crate) use packet::{Lanes, PACKET};
 pub(crate) use two_level::{StretchPrisms, TwoLevel};

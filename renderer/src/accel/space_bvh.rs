@@ -14,6 +14,7 @@
 //! decided by the leaf tests alone.
 
 use super::bvh::{build, Bounds4, Child, PairNode, Stack};
+use super::packet::{Lanes, PACKET};
 use crate::geometry::{nearer, Hit};
 use glam::DVec3;
 use wide::{f32x8, CmpLe};
@@ -187,6 +188,138 @@ impl SpaceBvh {
         }
         best
     }
+
+    /// [`SpaceBvh::closest`] for a packet of rays `rays[i]` = (o, d), those
+    /// of `lanes` searching within `ranges[i]`, each starting at zero or
+    /// later: `leaf(i, first, items, range)` is called for ray i at every
+    /// leaf whose box it enters (or, once it has entered its parent, that
+    /// another ray of the packet enters no later than its best hit so far).
+    /// Each ray finds the hit it finds alone.
+    pub(crate) fn closest_packet(
+        &self,
+        rays: &[(DVec3, DVec3); PACKET],
+        lanes: Lanes,
+        ranges: &[(f64, f64); PACKET],
+        mut leaf: impl FnMut(usize, u32, &[u32], (f64, f64)) -> Option<Hit>,
+    ) -> [Option<Hit>; PACKET] {
+        let mut best: [Option<Hit>; PACKET] = [None; PACKET];
+        if self.root.count == 0 && self.nodes.is_empty() {
+            return best; // no items
+        }
+        // (A lane not searched holds some ray, never used.)
+        let ray = |i: usize| WideRay::new(rays[i].0, DVec3::ONE / rays[i].1);
+        // Built in place (`map` would copy them).
+        let wide: [WideRay; PACKET] = [ray(0), ray(1), ray(2), ray(3)];
+        let lo32 = ranges.map(|r| down(r.0));
+        // Each ray's best hit's parameter, rounded up.
+        let mut hi32 = ranges.map(|r| up(r.1));
+        let mut stack = Stack::new();
+        let least = lo32.iter().copied().fold(f32::INFINITY, f32::min);
+        let mut current = Some(Waiting {
+            child: self.root,
+            lanes,
+            entry: least,
+        });
+        while let Some(w) = current.take().or_else(|| stack.pop()) {
+            // `entry` is the least of its rays' entries.
+            let lanes = w.lanes.filter(|i| w.entry <= hi32[i]);
+            if lanes.is_empty() {
+                continue;
+            }
+            if w.child.count > 0 {
+                let start = w.child.index as usize;
+                let items = &self.order[start..start + w.child.count as usize];
+                for i in lanes.iter() {
+                    let hi = best[i].map_or(ranges[i].1, |b| b.s);
+                    if let Some(h) = leaf(i, w.child.index, items, (ranges[i].0, hi)) {
+                        let b = nearer(best[i], h);
+                        best[i] = Some(b);
+                        hi32[i] = up(b.s);
+                    }
+                }
+                continue;
+            }
+            let node = &self.nodes[w.child.index as usize];
+            // Per child, the least entry of the rays that enter it, and
+            // which rays do: byte i of `by_ray` for ray i, bit c for child c.
+            let mut least = f32x8::splat(f32::INFINITY);
+            let mut by_ray = 0u32;
+            for (i, ray) in wide.iter().enumerate() {
+                if lanes.holds(i) {
+                    let (entry, inside) = ray.enter_lanes(node, (lo32[i], hi32[i]));
+                    least = least.fast_min(inside.blend(entry, f32x8::splat(f32::INFINITY)));
+                    by_ray |= (inside.move_mask() as u32) << (8 * i);
+                }
+            }
+            current = nearest_first_of_packet(node, least.to_array(), by_ray, &mut stack);
+        }
+        best
+    }
+}
+
+/// A child waiting on a packet's stack: the rays that entered it and the
+/// least of their entries (in f32, rounded outward).
+#[derive(Clone, Copy, Debug, Default)]
+struct Waiting {
+    child: Child,
+    lanes: Lanes,
+    entry: f32,
+}
+
+/// The rays (bit i for ray i) that entered child `c`, given byte i of
+/// `by_ray` for ray i (bit c of it for child c).
+#[inline(always)]
+fn rays_entering(by_ray: u32, c: u32) -> Lanes {
+    const _: () = assert!(PACKET == 4, "one byte a ray in a u32");
+    // Bits c, c + 8, c + 16, c + 24 gathered into bits 24 to 27.
+    Lanes(((by_ray >> c) & 0x0101_0101).wrapping_mul(0x0102_0408) >> 24)
+}
+
+/// [`nearest_first`] for a packet: of the children any ray entered (see
+/// [`rays_entering`]), the nearest (by the least entry of its rays), with
+/// the others pushed farthest first, each with the rays that entered it.
+#[inline(always)]
+fn nearest_first_of_packet(
+    node: &WideNode,
+    least: [f32; WIDTH],
+    by_ray: u32,
+    stack: &mut Stack<Waiting>,
+) -> Option<Waiting> {
+    let entered = (by_ray | by_ray >> 8 | by_ray >> 16 | by_ray >> 24) & 0xff;
+    let at = |c: u32| Waiting {
+        child: node.children[c as usize],
+        lanes: rays_entering(by_ray, c),
+        entry: least[c as usize],
+    };
+    let rest = entered & entered.wrapping_sub(1);
+    if entered == 0 {
+        return None;
+    }
+    if rest == 0 {
+        return Some(at(entered.trailing_zeros()));
+    }
+    if rest & (rest - 1) == 0 {
+        let (a, b) = (at(entered.trailing_zeros()), at(rest.trailing_zeros()));
+        let (near, far) = if b.entry <= a.entry { (b, a) } else { (a, b) };
+        stack.push(far);
+        return Some(near);
+    }
+    let mut found = [Waiting::default(); WIDTH];
+    let mut n = 0;
+    let mut bits = entered;
+    while bits != 0 {
+        let w = at(bits.trailing_zeros());
+        bits &= bits - 1;
+        let mut j = n;
+        while j > 0 && found[j - 1].entry < w.entry {
+            found[j] = found[j - 1];
+            j -= 1;
+        }
+        found[j] = w;
+        n += 1;
+    }
+    found[..n - 1].iter().for_each(|&f| stack.push(f));
+    Some(found[n - 1])
 }
 
 /// Of a node's entered children (bit i of `entered` for child i), the
@@ -356,6 +489,14 @@ impl WideRay {
     /// (in f32, rounded outward), and which it enters (bit i for child i).
     #[inline(always)]
     fn enter(&self, node: &WideNode, range: (f32, f32)) -> ([f32; WIDTH], u32) {
+        let (entry, entered) = self.enter_lanes(node, range);
+        (entry.to_array(), entered.move_mask() as u32)
+    }
+
+    /// [`WideRay::enter`] with the entries kept in lanes, and a lane of all
+    /// ones for each box entered.
+    #[inline(always)]
+    fn enter_lanes(&self, node: &WideNode, range: (f32, f32)) -> (f32x8, f32x8) {
         let mut entry = f32x8::splat(range.0);
         let mut exit = f32x8::splat(range.1);
         for a in 0..3 {
@@ -366,7 +507,7 @@ impl WideRay {
         }
         let tiny = f32x8::splat(TINY);
         let (entry, exit) = (entry - tiny, exit + tiny);
-        (entry.to_array(), entry.cmp_le(exit).move_mask() as u32)
+        (entry, entry.cmp_le(exit))
     }
 }
 

@@ -6,8 +6,9 @@
 //! hierarchy of the lab-frame 4D bounds of their time slices.
 
 use super::bvh::{rounding_margin, Bounds4, Bvh};
+use super::packet::{Lanes, PACKET};
 use super::space_bvh::{down, up, SpaceBvh};
-use crate::geometry::{comoving_line, Hit};
+use crate::geometry::{comoving_line, nearer, Hit};
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
 
@@ -251,6 +252,60 @@ impl TwoLevel {
                 leaf(slice.stretch, first, items, r)
             })
         })
+    }
+
+    /// [`TwoLevel::closest`] for a packet of lab rays `rays[i]` = (o, d),
+    /// those of `lanes`, within `range`: `leaf(i, stretch, first, items,
+    /// range)` is called for ray i. Each ray finds the hit it finds alone.
+    pub(crate) fn closest_packet(
+        &self,
+        rays: &[(DVec4, DVec4); PACKET],
+        lanes: Lanes,
+        range: (f64, f64),
+        mut leaf: impl FnMut(usize, u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
+    ) -> [Option<Hit>; PACKET] {
+        let o = rays.map(|r| r.0);
+        let inv = rays.map(|r| DVec4::ONE / r.1);
+        let mut searched: [Searched; PACKET] = Default::default();
+        let mut best: [Option<Hit>; PACKET] = [None; PACKET];
+        self.top
+            .closest_packet((&o, &inv), lanes, range, |k, lanes, hi| {
+                let slice = &self.slices[k as usize];
+                let stretch = &self.stretches[slice.stretch as usize];
+                let mut comoving = [(DVec3::ZERO, DVec3::ZERO); PACKET];
+                let mut windows = [(0.0, 0.0); PACKET];
+                // As in `closest`, ray by ray.
+                let lanes = lanes.filter(|i| {
+                    let ((o, d), r) = (rays[i], (range.0, hi[i]));
+                    if !slice.alone {
+                        if searched[i].holds(slice.stretch) || !slice.entered(o, inv[i], r) {
+                            return false;
+                        }
+                        searched[i].add(slice.stretch);
+                    }
+                    let Some(w) = window(stretch.span, o, d, r) else {
+                        return false;
+                    };
+                    (windows[i], comoving[i]) = (w, stretch.to_comoving(o, d));
+                    true
+                });
+                if lanes.is_empty() {
+                    return;
+                }
+                let found =
+                    stretch
+                        .bvh
+                        .closest_packet(&comoving, lanes, &windows, |i, first, items, r| {
+                            leaf(i, slice.stretch, first, items, r)
+                        });
+                for i in lanes.iter() {
+                    if let Some(h) = found[i] {
+                        let b = nearer(best[i], h);
+                        (best[i], hi[i]) = (Some(b), b.s);
+                    }
+                }
+            });
+        best
     }
 }
 

@@ -6,7 +6,7 @@ mod object;
 
 pub use object::{ObjectRecord, Stretch};
 
-use crate::accel::{StretchPrisms, TwoLevel};
+use crate::accel::{Lanes, StretchPrisms, TwoLevel, PACKET};
 use crate::geometry::{
     corner_order, corners_between, intersect_prism, nearer, piece, Barycentric, ComovingRay,
     CornerRows, FilterRay, Hit, Miss, PreparedTet, PrimitiveId, Prism, PrismCorners, Sphere,
@@ -287,8 +287,39 @@ impl Database {
     ) -> Option<Hit> {
         // (NaN included.)
         let range = (range.0.max(0.0), range.1);
-        let mut best = self.closest_in_runs(ray, range, trace);
-        // Analytic spheres (few): the same for every traversal.
+        let best = self.closest_in_runs(ray, range, trace);
+        self.nearer_on_spheres(ray, range, best)
+    }
+
+    /// [`Database::closest_hit`] of each of `rays` within `range`, into
+    /// `hits`: the same hits to the bit, found by searching the rays a few
+    /// at a time, which saves work when neighbours in `rays` are coherent,
+    /// as the primary rays of neighbouring pixels are.
+    pub fn closest_hits(&self, rays: &[Ray], range: (f64, f64), hits: &mut [Option<Hit>]) {
+        assert_eq!(rays.len(), hits.len(), "one hit for each ray");
+        let range = (range.0.max(0.0), range.1);
+        for (rays, hits) in rays.chunks(PACKET).zip(hits.chunks_mut(PACKET)) {
+            let found = match self.traversal {
+                Traversal::Bvh if rays.len() > 1 => self.closest_in_runs_packet(rays, range),
+                _ => std::array::from_fn(|i| {
+                    let ray = rays.get(i)?;
+                    self.closest_in_runs(ray, range, &mut NoTrace)
+                }),
+            };
+            for ((hit, ray), best) in hits.iter_mut().zip(rays).zip(found) {
+                *hit = self.nearer_on_spheres(ray, range, best);
+            }
+        }
+    }
+
+    /// The nearer of `best` and the closest hit on the analytic spheres
+    /// (few: the same for every traversal).
+    fn nearer_on_spheres(
+        &self,
+        ray: &Ray,
+        range: (f64, f64),
+        mut best: Option<Hit>,
+    ) -> Option<Hit> {
         for (k, sphere) in self.spheres.iter().enumerate() {
             let hi = best.map_or(range.1, |b| b.s);
             if let Some(h) = sphere.intersect(ray, k as u32, (range.0, hi)) {
@@ -298,22 +329,31 @@ impl Database {
         best
     }
 
+    /// [`Database::closest_in_runs`] of a packet of at most [`PACKET`]
+    /// rays, searched together.
+    fn closest_in_runs_packet(&self, rays: &[Ray], range: (f64, f64)) -> [Option<Hit>; PACKET] {
+        // Lanes past the rays repeat the last, and are not searched.
+        let ray = |i: usize| &rays[i.min(rays.len() - 1)];
+        let mut traces = [(); PACKET].map(|_| NoTrace);
+        let mut traces = traces.iter_mut();
+        let mut testers: [Tester<NoTrace>; PACKET] =
+            std::array::from_fn(|i| Tester::new(self, ray(i), traces.next().expect("one a lane")));
+        let lab = std::array::from_fn(|i| (testers[i].o, testers[i].d));
+        self.accel.closest_packet(
+            &lab,
+            Lanes::first(rays.len()),
+            range,
+            |i, run, first, items, r| testers[i].leaf(run, first, items, r),
+        )
+    }
+
     fn closest_in_runs<T: Trace>(
         &self,
         ray: &Ray,
         range: (f64, f64),
         trace: &mut T,
     ) -> Option<Hit> {
-        let mut tester = Tester {
-            db: self,
-            ray,
-            o: ray.origin.to_xyzt(),
-            d: ray.direction.to_xyzt(),
-            stretch: NO_STRETCH,
-            comoving: None,
-            filter: None,
-            trace,
-        };
+        let mut tester = Tester::new(self, ray, trace);
         match self.traversal {
             Traversal::BruteForce => {
                 let mut best: Option<Hit> = None;
@@ -409,7 +449,20 @@ fn filtered_leaf(
 /// [`Tester::stretch`] before any stretch is prepared.
 const NO_STRETCH: u32 = u32::MAX;
 
-impl<T: Trace> Tester<'_, T> {
+impl<'a, T: Trace> Tester<'a, T> {
+    fn new(db: &'a Database, ray: &'a Ray, trace: &'a mut T) -> Tester<'a, T> {
+        Tester {
+            db,
+            ray,
+            o: ray.origin.to_xyzt(),
+            d: ray.direction.to_xyzt(),
+            stretch: NO_STRETCH,
+            comoving: None,
+            filter: None,
+            trace,
+        }
+    }
+
     /// The closest hit within `range` on the prisms `items` (counted from
     /// the run's first) of a leaf of run `k`'s hierarchy, which are stored
     /// side by side from position `first` of the run. A translation's are

@@ -1,0 +1,145 @@
+//! Rays searched a packet at a time (`Database::closest_hits`) find the
+//! hits they find one at a time (`Database::closest_hit`), to the bit: on
+//! the primary rays of every fixture in all three models, on many moving
+//! boxes, and on packets whose rays share nothing.
+
+use renderer::{Database, Event, Hit, LightSpeed, Model, Motion, Ray, SplitMix64, Traversal};
+use vstf::fixture::Overrides;
+use workspace_tests::{point, unit};
+
+/// Each ray's hit alone and in packets (in order, `rays.len()` need not
+/// be a whole number of packets); the number of rays that hit.
+fn assert_packets_find_single_hits(db: &Database, rays: &[Ray], what: &str) -> usize {
+    let mut packed: Vec<Option<Hit>> = vec![None; rays.len()];
+    db.closest_hits(rays, (0.0, f64::INFINITY), &mut packed);
+    for (k, (ray, hit)) in rays.iter().zip(&packed).enumerate() {
+        let alone = db.closest_hit(ray, (0.0, f64::INFINITY));
+        // Debug prints each f64 exactly (shortest round trip, signed zeros).
+        assert_eq!(
+            format!("{hit:?}"),
+            format!("{alone:?}"),
+            "{what}: ray {k} finds another hit in a packet"
+        );
+    }
+    packed.iter().filter(|h| h.is_some()).count()
+}
+
+/// The primary rays of `view`, one at each pixel's centre, 2 x 2 pixels
+/// after each other (as a renderer would pack them).
+fn primary_rays(view: &vstf::fixture::View) -> Vec<Ray> {
+    let (w, h) = (view.camera.width, view.camera.height);
+    let mut rays = Vec::new();
+    for y0 in (0..h).step_by(2) {
+        for x0 in (0..w).step_by(2) {
+            for y in y0..(y0 + 2).min(h) {
+                for x in x0..(x0 + 2).min(w) {
+                    let (px, py) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                    rays.push(
+                        view.camera
+                            .ray(px, py, view.camera_t, view.model.light_speed),
+                    );
+                }
+            }
+        }
+    }
+    rays
+}
+
+#[test]
+fn packets_of_primary_rays_find_the_hits_single_rays_find_on_every_fixture() {
+    for name in workspace_tests::repo().fixture_names() {
+        let f = workspace_tests::fixture(&name);
+        for m in [Model::INFINITE, Model::CLASSICAL, Model::RELATIVISTIC] {
+            let small = Overrides {
+                model: Some(m),
+                width: Some(47),
+                height: Some(35),
+                ..Default::default()
+            };
+            let view = vstf::run::view(&f, &small).unwrap();
+            let db = vstf::run::database(&f, m.lorentz, Traversal::Bvh).unwrap();
+            let rays = primary_rays(&view);
+            assert_packets_find_single_hits(&db, &rays, &format!("{name} ({m})"));
+        }
+    }
+}
+
+/// 300 boxes moving at up to 0.6 over lab times -300..100, their time
+/// slices in the top level; `coherent` packs neighbouring rays of one
+/// camera event, otherwise every ray has its own event and direction.
+fn boxes_and_rays(coherent: bool) -> (Database, Vec<Ray>) {
+    let scene = vstf::bench::boxes(300, 7);
+    let db = Database::build(&scene, false).unwrap();
+    let mut rng = SplitMix64::new(11);
+    // A ray from a random event aimed near where box k was when its light
+    // left it, roughly.
+    let mut aimed = |k: usize, rng: &mut SplitMix64| {
+        let at = Event::new(rng.range(-100.0, 50.0), point(rng, 80.0));
+        let Motion::Extrusion { start, extrusion } = scene.objects[k % 300].motion else {
+            unreachable!("the boxes move uniformly")
+        };
+        let place = |t: f64| start.x + extrusion.x * ((t - start.t) / extrusion.t);
+        let seen = (0..3).fold(at.t, |t, _| at.t - (place(t) - at.x).length());
+        (at, place(seen) + point(rng, 1.0) - at.x)
+    };
+    let mut rays = Vec::new();
+    for k in 0..5000 {
+        let (at, aim) = aimed(k, &mut rng);
+        for j in 0..4 {
+            let (origin, d) = if coherent {
+                (at, aim.normalize() + unit(&mut rng) * 0.01)
+            } else {
+                aimed(7 * k + j, &mut rng)
+            };
+            rays.push(Ray::backwards(origin, d.normalize(), LightSpeed::Finite));
+        }
+    }
+    (db, rays)
+}
+
+#[test]
+fn packets_find_the_hits_single_rays_find_among_many_moving_boxes() {
+    for coherent in [true, false] {
+        let (db, rays) = boxes_and_rays(coherent);
+        let hits = assert_packets_find_single_hits(&db, &rays, "moving boxes");
+        // Enough rays hit for the comparison to mean something.
+        assert!(hits > rays.len() / 4, "{hits} of {} rays hit", rays.len());
+        // Every count of rays, not only whole packets.
+        for n in 1..=9 {
+            assert_packets_find_single_hits(&db, &rays[..n], "a short run of rays");
+        }
+    }
+}
+
+/// The comparison above can fail: neighbouring rays of a packet find
+/// different hits, so a packet giving every ray its first ray's hit (or
+/// its rays' hits in another order) would be caught.
+#[test]
+fn the_rays_of_a_packet_find_different_hits() {
+    let (db, rays) = boxes_and_rays(true);
+    let mut packed: Vec<Option<Hit>> = vec![None; rays.len()];
+    db.closest_hits(&rays, (0.0, f64::INFINITY), &mut packed);
+    let differing = packed
+        .chunks(4)
+        .filter(|p| p.iter().any(|h| format!("{h:?}") != format!("{:?}", p[0])))
+        .count();
+    assert!(differing > 100, "{differing} packets of differing hits");
+    let mut shifted = packed.clone();
+    shifted.rotate_left(1);
+    let moved = packed
+        .iter()
+        .zip(&shifted)
+        .filter(|(a, b)| format!("{a:?}") != format!("{b:?}"))
+        .count();
+    assert!(
+        moved > 1000,
+        "only {moved} hits change when shifted by one ray"
+    );
+}
+
+#[test]
+fn brute_force_packets_are_single_rays() {
+    let (mut db, rays) = boxes_and_rays(false);
+    db.set_traversal(Traversal::BruteForce);
+    assert_packets_find_single_hits(&db, &rays[..400], "brute force");
+}
