@@ -73,7 +73,7 @@ fn boxes_and_rays(coherent: bool) -> (Database, Vec<Ray>) {
     let mut rng = SplitMix64::new(11);
     // A ray from a random event aimed near where box k was when its light
     // left it, roughly.
-    let mut aimed = |k: usize, rng: &mut SplitMix64| {
+    let aimed = |k: usize, rng: &mut SplitMix64| {
         let at = Event::new(rng.range(-100.0, 50.0), point(rng, 80.0));
         let Motion::Extrusion { start, extrusion } = scene.objects[k % 300].motion else {
             unreachable!("the boxes move uniformly")
