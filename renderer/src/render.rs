@@ -110,12 +110,25 @@ pub fn render(
     };
     let (w, h) = (camera.width, camera.height);
     let mut pixels = vec![DVec3::ZERO; w as usize * h as usize];
+    // Two rows at a time, in blocks of 2 x 2 pixels (one packet).
     pixels
-        .par_chunks_mut(w as usize)
+        .par_chunks_mut(2 * w as usize)
         .enumerate()
-        .for_each(|(y, row)| {
-            for (x, px) in row.iter_mut().enumerate() {
-                *px = pixel(&shader, &frame, x as u32, y as u32);
+        .for_each(|(pair, rows)| {
+            let y0 = 2 * pair as u32;
+            for x0 in (0..w).step_by(2) {
+                let mut block = [(0, 0); PACKET];
+                let mut n = 0;
+                for y in y0..(y0 + 2).min(h) {
+                    for x in x0..(x0 + 2).min(w) {
+                        block[n] = (x, y);
+                        n += 1;
+                    }
+                }
+                let colors = pixels_packed(&shader, &frame, &block[..n]);
+                for (&(x, y), c) in block[..n].iter().zip(colors) {
+                    rows[((y - y0) * w + x) as usize] = c;
+                }
             }
         });
     Image {
@@ -138,6 +151,69 @@ pub struct Frame<'a> {
     pub model: Model,
     /// Samples per pixel, shutter and seed.
     pub settings: &'a RenderSettings,
+}
+
+/// Rays searched together by [`pixels_packed`]: a block of 2 x 2 pixels.
+const PACKET: usize = 4;
+
+/// [`pixel`] of each of a few neighbouring pixels (at most [`PACKET`]),
+/// the same colours to the bit: their k-th samples' primary rays are
+/// searched together (`Database::closest_hits`), then each is shaded.
+fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; PACKET] {
+    let Frame {
+        camera,
+        camera_t,
+        model,
+        settings,
+    } = *frame;
+    let m = at.len();
+    // (Lanes past the pixels repeat the last, and are not used.)
+    let mut rngs: [SplitMix64; PACKET] = std::array::from_fn(|j| {
+        let (x, y) = at[j.min(m - 1)];
+        SplitMix64::for_pixel(settings.seed, x, y)
+    });
+    let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
+    let mut rays = [camera.ray(0.5, 0.5, camera_t, model.light_speed); PACKET];
+    let mut hits = [None; PACKET];
+    let mut colors = [DVec3::ZERO; PACKET];
+    for k in 0..settings.spp.max(1) {
+        for j in 0..m {
+            let (x, y) = at[j];
+            let (px, py, t) = if settings.spp <= 1 {
+                (f64::from(x) + 0.5, f64::from(y) + 0.5, camera_t)
+            } else {
+                stratified(&mut rngs[j], (x, y), (k, n), frame)
+            };
+            rays[j] = camera.ray(px, py, t, model.light_speed);
+        }
+        shader
+            .db
+            .closest_hits(&rays[..m], (0.0, f64::INFINITY), &mut hits[..m]);
+        for j in 0..m {
+            let c = shader.observed_found(camera, &rays[j], hits[j]);
+            colors[j] = if settings.spp <= 1 { c } else { colors[j] + c };
+        }
+    }
+    if settings.spp > 1 {
+        colors = colors.map(|c| c / f64::from(settings.spp));
+    }
+    colors
+}
+
+/// Sample k of pixel (x, y) with n*n strata: its place in the image
+/// (stratum k, row-major, jittered within it) and its camera time
+/// (jittered over the shutter).
+fn stratified(
+    rng: &mut SplitMix64,
+    (x, y): (u32, u32),
+    (k, n): (u32, u32),
+    frame: &Frame,
+) -> (f64, f64, f64) {
+    let (sx, sy) = (k % n, (k / n) % n);
+    let px = f64::from(x) + (f64::from(sx) + rng.next_f64()) / f64::from(n);
+    let py = f64::from(y) + (f64::from(sy) + rng.next_f64()) / f64::from(n);
+    let t = frame.camera_t + (rng.next_f64() - 0.5) * frame.settings.shutter;
+    (px, py, t)
 }
 
 /// One pixel: the mean of its samples. With n*n >= spp strata, sample k
@@ -179,10 +255,7 @@ pub fn pixel_traced<T: Trace>(
     let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
     let mut sum = DVec3::ZERO;
     for k in 0..settings.spp {
-        let (sx, sy) = (k % n, (k / n) % n);
-        let px = f64::from(x) + (f64::from(sx) + rng.next_f64()) / f64::from(n);
-        let py = f64::from(y) + (f64::from(sy) + rng.next_f64()) / f64::from(n);
-        let t = camera_t + (rng.next_f64() - 0.5) * settings.shutter;
+        let (px, py, t) = stratified(&mut rng, (x, y), (k, n), frame);
         sum += sample(k, px, py, t, trace);
     }
     sum / f64::from(settings.spp)

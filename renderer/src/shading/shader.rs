@@ -129,7 +129,22 @@ impl Shader<'_> {
         if T::ENABLED {
             trace.record(ray_step(kind, depth, ray, range));
         }
-        match self.db.closest_hit_traced(ray, range, trace) {
+        let hit = self.db.closest_hit_traced(ray, range, trace);
+        self.carry_hit(ray, hit, depth, kind, band, trace)
+    }
+
+    /// The rest of [`Shader::carry`], once the closest hit within its
+    /// range is known: shade `hit`, or return the background.
+    fn carry_hit<C: Carried, T: Trace>(
+        &self,
+        ray: &Ray,
+        hit: Option<Hit>,
+        depth: u32,
+        kind: RayKind,
+        band: &C::At,
+        trace: &mut T,
+    ) -> C {
+        match hit {
             None => {
                 if T::ENABLED {
                     trace.record(Step::Miss {
@@ -408,9 +423,45 @@ impl Shader<'_> {
     /// light), then, for Doppler, integrated against the CIE 1931 matching
     /// functions into linear sRGB.
     pub fn observed_traced<T: Trace>(&self, camera: &Camera, ray: &Ray, trace: &mut T) -> DVec3 {
+        self.observed_with(camera, ray, None, trace)
+    }
+
+    /// [`Shader::observed_traced`] of a primary ray whose closest hit from
+    /// its origin on (`Database::closest_hit(ray, (0, inf))`) is `hit`,
+    /// found already (as a packet of neighbouring pixels' rays is, by
+    /// `Database::closest_hits`): the same colour to the bit.
+    pub fn observed_found(&self, camera: &Camera, ray: &Ray, hit: Option<Hit>) -> DVec3 {
+        self.observed_with(camera, ray, Some(hit), &mut NoTrace)
+    }
+
+    /// The primary ray's colour in `C`: its closest hit searched for, or
+    /// `found` already.
+    fn primary<C: Carried, T: Trace>(
+        &self,
+        ray: &Ray,
+        found: Option<Option<Hit>>,
+        band: &C::At,
+        trace: &mut T,
+    ) -> C {
+        let Some(hit) = found else {
+            return self.carry(ray, 0, RayKind::Primary, band, trace);
+        };
+        if T::ENABLED {
+            trace.record(ray_step(RayKind::Primary, 0, ray, (0.0, f64::INFINITY)));
+        }
+        self.carry_hit(ray, hit, 0, RayKind::Primary, band, trace)
+    }
+
+    fn observed_with<T: Trace>(
+        &self,
+        camera: &Camera,
+        ray: &Ray,
+        found: Option<Option<Hit>>,
+        trace: &mut T,
+    ) -> DVec3 {
         let fx = self.effects;
         if !fx.any() {
-            return self.radiance_traced(ray, 0, RayKind::Primary, trace);
+            return self.primary(ray, found, &(), trace);
         }
         let k = -ray.direction.x.normalize();
         let f = match camera.kinematics {
@@ -421,12 +472,12 @@ impl Shader<'_> {
         let gain = fx.intensity(f, Leg::Radiance);
         let (color, spectral) = if fx.doppler {
             let lab_nm = scaled(&color::band_nm(), f);
-            let seen = self.spectral_traced(ray, 0, RayKind::Primary, &lab_nm, trace);
+            let seen: Band = self.primary(ray, found, &lab_nm, trace);
             let xyz = color::xyz(&seen.map(|l| l * gain));
             (color::xyz_to_rgb(xyz), Some((lab_nm, xyz)))
         } else {
             (
-                self.radiance_traced(ray, 0, RayKind::Primary, trace) * gain,
+                self.primary::<DVec3, T>(ray, found, &(), trace) * gain,
                 None,
             )
         };

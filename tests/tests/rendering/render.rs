@@ -279,3 +279,50 @@ fn bvh_and_brute_force_agree_on_many_moving_boxes() {
         }
     }
 }
+
+/// `render` searches the primary rays of 2 x 2 pixels together; each pixel
+/// is the colour `pixel` gives it alone, to the bit: on every fixture (odd
+/// sizes, so that blocks are cut at the right and bottom edges), with
+/// several jittered samples over a shutter, and with the colour effects
+/// where the fixture has them.
+#[test]
+fn a_render_gives_each_pixel_the_colour_it_has_alone() {
+    for name in workspace_tests::repo().fixture_names() {
+        let f = workspace_tests::fixture(&name);
+        let mut view = vstf::run::view(
+            &f,
+            &Overrides {
+                width: Some(23),
+                height: Some(17),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        view.settings.spp = 3;
+        view.settings.shutter = 2.0;
+        let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+        let image = vstf::run::render_with(&db, &f, &view).unwrap();
+        let shader = renderer::shader(&db, &f.scene, view.model, &view.settings);
+        let mut camera = view.camera;
+        camera.kinematics = renderer::Kinematics::of(view.model);
+        let frame = renderer::Frame {
+            camera: &camera,
+            camera_t: view.camera_t,
+            model: view.model,
+            settings: &view.settings,
+        };
+        let alone: Vec<[u64; 3]> = (0..17)
+            .flat_map(|y| (0..23).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                renderer::pixel(&shader, &frame, x, y)
+                    .to_array()
+                    .map(f64::to_bits)
+            })
+            .collect();
+        assert_eq!(bits(&image), alone, "{name}: packed pixels differ");
+        // Negative control: the pixels are not all one colour, so a block
+        // given its first pixel's colour would be caught.
+        let first = alone[0];
+        assert!(alone.iter().any(|p| *p != first), "{name} is one colour");
+    }
+}
