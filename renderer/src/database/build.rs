@@ -12,6 +12,7 @@ use crate::scene::{
 };
 use crate::spacetime::{Boost, Event, FourVector, Worldline};
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// An object's mesh; none for an analytic sphere.
 fn mesh_of(obj: &SceneObject) -> &Mesh {
@@ -28,6 +29,10 @@ struct Builder {
     comoving: Vec<[DVec3; 3]>,
     keyframed: Keyframed,
     spheres: Vec<Sphere>,
+    /// Only checking that the scene inserts ([`Database::validate`]): a
+    /// uniformly moving mesh's comoving triangles, which cannot fail, are
+    /// not kept.
+    checking: bool,
 }
 
 /// The straight worldline of a uniformly moving object and the boost of
@@ -169,12 +174,22 @@ impl Builder {
                 end: worldline.end().t,
             });
         } else {
-            let mesh = mesh_of(obj).map_vertices(|p| boost.contract(p));
-            mesh.validate()
-                .map_err(|e| Fault::new(F::Shape, K::ContractedMesh(e)))?;
+            let contracted;
+            let mesh = if boost.beta() == DVec3::ZERO {
+                // Contraction changes nothing, and `insert` has validated it.
+                mesh_of(obj)
+            } else {
+                contracted = mesh_of(obj).map_vertices(|p| boost.contract(p));
+                contracted
+                    .validate()
+                    .map_err(|e| Fault::new(F::Shape, K::ContractedMesh(e)))?;
+                &contracted
+            };
             let (first, slot) = (self.prism_count(), self.comoving.len());
-            self.comoving
-                .extend((0..mesh.triangles.len()).map(|t| mesh.corners(t)));
+            if !self.checking {
+                self.comoving
+                    .extend((0..mesh.triangles.len()).map(|t| mesh.corners(t)));
+            }
             let reach = geometry::reach(&self.comoving[slot..]);
             self.runs.push(Run {
                 object: i as u32,
@@ -298,40 +313,31 @@ fn keyframed_box(g: &StretchPrisms, corners: &PrismCorners) -> (DVec3, DVec3) {
 /// The triangles of translations stored in the order their stretch's
 /// hierarchy holds them (so that a leaf's triangles lie side by side, read
 /// in one sweep), and where each prism's is: at `slot + stored_at[slot +
-/// k]` for prism k of a run at `slot`. Moved in place, cycle by cycle.
+/// k]` for prism k of a run at `slot`. Gathered on both threads into a new
+/// vector (the build's scratch, which sets the peak of memory, is freed by
+/// now).
 fn in_leaf_order(
-    mut comoving: Vec<[DVec3; 3]>,
+    comoving: Vec<[DVec3; 3]>,
     runs: &[Run],
     accel: &TwoLevel,
 ) -> (Vec<[DVec3; 3]>, Vec<u32>) {
     let mut stored_at = vec![0u32; comoving.len()];
+    let mut sorted = vec![[DVec3::ZERO; 3]; comoving.len()];
     for (k, run) in runs.iter().enumerate() {
         if !run.stretch.translation {
             continue;
         }
         let order = accel.order(k);
-        let triangles = &mut comoving[run.slot..run.slot + order.len()];
-        let mut done = vec![false; order.len()];
-        for start in 0..order.len() {
-            if done[start] {
-                continue;
-            }
-            let first = triangles[start];
-            let mut j = start;
-            loop {
-                done[j] = true;
-                let from = order[j] as usize;
-                stored_at[run.slot + from] = j as u32;
-                if from == start {
-                    triangles[j] = first;
-                    break;
-                }
-                triangles[j] = triangles[from];
-                j = from;
-            }
+        let (from, to) = (&comoving[run.slot..], &mut sorted[run.slot..]);
+        to[..order.len()]
+            .par_iter_mut()
+            .zip(order.par_iter())
+            .for_each(|(t, &i)| *t = from[i as usize]);
+        for (j, &i) in order.iter().enumerate() {
+            stored_at[run.slot + i as usize] = j as u32;
         }
     }
-    (comoving, stored_at)
+    (sorted, stored_at)
 }
 
 impl Database {
@@ -373,7 +379,10 @@ impl Database {
     /// time. `lorentz` only matters for V_obj objects.
     pub fn validate(scene: &Scene, lorentz: bool) -> Result<(), SceneError> {
         for (i, obj) in scene.objects.iter().enumerate() {
-            let mut b = Builder::default();
+            let mut b = Builder {
+                checking: true,
+                ..Builder::default()
+            };
             b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
             let kf = &b.keyframed;
             for (p, corners) in kf.corners.iter().enumerate() {

@@ -2,6 +2,7 @@
 //! object's reference point), a few primitives, and a Wavefront OBJ reader.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use std::fmt;
 
 /// An indexed triangle mesh. Faces are two-sided for shading; winding only
@@ -97,24 +98,35 @@ impl Mesh {
         if self.triangles.is_empty() {
             return Err(MeshError::Empty);
         }
-        if let Some(vertex) = self.vertices.iter().position(|v| !v.is_finite()) {
+        // On both threads; the error is the first in order, as on one.
+        if let Some(vertex) = self.vertices.par_iter().position_first(|v| !v.is_finite()) {
             return Err(MeshError::NonFiniteVertex { vertex });
         }
-        for (triangle, tri) in self.triangles.iter().enumerate() {
-            if let Some(&index) = tri.iter().find(|&&i| i as usize >= self.vertices.len()) {
-                return Err(MeshError::IndexOutOfRange { triangle, index });
-            }
-            let [a, b, c] = self.corners(triangle);
-            let area = 0.5 * (b - a).cross(c - a).length();
-            let longest = (b - a)
-                .length_squared()
-                .max((c - b).length_squared())
-                .max((a - c).length_squared());
-            if area.is_nan() || area <= 1e-12 * longest {
-                return Err(MeshError::DegenerateTriangle { triangle, area });
-            }
+        let fault = |triangle: usize| self.triangle_fault(triangle);
+        match (0..self.triangles.len())
+            .into_par_iter()
+            .find_map_first(fault)
+        {
+            Some(error) => Err(error),
+            None => Ok(()),
         }
-        Ok(())
+    }
+
+    /// What is wrong with triangle `triangle`, if anything: a corner index
+    /// out of range, or no area.
+    fn triangle_fault(&self, triangle: usize) -> Option<MeshError> {
+        let tri = &self.triangles[triangle];
+        if let Some(&index) = tri.iter().find(|&&i| i as usize >= self.vertices.len()) {
+            return Some(MeshError::IndexOutOfRange { triangle, index });
+        }
+        let [a, b, c] = self.corners(triangle);
+        let area = 0.5 * (b - a).cross(c - a).length();
+        let longest = (b - a)
+            .length_squared()
+            .max((c - b).length_squared())
+            .max((a - c).length_squared());
+        (area.is_nan() || area <= 1e-12 * longest)
+            .then_some(MeshError::DegenerateTriangle { triangle, area })
     }
 
     /// A planar quadrilateral `corner, corner+u, corner+u+v, corner+v` (two triangles).
@@ -285,6 +297,54 @@ mod tests {
             m.validate(),
             Err(MeshError::DegenerateTriangle { triangle: 0, .. })
         ));
+    }
+
+    /// Validation runs on both threads, yet names the first fault in order
+    /// (of each kind, vertices before triangles), as a pass on one would.
+    #[test]
+    fn the_first_fault_is_named_whatever_the_threads() {
+        let n = 200_000;
+        let mut m = Mesh {
+            vertices: (0..n + 2)
+                .map(|i| DVec3::new(i as f64, (i % 2) as f64, 0.0))
+                .collect(),
+            triangles: (0..n as u32).map(|i| [i, i + 1, i + 2]).collect(),
+        };
+        assert_eq!(m.validate(), Ok(()));
+        for t in [150_000, 7, 90_001] {
+            m.triangles[t] = [t as u32, t as u32, t as u32 + 1];
+        }
+        m.triangles[120_000][2] = n as u32 + 5;
+        let first = |m: &Mesh| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(2)
+                .build()
+                .unwrap()
+                .install(|| m.validate())
+        };
+        assert!(matches!(
+            first(&m),
+            Err(MeshError::DegenerateTriangle { triangle: 7, .. })
+        ));
+        m.triangles[7] = [7, 8, 9];
+        assert!(matches!(
+            first(&m),
+            Err(MeshError::DegenerateTriangle {
+                triangle: 90_001,
+                ..
+            })
+        ));
+        m.triangles[90_001] = [90_001, 90_002, 90_003];
+        assert_eq!(
+            first(&m),
+            Err(MeshError::IndexOutOfRange {
+                triangle: 120_000,
+                index: n as u32 + 5
+            })
+        );
+        m.vertices[160_000].y = f64::NAN;
+        m.vertices[3].z = f64::INFINITY;
+        assert_eq!(first(&m), Err(MeshError::NonFiniteVertex { vertex: 3 }));
     }
 
     #[test]
