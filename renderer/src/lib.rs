@@ -44,7 +44,7 @@ pub use color::{
     band_nm, chromaticity, cmf, to_rgb, xyz, xyz_to_rgb, Spectrum, SpectrumError,
     SpectrumErrorKind, SpectrumField, BAND_LEN,
 };
-pub use database::{Database, ObjectRecord, Stretch, Surface, Traversal};
+pub use database::{Database, ObjectRecord, Packing, Stretch, Surface, Traversal};
 pub use geometry::{
     corner_order, corners_between, extrude, extrude_between, piece, split_between, split_prism,
     tetrahedron_volume, Barycentric, Hit, Miss, Pose, PrimitiveId, Prism, PrismCorners,

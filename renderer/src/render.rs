@@ -168,10 +168,11 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
     } = *frame;
     let m = at.len();
     // (Lanes past the pixels repeat the last, and are not used.)
-    let mut rngs: [SplitMix64; PACKET] = std::array::from_fn(|j| {
+    let rng = |j: usize| {
         let (x, y) = at[j.min(m - 1)];
         SplitMix64::for_pixel(settings.seed, x, y)
-    });
+    };
+    let mut rngs: [SplitMix64; PACKET] = [rng(0), rng(1), rng(2), rng(3)];
     let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
     let mut rays = [camera.ray(0.5, 0.5, camera_t, model.light_speed); PACKET];
     let mut hits = [None; PACKET];

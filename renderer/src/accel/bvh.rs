@@ -558,7 +558,7 @@ impl Bvh {
                 continue;
             }
             let node = &nodes[w.child.index as usize];
-            let [a, b] = [0, 1].map(|c| {
+            let child = |c: usize| {
                 let mut entries = [0.0; PACKET];
                 let entered = lanes.filter(|i| {
                     let r = (range.0, hi[i]);
@@ -579,7 +579,9 @@ impl Bvh {
                     },
                     key,
                 )
-            });
+            };
+            // (Not `map`, which is not inlined here.)
+            let (a, b) = (child(0), child(1));
             current = match (a.0.lanes.is_empty(), b.0.lanes.is_empty()) {
                 (false, false) => {
                     let (near, far) = if a.1 <= b.1 { (a.0, b.0) } else { (b.0, a.0) };

@@ -41,6 +41,12 @@ impl Lanes {
         Lanes(out)
     }
 
+    /// The set's one ray, if it holds exactly one.
+    #[inline(always)]
+    pub(crate) fn single(self) -> Option<usize> {
+        (self.0 != 0 && self.0 & (self.0 - 1) == 0).then(|| self.0.trailing_zeros() as usize)
+    }
+
     /// Whether ray `i` is in the set.
     #[inline(always)]
     pub(crate) fn holds(self, i: usize) -> bool {
@@ -76,6 +82,9 @@ mod tests {
         assert_eq!(l.filter(|i| i != 1), Lanes(0b1001));
         assert_eq!(Lanes::first(3), Lanes(0b111));
         assert!(l.holds(3) && !l.holds(2));
+        assert_eq!(Lanes(0b100).single(), Some(2));
+        assert_eq!(l.single(), None);
+        assert_eq!(Lanes(0).single(), None);
         assert!(Lanes::default().iter().next().is_none());
         assert!(Lanes::first(0).is_empty());
     }

@@ -153,7 +153,7 @@ impl SpaceBvh {
         o: DVec3,
         d: DVec3,
         range: (f64, f64),
-        mut leaf: impl FnMut(u32, &[u32], (f64, f64)) -> Option<Hit>,
+        leaf: impl FnMut(u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         if self.root.count == 0 && self.nodes.is_empty() {
             return None; // no items
@@ -162,12 +162,25 @@ impl SpaceBvh {
         // slice's, and the root node tests its children's.
         debug_assert!(range.0 >= 0.0, "searched from {}", range.0);
         let ray = WideRay::new(o, DVec3::ONE / d);
+        self.closest_below((self.root, down(range.0)), &ray, range, leaf)
+    }
+
+    /// [`SpaceBvh::closest`] of `ray` in the subtree `start.0`, entered at
+    /// `start.1` (in f32, rounded down).
+    #[inline(always)]
+    fn closest_below(
+        &self,
+        start: (Child, f32),
+        ray: &WideRay,
+        range: (f64, f64),
+        mut leaf: impl FnMut(u32, &[u32], (f64, f64)) -> Option<Hit>,
+    ) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let hi = |best: &Option<Hit>| best.map_or(range.1, |b| b.s);
         // The range in f32, rounded outward.
         let (lo32, mut hi32) = (down(range.0), up(range.1));
         let mut stack = Stack::new();
-        let mut current = Some((self.root, lo32));
+        let mut current = Some(start);
         while let Some((child, entry)) = current.take().or_else(|| stack.pop()) {
             // hi32 holds the best hit's parameter, rounded up.
             if entry > hi32 {
@@ -206,13 +219,21 @@ impl SpaceBvh {
         if self.root.count == 0 && self.nodes.is_empty() {
             return best; // no items
         }
+        if let Some(i) = lanes.single() {
+            let (o, d) = rays[i];
+            best[i] = self.closest(o, d, ranges[i], |f, it, r| leaf(i, f, it, r));
+            return best;
+        }
         // (A lane not searched holds some ray, never used.)
         let ray = |i: usize| WideRay::new(rays[i].0, DVec3::ONE / rays[i].1);
         // Built in place (`map` would copy them).
         let wide: [WideRay; PACKET] = [ray(0), ray(1), ray(2), ray(3)];
-        let lo32 = ranges.map(|r| down(r.0));
-        // Each ray's best hit's parameter, rounded up.
-        let mut hi32 = ranges.map(|r| up(r.1));
+        // (Loops rather than `map`, which is not inlined here.)
+        let (mut lo32, mut hi32) = ([0.0; PACKET], [0.0; PACKET]);
+        for i in 0..PACKET {
+            // hi32[i] is ray i's best hit's parameter, rounded up.
+            (lo32[i], hi32[i]) = (down(ranges[i].0), up(ranges[i].1));
+        }
         let mut stack = Stack::new();
         let least = lo32.iter().copied().fold(f32::INFINITY, f32::min);
         let mut current = Some(Waiting {
@@ -224,6 +245,19 @@ impl SpaceBvh {
             // `entry` is the least of its rays' entries.
             let lanes = w.lanes.filter(|i| w.entry <= hi32[i]);
             if lanes.is_empty() {
+                continue;
+            }
+            if let Some(i) = lanes.single() {
+                // The packet has come apart here: one ray goes on alone.
+                let range = (ranges[i].0, best[i].map_or(ranges[i].1, |b| b.s));
+                let found = self.closest_below((w.child, w.entry), &wide[i], range, |f, it, r| {
+                    leaf(i, f, it, r)
+                });
+                if let Some(h) = found {
+                    let b = nearer(best[i], h);
+                    best[i] = Some(b);
+                    hi32[i] = up(b.s);
+                }
                 continue;
             }
             if w.child.count > 0 {

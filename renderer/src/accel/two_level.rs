@@ -208,6 +208,11 @@ impl TwoLevel {
         }
     }
 
+    /// How many time slices the top level holds.
+    pub(crate) fn slice_count(&self) -> usize {
+        self.slices.len()
+    }
+
     /// The order in which stretch `k`'s hierarchy holds its prisms: at
     /// position j, prism `order(k)[j]` of the stretch (counted from its
     /// first).
@@ -264,8 +269,10 @@ impl TwoLevel {
         range: (f64, f64),
         mut leaf: impl FnMut(usize, u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> [Option<Hit>; PACKET] {
-        let o = rays.map(|r| r.0);
-        let inv = rays.map(|r| DVec4::ONE / r.1);
+        let (mut o, mut inv) = ([DVec4::ZERO; PACKET], [DVec4::ZERO; PACKET]);
+        for i in 0..PACKET {
+            (o[i], inv[i]) = (rays[i].0, DVec4::ONE / rays[i].1);
+        }
         let mut searched: [Searched; PACKET] = Default::default();
         let mut best: [Option<Hit>; PACKET] = [None; PACKET];
         self.top

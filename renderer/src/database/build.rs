@@ -1,7 +1,7 @@
 //! Insertion: every object of the scene temporally extruded once into
 //! prisms (paper 3, items 1-2), its path cut into straight stretches.
 
-use super::{Database, Keyframed, ObjectRecord, Run, Stretch, Traversal};
+use super::{Database, Keyframed, ObjectRecord, Packing, Run, Stretch, Traversal};
 use crate::accel::{rounding_margin, StretchPrisms, TwoLevel};
 use crate::geometry::{
     self, extrude_between, piece, CornerRows, Pose, PreparedTet, PrismCorners, Sphere,
@@ -370,6 +370,7 @@ impl Database {
             accel,
             spheres: b.spheres,
             traversal: Traversal::Bvh,
+            packing: Packing::Auto,
         })
     }
 

@@ -280,8 +280,9 @@ fn bvh_and_brute_force_agree_on_many_moving_boxes() {
     }
 }
 
-/// `render` searches the primary rays of 2 x 2 pixels together; each pixel
-/// is the colour `pixel` gives it alone, to the bit: on every fixture (odd
+/// `render` searches the primary rays of 2 x 2 pixels together (in packets
+/// where the database says so); each pixel is the colour `pixel` gives it
+/// alone, to the bit: on every fixture (odd
 /// sizes, so that blocks are cut at the right and bottom edges), with
 /// several jittered samples over a shutter, and with the colour effects
 /// where the fixture has them.
@@ -300,7 +301,9 @@ fn a_render_gives_each_pixel_the_colour_it_has_alone() {
         .unwrap();
         view.settings.spp = 3;
         view.settings.shutter = 2.0;
-        let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+        let mut db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+        // Packets whatever the scene's size (see `Packing::Auto`).
+        db.set_packing(renderer::Packing::Packets);
         let image = vstf::run::render_with(&db, &f, &view).unwrap();
         let shader = renderer::shader(&db, &f.scene, view.model, &view.settings);
         let mut camera = view.camera;

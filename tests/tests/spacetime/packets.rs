@@ -3,14 +3,19 @@
 //! the primary rays of every fixture in all three models, on many moving
 //! boxes, and on packets whose rays share nothing.
 
-use renderer::{Database, Event, Hit, LightSpeed, Model, Motion, Ray, SplitMix64, Traversal};
+use renderer::{
+    Database, Event, Hit, LightSpeed, Model, Motion, Packing, Ray, SplitMix64, Traversal,
+};
 use vstf::fixture::Overrides;
 use workspace_tests::{point, unit};
 
 /// Each ray's hit alone and in packets (in order, `rays.len()` need not
 /// be a whole number of packets); the number of rays that hit.
-fn assert_packets_find_single_hits(db: &Database, rays: &[Ray], what: &str) -> usize {
+fn assert_packets_find_single_hits(db: &mut Database, rays: &[Ray], what: &str) -> usize {
     let mut packed: Vec<Option<Hit>> = vec![None; rays.len()];
+    // Whatever the database's size (`Packing::Auto` would search these
+    // small scenes one ray at a time).
+    db.set_packing(Packing::Packets);
     db.closest_hits(rays, (0.0, f64::INFINITY), &mut packed);
     for (k, (ray, hit)) in rays.iter().zip(&packed).enumerate() {
         let alone = db.closest_hit(ray, (0.0, f64::INFINITY));
@@ -57,9 +62,9 @@ fn packets_of_primary_rays_find_the_hits_single_rays_find_on_every_fixture() {
                 ..Default::default()
             };
             let view = vstf::run::view(&f, &small).unwrap();
-            let db = vstf::run::database(&f, m.lorentz, Traversal::Bvh).unwrap();
+            let mut db = vstf::run::database(&f, m.lorentz, Traversal::Bvh).unwrap();
             let rays = primary_rays(&view);
-            assert_packets_find_single_hits(&db, &rays, &format!("{name} ({m})"));
+            assert_packets_find_single_hits(&mut db, &rays, &format!("{name} ({m})"));
         }
     }
 }
@@ -100,13 +105,13 @@ fn boxes_and_rays(coherent: bool) -> (Database, Vec<Ray>) {
 #[test]
 fn packets_find_the_hits_single_rays_find_among_many_moving_boxes() {
     for coherent in [true, false] {
-        let (db, rays) = boxes_and_rays(coherent);
-        let hits = assert_packets_find_single_hits(&db, &rays, "moving boxes");
+        let (mut db, rays) = boxes_and_rays(coherent);
+        let hits = assert_packets_find_single_hits(&mut db, &rays, "moving boxes");
         // Enough rays hit for the comparison to mean something.
         assert!(hits > rays.len() / 4, "{hits} of {} rays hit", rays.len());
         // Every count of rays, not only whole packets.
         for n in 1..=9 {
-            assert_packets_find_single_hits(&db, &rays[..n], "a short run of rays");
+            assert_packets_find_single_hits(&mut db, &rays[..n], "a short run of rays");
         }
     }
 }
@@ -116,7 +121,8 @@ fn packets_find_the_hits_single_rays_find_among_many_moving_boxes() {
 /// its rays' hits in another order) would be caught.
 #[test]
 fn the_rays_of_a_packet_find_different_hits() {
-    let (db, rays) = boxes_and_rays(true);
+    let (mut db, rays) = boxes_and_rays(true);
+    db.set_packing(Packing::Packets);
     let mut packed: Vec<Option<Hit>> = vec![None; rays.len()];
     db.closest_hits(&rays, (0.0, f64::INFINITY), &mut packed);
     let differing = packed
@@ -141,5 +147,34 @@ fn the_rays_of_a_packet_find_different_hits() {
 fn brute_force_packets_are_single_rays() {
     let (mut db, rays) = boxes_and_rays(false);
     db.set_traversal(Traversal::BruteForce);
-    assert_packets_find_single_hits(&db, &rays[..400], "brute force");
+    assert_packets_find_single_hits(&mut db, &rays[..400], "brute force");
+}
+
+/// `Packing::Auto` packs rays over a large mesh in few time slices, and not
+/// over many small moving objects; `Single` and `Packets` are obeyed.
+#[test]
+fn packets_are_chosen_for_large_meshes_in_few_slices() {
+    let (mut boxes, _) = boxes_and_rays(false);
+    assert!(!boxes.packs(), "300 moving boxes in packets");
+    boxes.set_packing(Packing::Packets);
+    assert!(boxes.packs());
+    let sheet = |n: usize| {
+        let mut rng = SplitMix64::new(3);
+        let mesh = workspace_tests::random_mesh(&mut rng, n, 2.0);
+        let at_rest = Motion::Extrusion {
+            start: Event::new(-100.0, glam::DVec3::ZERO),
+            extrusion: renderer::FourVector::new(200.0, glam::DVec3::ZERO),
+        };
+        let o = workspace_tests::object("mesh", renderer::ObjectKind::HObj, mesh, at_rest);
+        Database::build(&workspace_tests::scene(vec![o]), false).unwrap()
+    };
+    let mut large = sheet(Database::PACKED_FROM);
+    assert!(
+        large.packs(),
+        "a mesh of {} triangles alone",
+        Database::PACKED_FROM
+    );
+    large.set_packing(Packing::Single);
+    assert!(!large.packs());
+    assert!(!sheet(Database::PACKED_FROM - 1).packs());
 }
