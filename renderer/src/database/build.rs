@@ -310,6 +310,10 @@ fn keyframed_box(g: &StretchPrisms, corners: &PrismCorners) -> (DVec3, DVec3) {
     (a - pad, b + pad)
 }
 
+/// Runs of at least this many triangles are put in leaf order on both
+/// threads (handing a small one to the thread pool would cost more).
+const PARALLEL_GATHER: usize = 1 << 14;
+
 /// The triangles of translations stored in the order their stretch's
 /// hierarchy holds them (so that a leaf's triangles lie side by side, read
 /// in one sweep), and where each prism's is: at `slot + stored_at[slot +
@@ -329,10 +333,12 @@ fn in_leaf_order(
         }
         let order = accel.order(k);
         let (from, to) = (&comoving[run.slot..], &mut sorted[run.slot..]);
-        to[..order.len()]
-            .par_iter_mut()
-            .zip(order.par_iter())
-            .for_each(|(t, &i)| *t = from[i as usize]);
+        let gather = |(t, &i): (&mut [DVec3; 3], &u32)| *t = from[i as usize];
+        if order.len() >= PARALLEL_GATHER {
+            (to[..order.len()].par_iter_mut().zip(order)).for_each(gather);
+        } else {
+            to.iter_mut().zip(order).for_each(gather);
+        }
         for (j, &i) in order.iter().enumerate() {
             stored_at[run.slot + i as usize] = j as u32;
         }
