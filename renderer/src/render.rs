@@ -6,6 +6,7 @@
 //! pixels are independent, so the image is the same bit for bit whatever
 //! the number of threads.
 
+use crate::accel::PACKET;
 use crate::camera::{Camera, Kinematics, Model};
 use crate::database::Database;
 use crate::rng::SplitMix64;
@@ -111,6 +112,7 @@ pub fn render(
     let (w, h) = (camera.width, camera.height);
     let mut pixels = vec![DVec3::ZERO; w as usize * h as usize];
     // Two rows at a time, in blocks of 2 x 2 pixels (one packet).
+    const _: () = assert!(PACKET == 4, "a packet is a block of 2 x 2 pixels");
     pixels
         .par_chunks_mut(2 * w as usize)
         .enumerate()
@@ -152,9 +154,6 @@ pub struct Frame<'a> {
     /// Samples per pixel, shutter and seed.
     pub settings: &'a RenderSettings,
 }
-
-/// Rays searched together by [`pixels_packed`]: a block of 2 x 2 pixels.
-const PACKET: usize = 4;
 
 /// [`pixel`] of each of a few neighbouring pixels (at most [`PACKET`]),
 /// the same colours to the bit: their k-th samples' primary rays are

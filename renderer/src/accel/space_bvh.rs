@@ -312,6 +312,8 @@ fn rays_entering(by_ray: u32, c: u32) -> Lanes {
 /// [`nearest_first`] for a packet: of the children any ray entered (see
 /// [`rays_entering`]), the nearest (by the least entry of its rays), with
 /// the others pushed farthest first, each with the rays that entered it.
+/// (The two are kept apart: one generic over the entry cost the single
+/// ray's search 4.4% more instructions, by callgrind on the flange.)
 #[inline(always)]
 fn nearest_first_of_packet(
     node: &WideNode,

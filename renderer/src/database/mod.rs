@@ -350,12 +350,11 @@ impl Database {
         let range = (range.0.max(0.0), range.1);
         for (rays, hits) in rays.chunks(PACKET).zip(hits.chunks_mut(PACKET)) {
             let found = match rays {
-                [ray] => [
-                    self.closest_in_runs(ray, range, &mut NoTrace),
-                    None,
-                    None,
-                    None,
-                ],
+                [ray] => {
+                    let mut one = [None; PACKET];
+                    one[0] = self.closest_in_runs(ray, range, &mut NoTrace);
+                    one
+                }
                 _ => self.closest_in_runs_packet(rays, range),
             };
             for ((hit, ray), best) in hits.iter_mut().zip(rays).zip(found) {
