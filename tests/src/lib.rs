@@ -101,7 +101,7 @@ pub fn fixture_with(name: &str, edit: impl FnOnce(&mut serde_json::Value)) -> vs
 /// The rows of the checks `described` declares, measured on renders of
 /// `rendered` (the same scene, or an altered copy) at quick effort.
 pub fn declared_rows(rendered: &vstf::Fixture, described: &vstf::Fixture) -> Vec<vstf::Row> {
-    vstf::check::declared::evaluate(rendered, described, &vstf::Effort::QUICK)
+    vstf::check::evaluate(rendered, described, &vstf::Effort::QUICK)
         .unwrap_or_else(|e| panic!("{e}"))
         .quantities
         .into_iter()

@@ -6,8 +6,8 @@
 //! Both use the oracle's light-cone solve and the measurements' own camera
 //! model, never the renderer's.
 
-use crate::check::setup::{uniform, Setup};
 use crate::fixture::{Fixture, View};
+use crate::observer::{uniform, Observer};
 use crate::oracle::{instantaneous, retarded, PointWorldline};
 use glam::DVec3;
 use renderer::{LightSpeed, Shape};
@@ -46,7 +46,7 @@ impl FromStr for CameraTime {
 }
 
 /// The lab time `t` stands for in fixture `f`.
-pub fn resolve(f: &Fixture, t: &CameraTime) -> Result<f64, String> {
+pub fn resolve_camera_time(f: &Fixture, t: &CameraTime) -> Result<f64, String> {
     let c = &f.spec.camera;
     if !matches!(t, CameraTime::At(_)) && c.velocity.is_some_and(|v| v != DVec3::ZERO) {
         return Err("--camera-t auto is for a camera at rest (camera.velocity is set)".into());
@@ -136,7 +136,7 @@ fn lifetime(f: &Fixture, obj: &renderer::SceneObject) -> (f64, f64) {
 /// image than the object's size, or its light would have left before it
 /// existed or after it ended.
 pub fn out_of_view(f: &Fixture, view: &View) -> Vec<String> {
-    let setup = Setup {
+    let setup = Observer {
         fixture: f,
         model: view.model,
         camera_t: view.camera_t,

@@ -236,10 +236,10 @@ fn render_frame(
     };
     let mut img = crate::run::render_with(db, f, &frame)?.to_rgb8();
     if label {
-        let scale = crate::label::scale_for(img.width());
-        crate::label::draw(&mut img, &format!("t = {}", time_label(t)), scale);
+        let scale = crate::label::label_scale(img.width());
+        crate::label::draw_label(&mut img, &format!("t = {}", time_label(t)), scale);
     }
-    write_png(path, &img)
+    Ok(write_png(path, &img)?)
 }
 
 /// Assembles the frames of a sharded animation, found through the shards'

@@ -13,22 +13,23 @@
 //! share of the hierarchy and of the build's items. The estimates round
 //! both the safe way.
 
+use crate::error::Error;
 use renderer::{Motion, Scene, Shape};
 use std::fmt;
 
 /// Peak memory per prism of a uniformly moving triangle (tested whole in
 /// its comoving frame), bytes (bench: 200-250).
-pub const BYTES_PER_TRANSLATED_PRISM: u64 = 300;
+pub(crate) const BYTES_PER_TRANSLATED_PRISM: u64 = 300;
 
 /// Peak memory per prism of a keyframe interval (tested as three
 /// tetrahedra), bytes: 744 stored, and its share of the hierarchy and of
 /// the build's items.
-pub const BYTES_PER_KEYFRAMED_PRISM: u64 = 1000;
+pub(crate) const BYTES_PER_KEYFRAMED_PRISM: u64 = 1000;
 
 /// Primary rays per second assumed for an estimate (bench: 2.4 to 3.9
 /// million with shadows and mirrors on 2 cores; a tenth of that leaves room
 /// for deep mirrors and slow machines).
-pub const RAYS_PER_SECOND: f64 = 1.0e6;
+pub(crate) const RAYS_PER_SECOND: f64 = 1.0e6;
 
 /// The most intervals one hyperbolic motion's keyframes can give a
 /// triangle (the renderer's cap on generated keyframes).
@@ -94,19 +95,21 @@ impl Budget {
         (width, height): (u32, u32),
         spp: u32,
         frames: usize,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let rays = f64::from(width) * f64::from(height) * f64::from(spp) * frames as f64;
         let seconds = rays / RAYS_PER_SECOND;
         if seconds <= self.seconds {
             return Ok(());
         }
-        Err(format!(
-            "{frames} frame(s) of {width}x{height} at {spp} samples per pixel: {rays:.3e} rays, \
-             about {} at {RAYS_PER_SECOND:.0e} rays per second: over the budget of {}; \
-             pass --force to render anyway",
-            Seconds(seconds),
-            Seconds(self.seconds)
-        ))
+        Err(Error::Budget {
+            message: format!(
+                "{frames} frame(s) of {width}x{height} at {spp} samples per pixel: {rays:.3e} rays, \
+                 about {} at {RAYS_PER_SECOND:.0e} rays per second: over the budget of {}; \
+                 pass --force to render anyway",
+                Seconds(seconds),
+                Seconds(self.seconds)
+            ),
+        })
     }
 }
 
@@ -212,7 +215,11 @@ mod tests {
         let e = Budget::DEFAULT
             .check_work((8192, 8192), 4096, 1)
             .unwrap_err();
-        assert!(e.contains("days") && e.contains("--force"), "{e}");
+        assert!(
+            matches!(&e, Error::Budget { message }
+                if message.contains("days") && message.contains("--force")),
+            "{e}"
+        );
         Budget::DEFAULT.check_work((8192, 8192), 1, 1).unwrap();
         Budget::DEFAULT.check_work((640, 480), 4096, 1).unwrap();
         Budget::UNLIMITED.check_work((8192, 8192), 4096, 1).unwrap();

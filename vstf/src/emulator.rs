@@ -35,7 +35,7 @@ use glam::DVec3;
 /// What a body is made of, relative to its reference point, as it stands
 /// in the lab (already contracted).
 #[derive(Clone, Debug)]
-pub enum Form {
+pub(crate) enum Form {
     /// Triangles.
     Triangles(Vec<[DVec3; 3]>),
     /// A sphere of rest radius `radius` contracted by 1/gamma along `axis`
@@ -53,7 +53,7 @@ pub enum Form {
 /// One moving body: its form, where its reference point is at `t0` and its
 /// lab velocity.
 #[derive(Clone, Debug)]
-pub struct Body {
+pub(crate) struct Body {
     /// The body's shape about its reference point.
     pub form: Form,
     /// Lab time of `x0`.
@@ -66,7 +66,7 @@ pub struct Body {
 
 impl Body {
     /// The radius about the reference point that holds the body.
-    pub fn reach(&self) -> f64 {
+    pub(crate) fn reach(&self) -> f64 {
         match &self.form {
             Form::Triangles(t) => t.iter().flatten().map(|p| p.length()).fold(0.0, f64::max),
             Form::Ellipsoid { radius, .. } => *radius,
@@ -75,7 +75,7 @@ impl Body {
 
     /// A sphere of rest radius `radius` moving with `velocity`, contracted
     /// when `contracted`.
-    pub fn sphere(radius: f64, t0: f64, x0: DVec3, velocity: DVec3, contracted: bool) -> Body {
+    pub(crate) fn sphere(radius: f64, t0: f64, x0: DVec3, velocity: DVec3, contracted: bool) -> Body {
         let speed = velocity.length();
         let form = Form::Ellipsoid {
             radius,
@@ -151,7 +151,7 @@ fn triangle_points(t: &[DVec3; 3], spacing: f64) -> Vec<DVec3> {
 
 /// The gate's slices: `count` of thickness `thickness` from distance `near`.
 #[derive(Clone, Copy, Debug)]
-pub struct Gate {
+pub(crate) struct Gate {
     /// Distance from the camera where the first slice begins.
     pub near: f64,
     /// Thickness of each slice, l.units (the paper's dz).
@@ -162,7 +162,7 @@ pub struct Gate {
 
 /// The composited snapshot of `bodies` from a camera at rest at `camera`
 /// at lab time `tc`.
-pub struct Snapshot<'a> {
+pub(crate) struct Snapshot<'a> {
     /// The bodies, each its own class.
     pub bodies: &'a [Body],
     /// The camera's position.
@@ -213,7 +213,7 @@ impl Snapshot<'_> {
     /// (w n) x (h n) grid, row by row, the class of the nearest point
     /// recorded there, or `None`. `spacing` is how far apart the surface
     /// points are taken.
-    pub fn cells(
+    pub(crate) fn cells(
         &self,
         camera: &Pinhole,
         (w, h): (u32, u32),

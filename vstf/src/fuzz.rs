@@ -10,6 +10,7 @@
 //! its index alone, so a run is reproducible whatever the thread count.
 
 use crate::budget::Budget;
+use crate::error::Error;
 use crate::fixture::{Fixture, Overrides};
 use renderer::{SplitMix64, Traversal};
 use serde_json::Value;
@@ -56,7 +57,7 @@ pub fn one(text: &str) -> Outcome {
     match crate::run::render(&fixture, &view, Traversal::Bvh) {
         Ok(image) if image.pixels.iter().all(|p| p.is_finite()) => Outcome::Rendered,
         Ok(_) => Outcome::Failed("a non-finite pixel was returned".into()),
-        Err(e) if e.contains("not a finite colour") => Outcome::Failed(e),
+        Err(e @ Error::NonFinite { .. }) => Outcome::Failed(e.to_string()),
         Err(_) => Outcome::Refused,
     }
 }

@@ -7,6 +7,7 @@
 //! Like WebRender's reftests, each fixture states its tolerance as
 //! `fuzzy(max_diff, max_pixels)`, comparing decoded pixels, never PNG bytes.
 
+use crate::error::Error;
 pub use crate::fixture::Fuzzy;
 use image::{Rgb, RgbImage};
 use std::fmt;
@@ -269,12 +270,14 @@ impl Store {
         view: &str,
         actual: &RgbImage,
         allowed: Fuzzy,
-    ) -> Result<Comparison, String> {
+    ) -> Result<Comparison, Error> {
         let path = self.golden_path(fixture, view);
         let expected = if path.exists() {
             Some(
                 image::open(&path)
-                    .map_err(|e| format!("cannot read golden {}: {e}", path.display()))?
+                    .map_err(|e| {
+                        Error::io(&path, format!("cannot read golden {}: {e}", path.display()))
+                    })?
                     .to_rgb8(),
             )
         } else {
@@ -287,7 +290,7 @@ impl Store {
         let pending = if pass {
             if dir.exists() {
                 std::fs::remove_dir_all(&dir)
-                    .map_err(|e| format!("cannot clear {}: {e}", dir.display()))?;
+                    .map_err(|e| Error::io(&dir, format!("cannot clear {}: {e}", dir.display())))?;
             }
             None
         } else {
@@ -300,7 +303,7 @@ impl Store {
                 let _ = std::fs::remove_file(dir.join("diff.png"));
             }
             std::fs::write(dir.join("names"), format!("{fixture}\n{view}\n"))
-                .map_err(|e| format!("cannot write {}: {e}", dir.display()))?;
+                .map_err(|e| Error::io(&dir, format!("cannot write {}: {e}", dir.display())))?;
             Some(dir)
         };
         Ok(Comparison {
@@ -349,7 +352,7 @@ impl Store {
     /// The pending images `names` ask for (all when `None`): a name is a
     /// fixture (all its pending views) or `FIXTURE/VIEW`; a name with
     /// nothing pending is an error that lists what is.
-    pub fn select(&self, names: Option<&[String]>) -> Result<Vec<Pending>, String> {
+    pub fn select(&self, names: Option<&[String]>) -> Result<Vec<Pending>, Error> {
         let pending = self.list_pending();
         let Some(names) = names else {
             return Ok(pending);
@@ -366,14 +369,16 @@ impl Store {
                 .iter()
                 .map(|p| format!("{}/{}", p.fixture, slug(&p.view)))
                 .collect();
-            return Err(format!(
-                "nothing pending for {missing:?}; pending: {}",
-                if what.is_empty() {
-                    "nothing".into()
-                } else {
-                    what.join(", ")
-                }
-            ));
+            return Err(Error::Golden {
+                message: format!(
+                    "nothing pending for {missing:?}; pending: {}",
+                    if what.is_empty() {
+                        "nothing".into()
+                    } else {
+                        what.join(", ")
+                    }
+                ),
+            });
         }
         Ok(pending
             .into_iter()
@@ -383,12 +388,12 @@ impl Store {
 
     /// Drops the pending images `names` ask for ([`Store::select`]): the
     /// change is not wanted; the golden images stay as they are.
-    pub fn reject(&self, names: Option<&[String]>) -> Result<Vec<Pending>, String> {
+    pub fn reject(&self, names: Option<&[String]>) -> Result<Vec<Pending>, Error> {
         let chosen = self.select(names)?;
         for p in &chosen {
             let dir = p.actual.parent().expect("pending images live in a folder");
             std::fs::remove_dir_all(dir)
-                .map_err(|e| format!("cannot clear {}: {e}", dir.display()))?;
+                .map_err(|e| Error::io(dir, format!("cannot clear {}: {e}", dir.display())))?;
         }
         Ok(chosen)
     }
@@ -396,28 +401,40 @@ impl Store {
     /// Copies the pending images `names` ask for ([`Store::select`]) into
     /// the golden folder, each write atomic, and clears them from pending.
     /// Refused when `ci` is set: CI never approves or creates goldens.
-    pub fn approve(&self, names: Option<&[String]>, ci: bool) -> Result<Vec<Pending>, String> {
+    pub fn approve(&self, names: Option<&[String]>, ci: bool) -> Result<Vec<Pending>, Error> {
         if ci {
-            return Err("refusing to approve golden images with CI set: approve locally and commit the images".into());
+            return Err(Error::Golden {
+                message: "refusing to approve golden images with CI set: approve locally and commit the images".into(),
+            });
         }
         let chosen = self.select(names)?;
         for p in &chosen {
-            let bytes = std::fs::read(&p.actual)
-                .map_err(|e| format!("cannot read {}: {e}", p.actual.display()))?;
-            image::load_from_memory(&bytes)
-                .map_err(|e| format!("{} is not a valid PNG: {e}", p.actual.display()))?;
+            let bytes = std::fs::read(&p.actual).map_err(|e| {
+                Error::io(
+                    &p.actual,
+                    format!("cannot read {}: {e}", p.actual.display()),
+                )
+            })?;
+            image::load_from_memory(&bytes).map_err(|e| {
+                Error::io(
+                    &p.actual,
+                    format!("{} is not a valid PNG: {e}", p.actual.display()),
+                )
+            })?;
             let dest = self.golden_path(&p.fixture, &p.view);
             if std::fs::symlink_metadata(&dest).is_ok_and(|m| m.file_type().is_symlink()) {
-                return Err(format!(
-                    "{} is a symbolic link: approve writes golden images only as files of their own",
-                    dest.display()
-                ));
+                return Err(Error::Golden {
+                    message: format!(
+                        "{} is a symbolic link: approve writes golden images only as files of their own",
+                        dest.display()
+                    ),
+                });
             }
             crate::output::write_atomic(&dest, &bytes)
-                .map_err(|e| format!("cannot write {}: {e}", dest.display()))?;
+                .map_err(|e| Error::io(&dest, format!("cannot write {}: {e}", dest.display())))?;
             let dir = p.actual.parent().expect("pending images live in a folder");
             std::fs::remove_dir_all(dir)
-                .map_err(|e| format!("cannot clear {}: {e}", dir.display()))?;
+                .map_err(|e| Error::io(dir, format!("cannot clear {}: {e}", dir.display())))?;
         }
         Ok(chosen)
     }
@@ -536,7 +553,11 @@ mod tests {
         s.check("a", "one", &picture(), Fuzzy::default()).unwrap();
         s.check("b", "two", &picture(), Fuzzy::default()).unwrap();
         assert_eq!(s.list_pending().len(), 2);
-        assert!(s.approve(None, true).unwrap_err().contains("CI"));
+        let e = s.approve(None, true).unwrap_err();
+        assert!(
+            matches!(&e, Error::Golden { message } if message.contains("CI")),
+            "{e}"
+        );
         assert!(!s.golden.exists(), "approve under CI wrote a golden");
         let done = s.approve(Some(&["a".to_string()]), false).unwrap();
         assert_eq!(done.len(), 1);
@@ -563,7 +584,8 @@ mod tests {
         let before = std::fs::read(s.golden_path("a", "one")).unwrap();
         let e = s.approve(Some(&["a".to_string()]), false).unwrap_err();
         assert!(
-            e.contains("nothing pending for \"a\"; pending: b/two"),
+            matches!(&e, Error::Golden { message }
+                if message.contains("nothing pending for \"a\"; pending: b/two")),
             "{e}"
         );
         assert_eq!(std::fs::read(s.golden_path("a", "one")).unwrap(), before);
@@ -583,7 +605,10 @@ mod tests {
         std::fs::write(&elsewhere, "not an image").unwrap();
         std::os::unix::fs::symlink(&elsewhere, s.golden_path("a", "one")).unwrap();
         let e = s.approve(None, false).unwrap_err();
-        assert!(e.contains("is a symbolic link"), "{e}");
+        assert!(
+            matches!(&e, Error::Golden { message } if message.contains("is a symbolic link")),
+            "{e}"
+        );
         assert_eq!(std::fs::read_to_string(&elsewhere).unwrap(), "not an image");
     }
 }

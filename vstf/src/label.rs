@@ -103,18 +103,19 @@ fn glyph(c: char) -> Option<[&'static str; 7]> {
 }
 
 /// Whether every character of `text` can be drawn.
-pub fn drawable(text: &str) -> bool {
+#[cfg(test)]
+fn drawable(text: &str) -> bool {
     text.chars().all(|c| glyph(c).is_some())
 }
 
 /// Draws `text` at the top left of `img`, each font pixel `scale` image
 /// pixels, white on a dark box; characters the font lacks are skipped.
-pub fn draw(img: &mut RgbImage, text: &str, scale: u32) {
+pub fn draw_label(img: &mut RgbImage, text: &str, scale: u32) {
     draw_at(img, text, (0, 0), scale);
 }
 
 /// [`draw`] with the box's top left corner at `(x, y)`.
-pub fn draw_at(img: &mut RgbImage, text: &str, (bx, by): (u32, u32), scale: u32) {
+pub(crate) fn draw_at(img: &mut RgbImage, text: &str, (bx, by): (u32, u32), scale: u32) {
     let (w, h) = img.dimensions();
     let chars: Vec<[&str; 7]> = text.chars().filter_map(glyph).collect();
     let pad = scale * 2;
@@ -147,7 +148,7 @@ pub fn draw_at(img: &mut RgbImage, text: &str, (bx, by): (u32, u32), scale: u32)
 }
 
 /// The font scale for an image `width` pixels wide: 1 up to 320, then 2, 3.
-pub fn scale_for(width: u32) -> u32 {
+pub fn label_scale(width: u32) -> u32 {
     (width / 320).clamp(1, 3)
 }
 
@@ -159,7 +160,7 @@ mod tests {
     #[test]
     fn labels_draw_inside_their_box() {
         let mut img = RgbImage::from_pixel(200, 40, Rgb([0, 0, 200]));
-        draw(&mut img, "relativistic, t = -12.5", 1);
+        draw_label(&mut img, "relativistic, t = -12.5", 1);
         let lit = img.pixels().filter(|p| p.0 == [255, 255, 255]).count();
         assert!(lit > 100, "{lit} pixels lit");
         assert_eq!(img.get_pixel(199, 39).0, [0, 0, 200], "outside the box");

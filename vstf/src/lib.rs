@@ -3,36 +3,50 @@
 //!
 //! Data flows one way: a fixture ([`fixture`]) is rendered ([`run`]), the
 //! image is measured ([`measure`]), the measurements are compared with
-//! first-principles expectations ([`oracle`], and for whole images the
-//! slice-by-slice [`emulator`]) scene by scene ([`check`]),
-//! and the views with their approved images ([`golden`]); [`report`]
-//! presents the verdict. Beside that: [`debug`] logs the variables along a
-//! pixel's rays, [`animate`] renders frame sequences, [`shard`] splits
-//! animations and check suites over a batch engine's array jobs,
-//! [`mod@bench`] measures speed, and [`output`] writes files atomically.
+//! first-principles expectations ([`oracle`], and for whole images a
+//! slice-by-slice emulator sharing no code with the renderer) fixture by
+//! fixture ([`check`]), and the views with their approved images
+//! ([`golden`]); [`report`] presents the verdict. Beside that: [`debug`]
+//! logs the variables along a pixel's rays, [`animate`] renders frame
+//! sequences, [`shard`] splits animations and check suites over a batch
+//! engine's array jobs, [`mod@bench`] measures speed, [`serve`] is the
+//! local viewer, and [`fuzz`] mutates fixtures through the whole path.
+//!
+//! Every fallible call at this boundary returns an [`Error`], whose
+//! variant says what kind of thing went wrong (a fixture, a missing file, a
+//! check that cannot be measured, a verdict that failed). The items below
+//! the modules are the rest of what front ends use; everything else is
+//! private to the harness.
 
-pub mod aim;
+mod aim;
+mod budget;
+mod emulator;
+mod label;
+mod observer;
+mod output;
+
 pub mod animate;
 pub mod bench;
-pub mod budget;
 pub mod check;
 pub mod debug;
-pub mod emulator;
+pub mod error;
 pub mod fixture;
 pub mod fuzz;
 pub mod golden;
-pub mod label;
 pub mod measure;
 pub mod oracle;
-pub mod output;
 pub mod project;
 pub mod report;
 pub mod run;
 pub mod serve;
 pub mod shard;
 
-pub use budget::Budget;
+pub use aim::{out_of_view, resolve_camera_time, CameraTime};
+pub use budget::{prisms, Budget, Prisms};
 pub use check::{Effort, FixtureReport, Row, Unit};
+pub use error::Error;
 pub use fixture::{FieldError, Fixture, FixtureError, Overrides, View};
 pub use golden::{Comparison, Fuzzy, Store};
+pub use label::{draw_label, label_scale};
+pub use output::{write_atomic, write_png};
 pub use project::Project;

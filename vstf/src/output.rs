@@ -8,11 +8,12 @@
 //! (`.gitignore` ignores them) and removed by a later run once the process
 //! that wrote them is gone ([`remove_stale`]).
 
+use crate::error::Error;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The marker in every temporary file's name.
-pub const TEMP_MARK: &str = ".vstf-tmp-";
+pub(crate) const TEMP_MARK: &str = ".vstf-tmp-";
 
 /// Most symbolic links followed from one output path.
 const MAX_LINKS: usize = 40;
@@ -122,7 +123,7 @@ fn is_running(pid: u32) -> bool {
 
 /// The temporary files under `dir` (recursively) left by processes that
 /// are no longer running.
-pub fn stale_temps(dir: &Path) -> Vec<PathBuf> {
+pub(crate) fn stale_temps(dir: &Path) -> Vec<PathBuf> {
     let mut found = Vec::new();
     let Ok(entries) = std::fs::read_dir(dir) else {
         return found;
@@ -176,7 +177,7 @@ fn remove_stale_beside(target: &Path) {
 }
 
 /// Removes the stale temporary files under `dir`; returns those removed.
-pub fn remove_stale(dir: &Path) -> Vec<PathBuf> {
+pub(crate) fn remove_stale(dir: &Path) -> Vec<PathBuf> {
     stale_temps(dir)
         .into_iter()
         .filter(|p| std::fs::remove_file(p).is_ok())
@@ -184,14 +185,15 @@ pub fn remove_stale(dir: &Path) -> Vec<PathBuf> {
 }
 
 /// Encodes an 8-bit RGB image as PNG and writes it atomically.
-pub fn write_png(path: &Path, img: &image::RgbImage) -> Result<(), String> {
+pub fn write_png(path: &Path, img: &image::RgbImage) -> Result<(), Error> {
     let mut bytes = Vec::new();
     img.write_to(
         &mut std::io::Cursor::new(&mut bytes),
         image::ImageFormat::Png,
     )
-    .map_err(|e| format!("cannot encode PNG: {e}"))?;
-    write_atomic(path, &bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))
+    .map_err(|e| Error::io(path, format!("cannot encode PNG: {e}")))?;
+    write_atomic(path, &bytes)
+        .map_err(|e| Error::io(path, format!("cannot write {}: {e}", path.display())))
 }
 
 #[cfg(test)]

@@ -9,7 +9,8 @@
 //! goldens. `vstf.toml` only marks the root; its content is not read.
 
 use crate::budget::Budget;
-use crate::fixture::{Fixture, FixtureError};
+use crate::error::Error;
+use crate::fixture::Fixture;
 use crate::golden::Store;
 use std::path::{Path, PathBuf};
 
@@ -24,44 +25,47 @@ pub struct Project {
 
 impl Project {
     /// The project at `root`, which must be a folder.
-    pub fn at(root: &Path) -> Result<Project, String> {
+    pub fn at(root: &Path) -> Result<Project, Error> {
         if !root.is_dir() {
-            return Err(format!("--root {}: not a folder", root.display()));
+            return Err(Error::NoProject {
+                message: format!("--root {}: not a folder", root.display()),
+            });
         }
         let root = root
             .canonicalize()
-            .map_err(|e| format!("--root {}: {e}", root.display()))?;
+            .map_err(|e| Error::io(root, format!("--root {}: {e}", root.display())))?;
         Ok(Project { root })
     }
 
     /// The nearest ancestor of `start` (itself included) that holds
     /// `vstf.toml` or `fixtures/`.
-    pub fn discover(start: &Path) -> Result<Project, String> {
+    pub fn discover(start: &Path) -> Result<Project, Error> {
         let start = start
             .canonicalize()
-            .map_err(|e| format!("{}: {e}", start.display()))?;
+            .map_err(|e| Error::io(start, format!("{}: {e}", start.display())))?;
         start
             .ancestors()
             .find(|dir| is_root(dir))
             .map(|root| Project {
                 root: root.to_path_buf(),
             })
-            .ok_or_else(|| {
-                format!(
+            .ok_or_else(|| Error::NoProject {
+                message: format!(
                     "no vstf project in {} or above it: no {MARKER} or fixtures/ folder \
                      (create one with `vstf init`, or name it with --root DIR)",
                     start.display()
-                )
+                ),
             })
     }
 
     /// The project named by `--root`, or else the one the current directory lies in.
-    pub fn locate(root: Option<&Path>) -> Result<Project, String> {
+    pub fn locate(root: Option<&Path>) -> Result<Project, Error> {
         match root {
             Some(r) => Project::at(r),
             None => {
-                let cwd = std::env::current_dir()
-                    .map_err(|e| format!("cannot read the current directory: {e}"))?;
+                let cwd = std::env::current_dir().map_err(|e| {
+                    Error::io(".", format!("cannot read the current directory: {e}"))
+                })?;
                 Project::discover(&cwd)
             }
         }
@@ -87,7 +91,7 @@ impl Project {
 
     /// A fixture file: `name_or_path` if it is a file, else
     /// `fixtures/<name>.json` of this project.
-    pub fn resolve(&self, name_or_path: &str) -> Result<PathBuf, String> {
+    pub fn resolve(&self, name_or_path: &str) -> Result<PathBuf, Error> {
         let p = Path::new(name_or_path);
         if p.is_file() {
             return Ok(p.to_path_buf());
@@ -100,34 +104,29 @@ impl Project {
         let hint = closest(name_or_path, &known)
             .map(|k| format!("did you mean {k:?}? "))
             .unwrap_or_default();
-        Err(format!(
-            "no fixture {name_or_path:?}: not a file, and no {}; {hint}fixtures here: {}",
-            candidate.display(),
-            if known.is_empty() {
-                "none".into()
-            } else {
-                known.join(", ")
-            }
-        ))
+        Err(Error::NoFixture {
+            name: name_or_path.into(),
+            message: format!(
+                "no fixture {name_or_path:?}: not a file, and no {}; {hint}fixtures here: {}",
+                candidate.display(),
+                if known.is_empty() {
+                    "none".into()
+                } else {
+                    known.join(", ")
+                }
+            ),
+        })
     }
 
     /// Loads a fixture by path, or by name from this project's `fixtures/`.
-    pub fn load(&self, name_or_path: &str) -> Result<Fixture, FixtureError> {
+    pub fn load(&self, name_or_path: &str) -> Result<Fixture, Error> {
         self.load_within(name_or_path, &Budget::DEFAULT)
     }
 
     /// [`Project::load`] within a memory budget.
-    pub fn load_within(
-        &self,
-        name_or_path: &str,
-        budget: &Budget,
-    ) -> Result<Fixture, FixtureError> {
-        let file = self.resolve(name_or_path).map_err(|message| FixtureError {
-            file: PathBuf::from(name_or_path),
-            path: String::new(),
-            message,
-        })?;
-        Fixture::load_within(&file, budget)
+    pub fn load_within(&self, name_or_path: &str, budget: &Budget) -> Result<Fixture, Error> {
+        let file = self.resolve(name_or_path)?;
+        Ok(Fixture::load_within(&file, budget)?)
     }
 
     /// Names of the fixtures in `fixtures/`, sorted.
@@ -197,14 +196,12 @@ pub fn load_fixture(
     root: Option<&Path>,
     name_or_path: &str,
     budget: &Budget,
-) -> Result<Fixture, String> {
+) -> Result<Fixture, Error> {
     let p = Path::new(name_or_path);
     if p.is_file() && root.is_none() {
-        return Fixture::load_within(p, budget).map_err(|e| e.to_string());
+        return Ok(Fixture::load_within(p, budget)?);
     }
-    Project::locate(root)?
-        .load_within(name_or_path, budget)
-        .map_err(|e| e.to_string())
+    Project::locate(root)?.load_within(name_or_path, budget)
 }
 
 #[cfg(test)]
@@ -244,8 +241,15 @@ mod tests {
             return;
         }
         let e = Project::discover(&dir).unwrap_err();
-        assert!(e.contains("vstf init") && e.contains("--root"), "{e}");
-        assert!(Project::at(&dir.join("missing")).is_err());
+        assert!(
+            matches!(&e, Error::NoProject { message }
+                if message.contains("vstf init") && message.contains("--root")),
+            "{e}"
+        );
+        assert!(matches!(
+            Project::at(&dir.join("missing")),
+            Err(Error::NoProject { .. })
+        ));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -1,29 +1,26 @@
 //! Rendering a fixture's view: the one path shared by `vstf render`, the
 //! checks and the tests.
 
+use crate::error::Error;
 use crate::fixture::{Fixture, Overrides, View};
 use renderer::{Database, Image, Traversal};
 
 /// A fixture's database for one Lorentz setting.
-pub fn database(
-    fixture: &Fixture,
-    lorentz: bool,
-    traversal: Traversal,
-) -> Result<Database, String> {
-    let mut db = fixture.database(lorentz).map_err(|e| e.to_string())?;
+pub fn database(fixture: &Fixture, lorentz: bool, traversal: Traversal) -> Result<Database, Error> {
+    let mut db = fixture.database(lorentz)?;
     db.set_traversal(traversal);
     Ok(db)
 }
 
 /// The fixture's view after `overrides`, or an error naming the file and field.
-pub fn view(fixture: &Fixture, overrides: &Overrides) -> Result<View, String> {
+pub fn view(fixture: &Fixture, overrides: &Overrides) -> Result<View, Error> {
     fixture
         .view(overrides)
-        .map_err(|e| e.in_file(&fixture.file).to_string())
+        .map_err(|e| Error::Fixture(e.in_file(&fixture.file)))
 }
 
 /// Renders `view` of `fixture` with a database built for it.
-pub fn render(fixture: &Fixture, view: &View, traversal: Traversal) -> Result<Image, String> {
+pub fn render(fixture: &Fixture, view: &View, traversal: Traversal) -> Result<Image, Error> {
     let db = database(fixture, view.model.lorentz, traversal)?;
     render_with(&db, fixture, view)
 }
@@ -31,7 +28,7 @@ pub fn render(fixture: &Fixture, view: &View, traversal: Traversal) -> Result<Im
 /// Renders `view` with an existing database (built with the view's Lorentz
 /// setting). A pixel that is not a finite colour fails the render: a NaN or
 /// an infinity would be written as black without a word.
-pub fn render_with(db: &Database, fixture: &Fixture, view: &View) -> Result<Image, String> {
+pub fn render_with(db: &Database, fixture: &Fixture, view: &View) -> Result<Image, Error> {
     let image = renderer::render(
         db,
         &fixture.scene,
@@ -42,7 +39,9 @@ pub fn render_with(db: &Database, fixture: &Fixture, view: &View) -> Result<Imag
     );
     match image.pixels.iter().position(|p| !p.is_finite()) {
         None => Ok(image),
-        Some(i) => Err(non_finite(db, fixture, view, &image, i)),
+        Some(i) => Err(Error::NonFinite {
+            message: non_finite(db, fixture, view, &image, i),
+        }),
     }
 }
 

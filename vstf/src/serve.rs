@@ -8,6 +8,7 @@
 //! them). Frames render on demand; each scene's database is built once and
 //! kept. The page has no external assets: it works offline.
 
+use crate::error::Error;
 use crate::fixture::{Fixture, Overrides, View};
 use crate::golden::{slug, Store};
 use crate::project::Project;
@@ -166,7 +167,7 @@ impl Site {
             .project
             .load_within(&fr.fixture, &Budget::DEFAULT)
             .map_err(|e| e.to_string())?;
-        let (fixture, golden) = crate::check::declared::golden_view(&loaded, &fr.view)?;
+        let (fixture, golden) = crate::check::golden_view(&loaded, &fr.view)?;
         let fixture = with_speed(&fixture, fr.speed)?;
         let model = fr.model.unwrap_or(golden.model);
         let overrides = Overrides {
@@ -374,7 +375,7 @@ fn header(k: &str, v: &str) -> Header {
 /// Serves `project` on 127.0.0.1:`port` (0: any free port), calling
 /// `ready` with the address once listening; handles requests until the
 /// process ends.
-pub fn serve(project: Project, port: u16, ready: impl FnOnce(&str)) -> Result<(), String> {
+pub fn serve(project: Project, port: u16, ready: impl FnOnce(&str)) -> Result<(), Error> {
     let server = Server::http(("127.0.0.1", port))
         .map_err(|e| format!("cannot listen on 127.0.0.1:{port}: {e}"))?;
     let addr = server

@@ -411,10 +411,11 @@ fn a_non_finite_pixel_fails_the_render_and_says_where() {
     let view = vstf::run::view(&f, &small).unwrap();
     let e = vstf::run::render(&f, &view, renderer::Traversal::Bvh).unwrap_err();
     assert!(
-        e.contains("not a finite colour")
-            && e.contains("object \"stage floor\"")
-            && e.contains("first not finite at its")
-            && e.contains("vstf debug"),
+        matches!(&e, vstf::error::Error::NonFinite { message }
+            if message.contains("not a finite colour")
+            && message.contains("object \"stage floor\"")
+            && message.contains("first not finite at its")
+            && message.contains("vstf debug")),
         "{e}"
     );
     // The same scene with a finite colour renders.
@@ -539,7 +540,7 @@ fn inputs_the_fuzzer_found_are_handled() {
 fn the_prism_estimate_bounds_the_database() {
     for name in workspace_tests::repo().fixture_names() {
         let f = workspace_tests::fixture(&name);
-        let p = vstf::budget::prisms(&f.scene);
+        let p = vstf::prisms(&f.scene);
         let estimate = p.translated + p.keyframed;
         for lorentz in [false, true] {
             let built = f.database(lorentz).unwrap().prism_count() as u64;

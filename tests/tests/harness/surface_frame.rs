@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 use renderer::{Step, Traversal};
-use vstf::check::{declared, Effort};
+use vstf::check::{self, Effort};
 use vstf::debug::trace_pixel;
 use vstf::fixture::Overrides;
 use vstf::oracle::{body_point, retarded};
@@ -13,7 +13,7 @@ use vstf::oracle::{body_point, retarded};
 #[test]
 fn a_sliding_plate_follows_the_lambert_law_in_its_own_frame() {
     let plate = workspace_tests::fixture("lit-plate");
-    let rows: Vec<_> = declared::run(&plate, &Effort::QUICK)
+    let rows: Vec<_> = check::run_fixture(&plate, &Effort::QUICK)
         .unwrap_or_else(|e| panic!("{e}"))
         .quantities
         .into_iter()

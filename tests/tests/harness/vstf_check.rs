@@ -326,7 +326,7 @@ fn a_flange_rendered_a_hundredth_elsewhere_fails_its_edge_rows() {
     };
     start.x.x += 0.01;
     let judged = |rendered: &vstf::Fixture| -> Vec<Row> {
-        vstf::check::declared::evaluate(rendered, &f, &Effort::QUICK)
+        vstf::check::evaluate(rendered, &f, &Effort::QUICK)
             .unwrap()
             .quantities
             .into_iter()
@@ -405,7 +405,7 @@ fn a_one_pixel_change_in_a_real_render_is_caught_without_touching_golden() {
 }
 
 /// Every view a named kind renders for its golden image is reproduced bit
-/// for bit through `--view` (`declared::golden_view`), and `list --views`
+/// for bit through `--view` (`check::golden_view`), and `list --views`
 /// has them all.
 #[test]
 fn named_kinds_views_reproduce_their_goldens() {
@@ -414,21 +414,19 @@ fn named_kinds_views_reproduce_their_goldens() {
     let mut checked = 0;
     for name in repo.fixture_names() {
         let f = repo.load(&name).unwrap();
-        for c in &f.spec.checks {
-            let vstf::fixture::checks::MeasureSpec::Named(n) = &c.measure else {
+        for v in vstf::check::views_of(&f) {
+            if v.rendered_by.is_none() {
                 continue;
-            };
-            for v in vstf::check::named::views(&f, n).unwrap() {
-                let (fixture, view) = vstf::check::declared::golden_view(&f, &v.name).unwrap();
-                let img = vstf::run::render(&fixture, &view, renderer::Traversal::Bvh)
-                    .unwrap()
-                    .to_rgb8();
-                let golden = image::open(store.golden_path(&name, &v.name))
-                    .unwrap()
-                    .to_rgb8();
-                assert!(img == golden, "{name} / {}: not its golden image", v.name);
-                checked += 1;
             }
+            let (fixture, view) = vstf::check::golden_view(&f, &v.name).unwrap();
+            let img = vstf::run::render(&fixture, &view, renderer::Traversal::Bvh)
+                .unwrap()
+                .to_rgb8();
+            let golden = image::open(store.golden_path(&name, &v.name))
+                .unwrap()
+                .to_rgb8();
+            assert!(img == golden, "{name} / {}: not its golden image", v.name);
+            checked += 1;
         }
     }
     assert!(checked >= 25, "only {checked} named views");

@@ -1,42 +1,44 @@
 //! The VSTF checks: each fixture is rendered, measured from its images, and
 //! compared with first-principles expectations ([`crate::oracle`]).
 //!
-//! - [`setup`]: how a check looks at its fixture (probe renders aimed at the
-//!   measured objects, full views for the report);
-//! - [`edge`]: edges traced to sub-pixel precision on a probe render and
-//!   fitted ([`Probed`]: aim, render, sweep the rows, fit on a plane);
-//! - [`row`]: readings, quantities and the judged rows of the check table;
-//! - [`runner`]: loading each fixture, running the checks concurrently,
-//!   comparing views with the golden images;
-//! - [`sharded`]: one shard's reports stored for `vstf merge`, and merged;
-//! - one module per scene, each a table of quantity, measurement,
-//!   expectation and the paper's figure.
+//! By role, each importing only the rooms above it in this list:
+//!
+//! - results: [`row`] (readings, quantities with their [`Unit`], judged
+//!   rows) and [`findings`] (what a check kind returns, a fixture's report);
+//! - tools of the kinds: `probe` (probe renders aimed at the measured
+//!   objects, full views for the report), `traced_edge` (an edge traced to
+//!   sub-pixel precision on a probe render and fitted on a plane), `path`
+//!   (where a body point is seen, for each kind of worldline);
+//! - the kinds: `declared` (the general kinds a fixture declares, one file
+//!   each, and the dispatcher that evaluates a fixture's declarations) and
+//!   `named` (the paper's scenes, one module each);
+//! - `views`: every view of a fixture by name, the one way the front ends
+//!   find a view to render;
+//! - running: `runner` (fixtures concurrently, views against their golden
+//!   images) and [`sharded`] (one shard's reports stored for `vstf merge`,
+//!   and merged).
+//!
+//! Outside `check/`, only what this module re-exports is used.
 
-pub mod declared;
-pub mod edge;
-pub mod emulated;
-pub mod named;
-pub mod path;
+pub mod findings;
 pub mod row;
-pub mod runner;
-pub mod setup;
+
+mod path;
+mod probe;
+mod traced_edge;
+
+mod declared;
+mod named;
+
+mod views;
+
+mod runner;
 pub mod sharded;
 
-pub mod aberration;
-pub mod doppler;
-pub mod lambert;
-pub mod mirror;
-pub mod outline;
-pub mod period;
-pub mod relativity;
-pub mod stage;
-pub mod teaser;
-pub mod terrell;
-
-pub use edge::{trace_rows, Edge, EdgeTrace, OnPlane, Probed, Sweep};
+pub use declared::{evaluate, run as run_fixture};
+pub use findings::{CheckOutcome, FixtureReport, ViewReport};
+pub use named::NamedView;
+pub use probe::{Effort, VIEW_WIDTH};
 pub use row::{difference, Quantity, Reading, Row, Unit};
-pub use runner::{run, run_reporting, run_within, Findings, FixtureReport, ViewReport};
-pub use setup::{
-    background, fixture_model, is_background, motion_of, uniform, Effort, Probe, Setup,
-    UniformMotion, VIEW_WIDTH,
-};
+pub use runner::{run, run_reporting, run_within};
+pub use views::{golden_view, views_of, ViewEntry};

@@ -6,8 +6,8 @@
 //! reference point's central-difference velocity, as docs/physics.md
 //! states).
 
-use super::setup::{motion_of, UniformMotion};
 use crate::fixture::Fixture;
+use crate::observer::{motion_of, UniformMotion};
 use crate::oracle::{
     contract, instantaneous, retarded, retarded_hyperbolic, retarded_polyline, PointHyperbola,
     PointPolyline, Retarded,
@@ -17,7 +17,7 @@ use renderer::{Hyperbolic, Keyframe, LightSpeed, Mesh, Model, Motion, ObjectKind
 
 /// An object's path, read from the fixture's scene data.
 #[derive(Clone, Debug)]
-pub enum BodyPath {
+pub(super) enum BodyPath {
     /// A straight worldline.
     Uniform(UniformMotion),
     /// Constant proper acceleration; `born_rigid` for a Lorentz-transformed V_obj.
@@ -35,7 +35,7 @@ pub enum BodyPath {
 /// A keyframed mesh in the lab: its rest vertices and triangles, and at
 /// each keyframe the lab time and the lab positions of its vertices.
 #[derive(Clone, Debug)]
-pub struct KeyframedMesh {
+pub(super) struct KeyframedMesh {
     rest: Mesh,
     frames: Vec<(f64, Vec<DVec3>)>,
 }
@@ -213,7 +213,7 @@ impl KeyframedMesh {
 /// (rest frame for a Born-rigid body): the reference point's hyperbola
 /// shifted across the motion by r's transverse part, and, when Born-rigid,
 /// with A = 1/a + xi for the offset xi along it.
-pub fn hyperbola_of(h: &Hyperbolic, r: DVec3, born_rigid: bool) -> PointHyperbola {
+pub(super) fn hyperbola_of(h: &Hyperbolic, r: DVec3, born_rigid: bool) -> PointHyperbola {
     let xi = if born_rigid { r.dot(h.direction) } else { 0.0 };
     let across = r - h.direction * xi;
     let p = PointHyperbola::starting(
@@ -231,7 +231,7 @@ pub fn hyperbola_of(h: &Hyperbolic, r: DVec3, born_rigid: bool) -> PointHyperbol
 
 impl BodyPath {
     /// The path of the object `name` under `model`.
-    pub fn of(fixture: &Fixture, name: &str, model: Model) -> Result<BodyPath, String> {
+    pub(super) fn of(fixture: &Fixture, name: &str, model: Model) -> Result<BodyPath, String> {
         let obj = fixture.object(name)?;
         match &obj.motion {
             Motion::Hyperbolic(h) => Ok(BodyPath::Hyperbolic {
@@ -261,7 +261,7 @@ impl BodyPath {
 
     /// Where the body point at `r` is seen from the camera at (`tc`,
     /// `camera`): on its past light cone, or at `tc` with infinite light speed.
-    pub fn seen(&self, r: DVec3, tc: f64, camera: DVec3, model: Model) -> Option<Retarded> {
+    pub(super) fn seen(&self, r: DVec3, tc: f64, camera: DVec3, model: Model) -> Option<Retarded> {
         let finite = model.light_speed == LightSpeed::Finite;
         match self {
             BodyPath::Uniform(m) if finite => retarded(&m.point(r), tc, camera),
@@ -296,7 +296,7 @@ impl BodyPath {
     }
 
     /// The lab velocity of the body point at `r` at lab time `t`.
-    pub fn velocity(&self, r: DVec3, t: f64) -> Option<DVec3> {
+    pub(super) fn velocity(&self, r: DVec3, t: f64) -> Option<DVec3> {
         match self {
             BodyPath::Uniform(m) => Some(m.velocity),
             BodyPath::Hyperbolic { motion, born_rigid } => {
@@ -309,7 +309,7 @@ impl BodyPath {
     /// How far the renderer's velocity of the surface seen where the point
     /// `r` is seen may differ from r's own (zero unless keyframed; see
     /// `KeyframedMesh::velocity_slack`).
-    pub fn velocity_slack(&self, r: DVec3, seen: &Retarded, camera: DVec3) -> f64 {
+    pub(super) fn velocity_slack(&self, r: DVec3, seen: &Retarded, camera: DVec3) -> f64 {
         let BodyPath::Keyframed(m) = self else {
             return 0.0;
         };
@@ -328,7 +328,7 @@ impl BodyPath {
     ///
     /// `ends` is the edge the point lies on, at parameter `s` along it (a
     /// side's bend is a property of the whole side).
-    pub fn keyframe_shift(&self, ends: [DVec3; 2], s: f64, seen: &Retarded, camera: DVec3) -> f64 {
+    pub(super) fn keyframe_shift(&self, ends: [DVec3; 2], s: f64, seen: &Retarded, camera: DVec3) -> f64 {
         let r = ends[0] + (ends[1] - ends[0]) * s;
         let k = (camera - seen.x).normalize();
         match self {

@@ -5,7 +5,7 @@
 //! shard's folder back into the reports an unsharded run gives, for the
 //! table, the JSON and the HTML report.
 
-use super::runner::{FixtureReport, ViewReport};
+use crate::check::findings::{FixtureReport, ViewReport};
 use crate::golden::{slug, Comparison};
 use crate::project::Project;
 use crate::shard::{Manifest, Shard};

@@ -7,11 +7,12 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
+use vstf::error::Error;
 use vstf::fixture::Overrides;
 
 /// Renders the frames, assembles the GIF or APNG asked for and reports the
 /// timings; an interruption leaves the finished frames and fails.
-pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), Error> {
     let AnimateArgs {
         fixture,
         frames,
@@ -28,7 +29,9 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
         None => vstf::shard::Shard::WHOLE,
     };
     if view.camera_t.is_some() {
-        return Err("animate takes its camera times from --frames, not --camera-t".into());
+        return Err(Error::usage(
+            "animate takes its camera times from --frames, not --camera-t",
+        ));
     }
     let times = vstf::animate::frame_times(frames.0, frames.1, step)?;
     let budget = vstf::Budget::forced(view.force);
@@ -36,7 +39,7 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
     // A declared view gives the model, size and samples; the times are the frames'.
     let (fixture, view) = match &view.view {
         Some(declared) => {
-            let (fixture, base) = vstf::check::declared::golden_view(&fixture, declared)?;
+            let (fixture, base) = vstf::check::golden_view(&fixture, declared)?;
             let first = vstf::fixture::View {
                 camera_t: times[0],
                 ..base
@@ -76,10 +79,10 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), String> {
     bar.finish_and_clear();
     let dir = output.frames_dir();
     if done < owned {
-        return Err(format!(
+        return Err(Error::Other(format!(
             "interrupted: {done} of {owned} frames finished, in {}",
             dir.display()
-        ));
+        )));
     }
     if shard != vstf::shard::Shard::WHOLE {
         eprintln!(

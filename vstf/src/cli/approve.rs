@@ -4,13 +4,14 @@
 
 use super::args::{ApproveArgs, RejectArgs};
 use std::path::Path;
+use vstf::error::Error;
 use vstf::golden::ci_is_set;
 use vstf::golden::Store;
 use vstf::project::Project;
 
 /// Lists the pending images, or approves those of the named fixtures (or
 /// all); approving is refused when CI is set.
-pub fn run(root: Option<&Path>, args: ApproveArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: ApproveArgs) -> Result<(), Error> {
     let ApproveArgs {
         fixtures,
         all,
@@ -22,7 +23,9 @@ pub fn run(root: Option<&Path>, args: ApproveArgs) -> Result<(), String> {
         return Ok(());
     }
     if fixtures.is_empty() && !all {
-        return Err("name the fixtures to approve, or give --all (see --list)".into());
+        return Err(Error::usage(
+            "name the fixtures to approve, or give --all (see --list)",
+        ));
     }
     for p in store.remove_stale_temps() {
         eprintln!("removed {} (left by an interrupted write)", p.display());
@@ -44,7 +47,7 @@ pub fn run(root: Option<&Path>, args: ApproveArgs) -> Result<(), String> {
 }
 
 /// Drops the pending images asked for.
-pub fn reject(root: Option<&Path>, args: RejectArgs) -> Result<(), String> {
+pub fn reject(root: Option<&Path>, args: RejectArgs) -> Result<(), Error> {
     let store = Project::locate(root)?.store();
     let chosen = if args.all {
         None

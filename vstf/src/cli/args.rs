@@ -46,8 +46,8 @@ pub struct ViewArgs {
     pub lorentz: bool,
     /// Camera lab time, t.units; `auto`: the light time from the looked-at
     /// point; `auto:OBJECT`: when OBJECT is seen crossing the line of sight.
-    #[arg(long, allow_hyphen_values = true, value_parser = str::parse::<vstf::aim::CameraTime>)]
-    pub camera_t: Option<vstf::aim::CameraTime>,
+    #[arg(long, allow_hyphen_values = true, value_parser = str::parse::<vstf::CameraTime>)]
+    pub camera_t: Option<vstf::CameraTime>,
     /// Image width, pixels.
     #[arg(long)]
     pub width: Option<u32>,

@@ -5,6 +5,7 @@ use super::args::CheckArgs;
 use std::path::Path;
 use std::time::Instant;
 use vstf::check::{Effort, FixtureReport, Row};
+use vstf::error::Error;
 use vstf::golden::Comparison;
 use vstf::project::Project;
 use vstf::shard::Shard;
@@ -12,7 +13,7 @@ use vstf::shard::Shard;
 /// Prints the table of rows and the golden comparisons, writes the JSON and
 /// HTML reports asked for, and fails if any row or image fails. A shard
 /// checks its fixtures and stores its results for `vstf merge`.
-pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), Error> {
     let CheckArgs {
         fixtures,
         json,
@@ -110,7 +111,7 @@ pub fn conclude(
     asked: &Asked,
     pending: &Path,
     started: Instant,
-) -> Result<(), String> {
+) -> Result<(), Error> {
     let rows: Vec<Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
     // With `--json -` the JSON is all that goes to stdout; the table goes to stderr.
     let json_to_stdout = asked.json.as_deref() == Some(Path::new("-"));
@@ -142,7 +143,7 @@ pub fn conclude(
     match &asked.json {
         Some(_) if json_to_stdout => println!("{}", vstf::report::check_json(&rows, &goldens)),
         Some(path) => {
-            vstf::output::write_atomic(path, vstf::report::check_json(&rows, &goldens).as_bytes())
+            vstf::write_atomic(path, vstf::report::check_json(&rows, &goldens).as_bytes())
                 .map_err(|e| format!("cannot write {}: {e}", path.display()))?
         }
         None => {}
@@ -163,7 +164,9 @@ pub fn conclude(
         started.elapsed().as_secs_f64()
     );
     if failed_rows > 0 || failed > 0 {
-        return Err("some checks failed".into());
+        return Err(Error::Failed {
+            message: "some checks failed".into(),
+        });
     }
     Ok(())
 }

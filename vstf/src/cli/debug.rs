@@ -4,10 +4,11 @@
 use super::args::{DebugArgs, DebugDiffArgs};
 use super::view::prepare;
 use std::path::Path;
+use vstf::error::Error;
 
 /// Traces the pixel (printing every step) or the region, and writes one JSON
 /// line per pixel to the log if one is given.
-pub fn run(root: Option<&Path>, args: DebugArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: DebugArgs) -> Result<(), Error> {
     let DebugArgs {
         fixture,
         pixel,
@@ -38,7 +39,7 @@ pub fn run(root: Option<&Path>, args: DebugArgs) -> Result<(), String> {
         }
     }
     if let Some(path) = log {
-        vstf::output::write_atomic(&path, lines.as_bytes())
+        vstf::write_atomic(&path, lines.as_bytes())
             .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         eprintln!(
             "logged {} pixels to {}",
@@ -51,7 +52,7 @@ pub fn run(root: Option<&Path>, args: DebugArgs) -> Result<(), String> {
 
 /// Prints the first differing pixels of two logs, each with its differing
 /// fields; fails if any differ. Both logs are read a line at a time.
-pub fn diff(args: DebugDiffArgs) -> Result<(), String> {
+pub fn diff(args: DebugDiffArgs) -> Result<(), Error> {
     let DebugDiffArgs {
         a,
         b,
@@ -87,15 +88,17 @@ pub fn diff(args: DebugDiffArgs) -> Result<(), String> {
         println!("the logs agree ({} pixels, tolerance {tol})", c.lines.0);
         Ok(())
     } else {
-        Err(format!(
-            "{} of {} pixels differ{}",
-            c.differing,
-            c.lines.0.max(c.lines.1),
-            if c.differing > c.shown.len() {
-                format!(" (the first {} shown; --show N for more)", c.shown.len())
-            } else {
-                String::new()
-            }
-        ))
+        Err(Error::Failed {
+            message: format!(
+                "{} of {} pixels differ{}",
+                c.differing,
+                c.lines.0.max(c.lines.1),
+                if c.differing > c.shown.len() {
+                    format!(" (the first {} shown; --show N for more)", c.shown.len())
+                } else {
+                    String::new()
+                }
+            ),
+        })
     }
 }

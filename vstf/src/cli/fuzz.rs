@@ -4,16 +4,17 @@
 
 use super::args::FuzzArgs;
 use std::path::Path;
+use vstf::error::Error;
 use vstf::project::Project;
 
 /// Runs the fuzzer and prints its summary; fails on any failure.
-pub fn run(root: Option<&Path>, args: FuzzArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: FuzzArgs) -> Result<(), Error> {
     let project = Project::locate(root)?;
     if !(args.seconds.is_finite() && args.seconds > 0.0) {
-        return Err(format!(
+        return Err(Error::usage(format!(
             "--seconds {}: expected a positive time",
             args.seconds
-        ));
+        )));
     }
     let fuzz = project.root().join("fuzz");
     let dirs: Vec<_> = [
@@ -49,10 +50,12 @@ pub fn run(root: Option<&Path>, args: FuzzArgs) -> Result<(), String> {
     if s.failures.is_empty() {
         Ok(())
     } else {
-        Err(format!(
-            "{} failing inputs saved in {}",
-            s.failures.len(),
-            save.display()
-        ))
+        Err(Error::Failed {
+            message: format!(
+                "{} failing inputs saved in {}",
+                s.failures.len(),
+                save.display()
+            ),
+        })
     }
 }

@@ -5,6 +5,7 @@
 
 use super::args::InitArgs;
 use std::path::{Path, PathBuf};
+use vstf::error::Error;
 
 /// The example fixture: a cube at 0.8c whose trailing face shows, with a
 /// check of every general kind (docs/checks.md walks through it).
@@ -24,19 +25,22 @@ images, compares them with first principles and with the approved images\n\
 in `golden/`; `vstf approve FIXTURE` accepts pending images after review.\n";
 
 /// Writes the project into `dir` (the current directory by default).
-pub fn run(args: InitArgs) -> Result<(), String> {
+pub fn run(args: InitArgs) -> Result<(), Error> {
     let dir = args.dir.unwrap_or_else(|| PathBuf::from("."));
     if dir.exists() && !dir.is_dir() {
-        return Err(format!("{}: exists and is not a folder", dir.display()));
+        return Err(Error::usage(format!(
+            "{}: exists and is not a folder",
+            dir.display()
+        )));
     }
     let fixture = dir.join("fixtures").join("moving-cube.json");
     for owned in [dir.join(vstf::project::MARKER), fixture.clone()] {
         if owned.exists() {
-            return Err(format!(
+            return Err(Error::usage(format!(
                 "{} already exists: {} is a vstf project already (nothing was written)",
                 owned.display(),
                 dir.display()
-            ));
+            )));
         }
     }
     write(&dir.join(vstf::project::MARKER), MARKER)?;
@@ -60,6 +64,6 @@ pub fn run(args: InitArgs) -> Result<(), String> {
 
 /// Writes a new file atomically, creating its folder.
 fn write(path: &Path, text: &str) -> Result<(), String> {
-    vstf::output::write_atomic(path, text.as_bytes())
+    vstf::write_atomic(path, text.as_bytes())
         .map_err(|e| format!("cannot write {}: {e}", path.display()))
 }

@@ -2,41 +2,21 @@
 //! views each declares.
 
 use std::path::Path;
+use vstf::check::ViewEntry;
+use vstf::error::Error;
 use vstf::project::Project;
 
 /// Prints each fixture's name and description (or why it does not load);
 /// with `views`, each declared view's name, camera time and model under it.
-pub fn run(root: Option<&Path>, views: bool) -> Result<(), String> {
+pub fn run(root: Option<&Path>, views: bool) -> Result<(), Error> {
     let project = Project::locate(root)?;
     for name in project.fixture_names() {
         match project.load(&name) {
             Ok(f) => {
                 println!("{name:24} {}", f.spec.description);
                 if views {
-                    for v in &f.spec.views {
-                        let mut model = match v.model {
-                            Some(m) => m.model(),
-                            None => f.model(&vstf::Overrides::default()),
-                        };
-                        if let Some(l) = v.lorentz {
-                            model.lorentz = l;
-                        }
-                        let t = v.t.unwrap_or(f.spec.camera.t);
-                        println!("    --view {:?}  (camera t = {t}, {model} model)", v.name);
-                    }
-                    for c in &f.spec.checks {
-                        let vstf::fixture::checks::MeasureSpec::Named(n) = &c.measure else {
-                            continue;
-                        };
-                        for v in vstf::check::named::views(&f, n).unwrap_or_default() {
-                            println!(
-                                "    --view {:?}  (camera t = {}, {} model; rendered by the named check {})",
-                                v.name,
-                                v.camera_t,
-                                v.model,
-                                n.kind()
-                            );
-                        }
+                    for v in vstf::check::views_of(&f) {
+                        print_view(&v);
                     }
                 }
             }
@@ -44,4 +24,16 @@ pub fn run(root: Option<&Path>, views: bool) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// One `--view` line: the view's name, camera time and model, and the named
+/// check that renders it, if any.
+fn print_view(v: &ViewEntry) {
+    let (name, t, model) = (&v.name, v.camera_t, v.model);
+    match v.rendered_by {
+        None => println!("    --view {name:?}  (camera t = {t}, {model} model)"),
+        Some(kind) => println!(
+            "    --view {name:?}  (camera t = {t}, {model} model; rendered by the named check {kind})"
+        ),
+    }
 }

@@ -6,10 +6,11 @@
 use super::args::MergeArgs;
 use super::check::{conclude, Asked};
 use std::time::Instant;
+use vstf::error::Error;
 
 /// Merges the shards found in `args.dirs`, by the kind their manifests
 /// name.
-pub fn run(args: MergeArgs) -> Result<(), String> {
+pub fn run(args: MergeArgs) -> Result<(), Error> {
     let started = Instant::now();
     let found = vstf::shard::read_manifests(&vstf::check::sharded::with_shard_folders(&args.dirs))?;
     let kind = found
@@ -32,9 +33,9 @@ pub fn run(args: MergeArgs) -> Result<(), String> {
         }
         "check" => {
             if args.out.is_some() {
-                return Err(
-                    "--out is for animations; a check suite takes --json and --report".into(),
-                );
+                return Err(Error::usage(
+                    "--out is for animations; a check suite takes --json and --report",
+                ));
             }
             let reports = vstf::check::sharded::merge(found)?;
             let asked = Asked {
@@ -49,6 +50,8 @@ pub fn run(args: MergeArgs) -> Result<(), String> {
                 started,
             )
         }
-        other => Err(format!("shard manifests of an unknown kind {other:?}")),
+        other => Err(Error::Other(format!(
+            "shard manifests of an unknown kind {other:?}"
+        ))),
     }
 }

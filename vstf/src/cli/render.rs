@@ -5,9 +5,10 @@ use super::view::prepare;
 use renderer::LightSpeed;
 use std::path::Path;
 use std::time::Instant;
+use vstf::error::Error;
 
 /// Renders the view and reports what was rendered and how long it took.
-pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
+pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), Error> {
     let RenderArgs {
         fixture,
         out,
@@ -20,19 +21,19 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), String> {
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
     if !png {
-        return Err(format!(
+        return Err(Error::usage(format!(
             "--out {}: vstf writes PNG images; name the file .png",
             out.display()
-        ));
+        )));
     }
     if models.is_some() {
-        return all_models(root, &fixture, &view, brute_force, &out);
+        return Ok(all_models(root, &fixture, &view, brute_force, &out)?);
     }
     let started = Instant::now();
     let (fixture, view, db) = prepare(root, &fixture, &view, brute_force, true)?;
     let image = vstf::run::render_with(&db, &fixture, &view)?;
-    vstf::output::write_png(&out, &image.to_rgb8())?;
-    for warning in vstf::aim::out_of_view(&fixture, &view) {
+    vstf::write_png(&out, &image.to_rgb8())?;
+    for warning in vstf::out_of_view(&fixture, &view) {
         eprintln!("warning: {warning}");
     }
     eprintln!(
@@ -79,7 +80,7 @@ fn all_models(
     ] {
         let one = ViewArgs {
             model: Some(model),
-            camera_t: Some(vstf::aim::CameraTime::At(t)),
+            camera_t: Some(vstf::CameraTime::At(t)),
             ..args.clone()
         };
         let (fixture, view, db) = prepare(root, name, &one, brute_force, true)?;
@@ -89,8 +90,8 @@ fn all_models(
             view.model,
             vstf::animate::time_label(view.camera_t)
         );
-        let scale = vstf::label::scale_for(img.width());
-        vstf::label::draw(&mut img, &label, scale);
+        let scale = vstf::label_scale(img.width());
+        vstf::draw_label(&mut img, &label, scale);
         panels.push(img);
     }
     let gap = 4;
@@ -99,7 +100,7 @@ fn all_models(
     for (k, p) in panels.iter().enumerate() {
         image::imageops::replace(&mut sheet, p, i64::from(k as u32 * (w + gap)), 0);
     }
-    vstf::output::write_png(out, &sheet)?;
+    vstf::write_png(out, &sheet)?;
     eprintln!(
         "rendered {} in the three models ({}x{} each) in {:.2} s -> {}",
         fixture.name,

@@ -5,6 +5,7 @@
 
 use std::io::{BufRead, Write};
 use std::path::Path;
+use vstf::error::Error;
 use vstf::golden::{ci_is_set, slug, Pending, Store};
 use vstf::project::Project;
 
@@ -45,7 +46,7 @@ fn show(p: &Pending, k: usize, n: usize) {
 }
 
 /// Reviews every pending image; refused when CI is set.
-pub fn run(root: Option<&Path>) -> Result<(), String> {
+pub fn run(root: Option<&Path>) -> Result<(), Error> {
     let store: Store = Project::locate(root)?.store();
     let pending = store.list_pending();
     if pending.is_empty() {
@@ -53,10 +54,11 @@ pub fn run(root: Option<&Path>) -> Result<(), String> {
         return Ok(());
     }
     if ci_is_set(std::env::var("CI").ok().as_deref()) {
-        return Err(
-            "refusing to review golden images with CI set: review locally and commit the images"
-                .into(),
-        );
+        return Err(Error::Golden {
+            message:
+                "refusing to review golden images with CI set: review locally and commit the images"
+                    .into(),
+        });
     }
     let stdin = std::io::stdin();
     let mut lines = stdin.lock().lines();

@@ -16,7 +16,7 @@ impl ViewArgs {
             camera_t: self
                 .camera_t
                 .as_ref()
-                .map(|t| vstf::aim::resolve(fixture, t))
+                .map(|t| vstf::resolve_camera_time(fixture, t))
                 .transpose()?,
             width: self.width,
             height: self.height,
@@ -55,7 +55,7 @@ pub fn prepare(
     let budget = Budget::forced(args.force);
     let fixture = load_fixture(root, name, &budget)?;
     let (fixture, view) = match &args.view {
-        Some(declared) => vstf::check::declared::golden_view(&fixture, declared)?,
+        Some(declared) => vstf::check::golden_view(&fixture, declared)?,
         None => {
             let view = vstf::run::view(&fixture, &args.overrides(&fixture)?)?;
             (fixture, view)

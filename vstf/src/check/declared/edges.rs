@@ -3,15 +3,16 @@
 //! view's camera event), and the measurement of where the edge's image lies
 //! on a lab plane, at an image row or column, or where two edges meet.
 
-use super::super::edge::{Edge, EdgeTrace, OnPlane, Probed, Sweep};
-use super::super::path::BodyPath;
-use super::super::row::{Reading, Unit};
-use super::super::setup::{background, is_background, Effort, Setup};
+use crate::check::path::BodyPath;
+use crate::check::probe::Effort;
+use crate::check::row::{Reading, Unit};
+use crate::check::traced_edge::{Edge, EdgeTrace, OnPlane, ProbeImage, Sweep};
 use crate::fixture::checks::{
     edge_ends, view_size, Axis, AxisValue, CornerEdge, CornerSpec, EdgeAt, EdgeSpec, ImageReport,
     PixelAxis, PlaneAt, Side, ViewSpec,
 };
 use crate::measure::{self, azimuth, elevation, Pinhole, Plane, Scan};
+use crate::observer::{background, is_background, Observer};
 use crate::oracle::{first_root, Retarded};
 use glam::DVec3;
 use image::RgbImage;
@@ -24,7 +25,7 @@ type Row = (Reading, f64, Unit);
 struct SeenEdge<'a> {
     ends: [DVec3; 2],
     path: BodyPath,
-    setup: Setup<'a>,
+    setup: Observer<'a>,
 }
 
 impl SeenEdge<'_> {
@@ -99,7 +100,7 @@ fn kept<'k>(keep: &'k Option<Vec<String>>, object: &'k str) -> Vec<&'k str> {
 /// The seen edge from `from` to `to` of the object `object`, as the oracle
 /// sees it from `described`'s camera event.
 fn seen_edge<'a>(
-    described: &Setup<'a>,
+    described: &Observer<'a>,
     object: &str,
     ends: [DVec3; 2],
 ) -> Result<SeenEdge<'a>, String> {
@@ -107,15 +108,15 @@ fn seen_edge<'a>(
     Ok(SeenEdge {
         ends,
         path,
-        setup: Setup { ..*described },
+        setup: Observer { ..*described },
     })
 }
 
 /// An edge check: the measured reading beside the oracle's, and the lab
 /// direction of the expected point, to mark.
-pub fn edge(
-    measuring: &Setup,
-    described: &Setup,
+pub(super) fn edge(
+    measuring: &Observer,
+    described: &Observer,
     view: &ViewSpec,
     e: &EdgeSpec,
     effort: &Effort,
@@ -148,7 +149,7 @@ type EdgeResult = (Reading, f64, Unit, DVec3);
 /// objects, back-projected through the measurement's pinhole onto the
 /// plane, fitted as `read` against `along` and read at `level`.
 fn plane_edge(
-    setup: &Setup,
+    setup: &Observer,
     seen: &SeenEdge,
     e: &EdgeSpec,
     p: &PlaneAt,
@@ -164,7 +165,7 @@ fn plane_edge(
             p.level, e.view, range.0, range.1
         )
     })?;
-    let probe = Probed::aimed(setup, keep, e.margin, effort)?;
+    let probe = ProbeImage::aimed(setup, keep, e.margin, effort)?;
     let on = OnPlane {
         plane: plane_of(p.plane),
         coords: |q: DVec3| (along.of(q), read.of(q)),
@@ -172,8 +173,8 @@ fn plane_edge(
         degree: e.degree,
     };
     let sweep = match e.side {
-        Side::Left => probe.from_left(),
-        _ => probe.from_right(),
+        Side::Left => probe.sweep_rightwards(),
+        _ => probe.sweep_leftwards(),
     };
     let fitted = probe
         .fit(&on, sweep, probe.background(), effort)
@@ -190,7 +191,7 @@ fn plane_edge(
 /// The measuring image of a view: the kept objects through the
 /// fixture's own camera at the view's size, and the measurements' pinhole.
 fn measuring_image(
-    setup: &Setup,
+    setup: &Observer,
     keep: &[&str],
     view: &ViewSpec,
     effort: &Effort,
@@ -266,7 +267,7 @@ fn split(horizontal: bool, (px, py): (f64, f64)) -> (f64, f64) {
 /// column of the view's measuring image: the positions traced line by line
 /// across the edge's image, fitted against the line's centre.
 fn pixel_edge(
-    setup: &Setup,
+    setup: &Observer,
     seen: &SeenEdge,
     e: &EdgeSpec,
     (horizontal, line): (bool, u32),
@@ -345,7 +346,7 @@ fn wrapped(d: f64) -> f64 {
 fn corner_edge(
     img: &RgbImage,
     camera: &Pinhole,
-    described: &Setup,
+    described: &Observer,
     object: &str,
     edge: &CornerEdge,
     (horizontal, degree, trim, spp): (bool, usize, f64, u32),
@@ -388,9 +389,9 @@ fn meet(f: &Edge, g: &Edge, start: (f64, f64)) -> Option<(f64, f64)> {
 /// the expected corner; its uncertainty propagates both fits' (each with its
 /// path's keyframe bound) through the intersection, in quadrature:
 /// sqrt(tf^2 + (f' tg)^2) / |1 - f' g'| for x, and likewise for y.
-pub fn corner(
-    measuring: &Setup,
-    described: &Setup,
+pub(super) fn corner(
+    measuring: &Observer,
+    described: &Observer,
     view: &ViewSpec,
     k: &CornerSpec,
     effort: &Effort,

@@ -8,24 +8,34 @@
 //! the measurement traces the edge to sub-pixel precision and fits it, so
 //! that the tolerance is the fit's prediction error. Outlines, Doppler
 //! factors and blink periods are measured once per view and object
-//! ([`super::outline`], [`super::doppler`], [`super::period`]) and read by
+//! (`outline.rs`, `doppler.rs`, `period.rs`) and read by
 //! every check of them. Differences, ratios and velocities combine earlier
-//! rows, their uncertainties in quadrature. Named kinds ([`super::named`])
+//! rows, their uncertainties in quadrature. Named kinds ([`crate::check::named`])
 //! give the rows of the paper's scenes.
 
 mod edges;
 
-use super::doppler::Panel;
-use super::outline::Outline;
-use super::row::{difference, Quantity, Reading, Unit};
-use super::runner::{Findings, ViewReport};
-use super::setup::{fixture_model, Effort, Setup};
+mod doppler;
+mod emulated;
+mod lambert;
+mod mirror;
+mod outline;
+mod period;
+
+use crate::check::findings::{CheckOutcome, ViewReport};
+use crate::check::probe::Effort;
+use crate::check::row::{difference, Quantity, Reading, Unit};
+use crate::check::views::with_view_effects;
+use crate::error::Error;
 use crate::fixture::checks::{CheckSpec, DopplerSpec, MeasureSpec, ToleranceSpec, ViewSpec};
 use crate::fixture::Fixture;
+use crate::observer::{fixture_model, Observer};
+use doppler::Panel;
 use glam::DVec3;
+use outline::Outline;
 
 /// A declared check's row, kept for the checks that combine it.
-struct Done {
+struct EarlierRow {
     name: String,
     measured: Reading,
     expected: f64,
@@ -35,7 +45,7 @@ struct Done {
 }
 
 /// The declared checks of `f`, rendered from `f` and expected from `f`.
-pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+pub fn run(f: &Fixture, effort: &Effort) -> Result<CheckOutcome, Error> {
     evaluate(f, f, effort)
 }
 
@@ -46,9 +56,9 @@ pub fn evaluate(
     rendered: &Fixture,
     described: &Fixture,
     effort: &Effort,
-) -> Result<Findings, String> {
+) -> Result<CheckOutcome, Error> {
     let spec = &described.spec;
-    let mut run = Run {
+    let mut run = Evaluation {
         rendered,
         described,
         effort,
@@ -57,21 +67,20 @@ pub fn evaluate(
         outlines: Vec::new(),
         panels: Vec::new(),
     };
-    let mut findings = Findings {
+    let mut outcome = CheckOutcome {
         views: Vec::new(),
         quantities: Vec::new(),
     };
     let mut named_views = Vec::new();
     for (i, c) in spec.checks.iter().enumerate() {
-        let fail = |e: String| {
-            format!(
-                "{}: checks[{i}] {:?}: {e}",
-                described.file.display(),
-                c.name
-            )
+        let fail = |message: String| Error::Check {
+            file: described.file.clone(),
+            index: i,
+            check: c.name.clone(),
+            message,
         };
         if let MeasureSpec::Named(n) = &c.measure {
-            let found = super::named::run(rendered, n, effort).map_err(fail)?;
+            let found = crate::check::named::run(rendered, n, effort).map_err(fail)?;
             let rows: Vec<String> = found.quantities.iter().map(|q| q.name.clone()).collect();
             named_views.extend(found.views.into_iter().map(|mut v| {
                 if v.measured.is_empty() {
@@ -79,11 +88,11 @@ pub fn evaluate(
                 }
                 v
             }));
-            findings.quantities.extend(found.quantities);
+            outcome.quantities.extend(found.quantities);
             continue;
         }
         let done = run.check(c).map_err(fail)?;
-        findings.quantities.push(Quantity {
+        outcome.quantities.push(Quantity {
             name: c.name.clone(),
             measured: adjusted(done.measured, c.tolerance.as_ref()),
             expected: done.expected,
@@ -92,17 +101,17 @@ pub fn evaluate(
         });
         run.done.push(done);
     }
-    findings.views = run.full_views()?;
+    outcome.views = run.full_views().map_err(Error::Other)?;
     let measured = measured_in(&spec.checks);
-    for v in &mut findings.views {
+    for v in &mut outcome.views {
         v.measured = measured
             .iter()
             .filter(|(_, views)| views.contains(&v.name))
             .map(|(row, _)| row.clone())
             .collect();
     }
-    findings.views.extend(named_views);
-    Ok(findings)
+    outcome.views.extend(named_views);
+    Ok(outcome)
 }
 
 /// The views each declared check (not a named kind) is measured in: its
@@ -139,116 +148,13 @@ fn adjusted(r: Reading, t: Option<&ToleranceSpec>) -> Reading {
     }
 }
 
-/// The fixture with a view's colour effects, where the view sets any.
-fn with_view_effects(f: &Fixture, v: &ViewSpec) -> Option<Fixture> {
-    if v.doppler.is_none() && v.searchlight.is_none() {
-        return None;
-    }
-    let mut f = f.clone();
-    f.spec.image.doppler = v.doppler.unwrap_or(f.spec.image.doppler);
-    f.spec.image.searchlight = v.searchlight.unwrap_or(f.spec.image.searchlight);
-    Some(f)
-}
-
-/// The declared view `name` of `f` exactly as `vstf check` renders it for
-/// its golden image: the fixture (with the view's colour effects) and the
-/// view (its camera time and model, the report's size, the fixture's
-/// samples), so that `vstf render --view` reproduces the golden bit for bit.
-pub fn golden_view(f: &Fixture, name: &str) -> Result<(Fixture, crate::fixture::View), String> {
-    if !f.spec.views.iter().any(|v| v.name == name) {
-        if let Some(found) = named_view(f, name)? {
-            return Ok(found);
-        }
-    }
-    let v = f
-        .spec
-        .views
-        .iter()
-        .find(|v| v.name == name)
-        .ok_or_else(|| {
-            let known: Vec<&str> = f.spec.views.iter().map(|v| v.name.as_str()).collect();
-            let named: Vec<&str> = f
-                .spec
-                .checks
-                .iter()
-                .filter_map(|c| match &c.measure {
-                    MeasureSpec::Named(n) => Some(n.kind()),
-                    _ => None,
-                })
-                .collect();
-            let also = if named.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    "; its named check{} {} render{} views of other names (vstf list --views)",
-                    if named.len() > 1 { "s" } else { "" },
-                    named.join(", "),
-                    if named.len() > 1 { "" } else { "s" }
-                )
-            };
-            format!(
-                "{}: no view named {name:?} (declared views: {}){also}",
-                f.file.display(),
-                if known.is_empty() {
-                    "none".into()
-                } else {
-                    known.join(", ")
-                }
-            )
-        })?;
-    let fixture = with_view_effects(f, v).unwrap_or_else(|| f.clone());
-    let view = setup_of(&fixture, v).report_view(super::setup::VIEW_WIDTH)?;
-    Ok((fixture, view))
-}
-
-/// The view `name` one of `f`'s named kinds renders for its golden image,
-/// as `vstf check` renders it: the kind's fixture, model and camera time at
-/// the report's size.
-fn named_view(f: &Fixture, name: &str) -> Result<Option<(Fixture, crate::fixture::View)>, String> {
-    for c in &f.spec.checks {
-        let MeasureSpec::Named(n) = &c.measure else {
-            continue;
-        };
-        let Some(v) = super::named::views(f, n)?
-            .into_iter()
-            .find(|v| v.name == name)
-        else {
-            continue;
-        };
-        let setup = Setup {
-            fixture: &v.fixture,
-            model: v.model,
-            camera_t: v.camera_t,
-        };
-        let view = setup.report_view(super::setup::VIEW_WIDTH)?;
-        return Ok(Some((v.fixture, view)));
-    }
-    Ok(None)
-}
-
-/// The setup of a declared view of `f`: its camera time and model.
-fn setup_of<'f>(f: &'f Fixture, v: &ViewSpec) -> Setup<'f> {
-    let mut model = match v.model {
-        Some(m) => m.model(),
-        None => fixture_model(f),
-    };
-    if let Some(l) = v.lorentz {
-        model.lorentz = l;
-    }
-    Setup {
-        fixture: f,
-        model,
-        camera_t: v.t.unwrap_or(f.spec.camera.t),
-    }
-}
-
 /// One evaluation of a fixture's declarations: what has been measured so
 /// far, the marks for each view, and the measurements shared by checks.
-struct Run<'a> {
+struct Evaluation<'a> {
     rendered: &'a Fixture,
     described: &'a Fixture,
     effort: &'a Effort,
-    done: Vec<Done>,
+    done: Vec<EarlierRow>,
     /// Each view's marks: a direction and the row it belongs to.
     marks: Vec<Vec<(DVec3, String)>>,
     outlines: Vec<(usize, String, Outline)>,
@@ -257,15 +163,15 @@ struct Run<'a> {
 
 /// A view: its index, declaration, and setups for measuring (on the
 /// rendered fixture) and for expectations (from the described one).
-struct ViewSetups<'a> {
+struct ViewObservers<'a> {
     index: usize,
     spec: &'a ViewSpec,
-    measuring: Setup<'a>,
-    described: Setup<'a>,
+    measuring: Observer<'a>,
+    described: Observer<'a>,
 }
 
-impl<'a> Run<'a> {
-    fn view(&self, name: &str) -> Result<ViewSetups<'a>, String> {
+impl<'a> Evaluation<'a> {
+    fn view(&self, name: &str) -> Result<ViewObservers<'a>, String> {
         let (index, spec) = self
             .described
             .spec
@@ -274,15 +180,15 @@ impl<'a> Run<'a> {
             .enumerate()
             .find(|(_, v)| v.name == name)
             .ok_or_else(|| format!("no view named {name:?}"))?;
-        Ok(ViewSetups {
+        Ok(ViewObservers {
             index,
             spec,
-            measuring: setup_of(self.rendered, spec),
-            described: setup_of(self.described, spec),
+            measuring: Observer::declared(self.rendered, spec),
+            described: Observer::declared(self.described, spec),
         })
     }
 
-    fn earlier(&self, name: &str) -> Result<&Done, String> {
+    fn earlier(&self, name: &str) -> Result<&EarlierRow, String> {
         self.done
             .iter()
             .find(|d| d.name == name)
@@ -294,8 +200,8 @@ impl<'a> Run<'a> {
     }
 
     /// Measures one general check into its row.
-    fn check(&mut self, c: &CheckSpec) -> Result<Done, String> {
-        let row = |(measured, expected, unit): (Reading, f64, Unit)| Done {
+    fn check(&mut self, c: &CheckSpec) -> Result<EarlierRow, String> {
+        let row = |(measured, expected, unit): (Reading, f64, Unit)| EarlierRow {
             name: c.name.clone(),
             measured,
             expected,
@@ -308,7 +214,7 @@ impl<'a> Run<'a> {
                 let (reading, mark) =
                     edges::edge(&v.measuring, &v.described, v.spec, e, self.effort)?;
                 self.mark(v.index, Some(mark), &c.name);
-                Ok(Done {
+                Ok(EarlierRow {
                     camera_t: Some(v.measuring.camera_t),
                     ..row(reading)
                 })
@@ -318,7 +224,7 @@ impl<'a> Run<'a> {
                 let (reading, mark) =
                     edges::corner(&v.measuring, &v.described, v.spec, k, self.effort)?;
                 self.mark(v.index, Some(mark), &c.name);
-                Ok(Done {
+                Ok(EarlierRow {
                     camera_t: Some(v.measuring.camera_t),
                     ..row(reading)
                 })
@@ -339,28 +245,26 @@ impl<'a> Run<'a> {
             MeasureSpec::Doppler(d) => Ok(row(self.doppler(d, &c.name)?)),
             MeasureSpec::Period(p) => {
                 let v = self.view(&p.view)?;
-                let (reading, expected, mark) =
-                    super::period::measure(&v.measuring, &v.described, p)?;
+                let (reading, expected, mark) = period::measure(&v.measuring, &v.described, p)?;
                 self.mark(v.index, mark, &c.name);
                 Ok(row((reading, expected, Unit::TUnits)))
             }
             MeasureSpec::Emulator(e) => {
                 let v = self.view(&e.view)?;
-                let (found, marks) =
-                    super::emulated::measure(&v.measuring, &v.described, e, v.spec)?;
+                let (found, marks) = emulated::measure(&v.measuring, &v.described, e, v.spec)?;
                 self.marks[v.index].extend(marks.into_iter().map(|m| (m, c.name.clone())));
                 Ok(row(found))
             }
             MeasureSpec::Lambert(l) => {
                 let v = self.view(&l.view)?;
-                let (reading, mark) = super::lambert::measure(&v.measuring, &v.described, l)?;
+                let (reading, mark) = lambert::measure(&v.measuring, &v.described, l)?;
                 self.mark(v.index, Some(mark), &c.name);
                 Ok(row(reading))
             }
             MeasureSpec::Reflection(r) => {
                 let v = self.view(&r.view)?;
                 let (reading, mark) =
-                    super::mirror::measure(&v.measuring, &v.described, r, v.spec, self.effort)?;
+                    mirror::measure(&v.measuring, &v.described, r, v.spec, self.effort)?;
                 self.mark(v.index, Some(mark), &c.name);
                 Ok(row(reading))
             }
@@ -443,7 +347,7 @@ impl<'a> Run<'a> {
         }
         let views = &self.described.spec.views;
         let event = |v: &ViewSpec| {
-            let s = setup_of(self.described, v);
+            let s = Observer::declared(self.described, v);
             (s.camera_t, s.model)
         };
         views
@@ -470,10 +374,10 @@ impl<'a> Run<'a> {
                 }
                 None => self.rendered,
             };
-            views.push(setup_of(f, v).full_view_labelled(&v.name, &marks)?);
+            views.push(Observer::declared(f, v).full_view_labelled(&v.name, &marks)?);
         }
         if spec.views.is_empty() && spec.checks.is_empty() {
-            let own = Setup {
+            let own = Observer {
                 fixture: self.rendered,
                 model: fixture_model(self.rendered),
                 camera_t: spec.camera.t,
@@ -503,7 +407,7 @@ fn shared<'c, T>(
     Ok((&cache[k].2, new))
 }
 
-fn same_unit(a: &Done, b: &Done) -> Result<(), String> {
+fn same_unit(a: &EarlierRow, b: &EarlierRow) -> Result<(), String> {
     if a.unit == b.unit {
         Ok(())
     } else {
@@ -534,7 +438,7 @@ fn atan_degrees(r: &Reading) -> Reading {
 
 /// (b - a) / (t_b - t_a) of two positions measured in views at camera times
 /// t_a and t_b: an apparent velocity, on a plane or in the image.
-fn velocity(a: &Done, b: &Done) -> Result<(Reading, f64, Unit), String> {
+fn velocity(a: &EarlierRow, b: &EarlierRow) -> Result<(Reading, f64, Unit), String> {
     same_unit(a, b)?;
     let unit = match a.unit {
         Unit::LUnits => Unit::LUnitsPerTUnit,

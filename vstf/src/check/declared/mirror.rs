@@ -12,12 +12,13 @@
 //! the pixel shows (tolerance from its 8-bit quantisation).
 
 use super::doppler::{factor_from_colour, quantisation};
-use super::edge::{Edge, EdgeTrace};
-use super::row::{Reading, Unit};
-use super::setup::{background, is_background, motion_of, Effort, Setup};
+use crate::check::probe::Effort;
+use crate::check::row::{Reading, Unit};
+use crate::check::traced_edge::{Edge, EdgeTrace};
 use crate::fixture::checks::{view_size, ReflectionRead, ReflectionSpec, ViewSpec};
 use crate::measure::colorimetry::Blackbody;
 use crate::measure::{self, Pinhole, Scan};
+use crate::observer::{background, is_background, motion_of, Observer};
 use crate::oracle::mirror::{bounce, Bounce, Marker, MovingMirror};
 use glam::DVec3;
 use renderer::{Shape, Spectrum};
@@ -33,7 +34,7 @@ struct Optics {
     triangles: Vec<[DVec3; 3]>,
 }
 
-fn mesh_corners(setup: &Setup, name: &str) -> Result<Vec<[DVec3; 3]>, String> {
+fn mesh_corners(setup: &Observer, name: &str) -> Result<Vec<[DVec3; 3]>, String> {
     let f = setup.fixture;
     let Shape::Mesh(mesh) = &f.object(name)?.shape else {
         return Err(format!("{name:?} is not a mesh"));
@@ -50,7 +51,7 @@ fn unit_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
 }
 
 impl Optics {
-    fn of(setup: &Setup, r: &ReflectionSpec) -> Result<Optics, String> {
+    fn of(setup: &Observer, r: &ReflectionSpec) -> Result<Optics, String> {
         let f = setup.fixture;
         let mirror_motion = motion_of(f, &r.mirror, setup.model)?;
         let mirror_corners = mesh_corners(setup, &r.mirror)?;
@@ -75,7 +76,7 @@ impl Optics {
         })
     }
 
-    fn bounce(&self, setup: &Setup, camera: &Pinhole, (px, py): (f64, f64)) -> Option<Bounce> {
+    fn bounce(&self, setup: &Observer, camera: &Pinhole, (px, py): (f64, f64)) -> Option<Bounce> {
         let d = camera.direction(px, py);
         bounce(
             &self.mirror,
@@ -98,9 +99,9 @@ impl Optics {
 
 /// Measures the reflection check `r` in `view`: rendered with `measuring`,
 /// expected from `described`.
-pub fn measure(
-    measuring: &Setup,
-    described: &Setup,
+pub(super) fn measure(
+    measuring: &Observer,
+    described: &Observer,
     r: &ReflectionSpec,
     view: &ViewSpec,
     effort: &Effort,
@@ -116,7 +117,7 @@ pub fn measure(
 /// the one sign change of the side along the row, refined by bisection.
 fn expected_column(
     optics: &Optics,
-    setup: &Setup,
+    setup: &Observer,
     camera: &Pinhole,
     (w, yc): (u32, f64),
 ) -> Result<f64, String> {
@@ -146,8 +147,8 @@ fn expected_column(
 }
 
 fn column(
-    measuring: &Setup,
-    described: &Setup,
+    measuring: &Observer,
+    described: &Observer,
     optics: &Optics,
     r: &ReflectionSpec,
     view: &ViewSpec,
@@ -200,8 +201,8 @@ fn column(
 }
 
 fn doppler(
-    measuring: &Setup,
-    described: &Setup,
+    measuring: &Observer,
+    described: &Observer,
     optics: &Optics,
     r: &ReflectionSpec,
     view: &ViewSpec,
@@ -213,7 +214,7 @@ fn doppler(
     let source = Blackbody { kelvin, scale };
     let mut shifted = measuring.fixture.clone();
     (shifted.spec.image.doppler, shifted.spec.image.searchlight) = (true, false);
-    let setup = Setup {
+    let setup = Observer {
         fixture: &shifted,
         ..*measuring
     };

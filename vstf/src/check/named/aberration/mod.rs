@@ -10,8 +10,12 @@
 //! silhouette's left and right edges on the horizon, and where the right
 //! edge falls on the grid 10 l.units ahead.
 
-use super::{fixture_model, Effort, Findings, Quantity, Reading, Setup, ViewReport};
+use crate::check::findings::{CheckOutcome, ViewReport};
+use crate::check::named::view::NamedView;
+use crate::check::probe::Effort;
+use crate::check::row::Quantity;
 use crate::fixture::Fixture;
+use crate::observer::{fixture_model, Observer};
 use crate::oracle::{
     aberrate_galilean, aberrate_lorentz, body_point, contract, extremes_on_polygon, retarded,
 };
@@ -20,46 +24,16 @@ use glam::DVec3;
 use renderer::{Event, FourVector, Model, Motion, ObjectKind};
 use silhouette::measure_edges;
 
+mod cases;
 mod figures;
 mod silhouette;
 
-const NAME: &str = "aberration";
-const CUBE: &str = "cube";
+use cases::{azimuth_deg, Case, Frame, Seen, CUBE, NAME};
+
 const HALF: f64 = 5.0e4;
 /// Lab times during which a moving cube exists: its light takes up to
 /// ~1e6 t.units to arrive when it recedes at 0.866c.
 const LIFE: (f64, f64) = (-3.0e6, 1.0e4);
-
-/// A seasonal view: the Earth's direction of motion.
-#[derive(Clone, Copy)]
-struct Season {
-    name: &'static str,
-    /// Unit vector of the Earth's (observer's) velocity; the star is at -z.
-    earth: DVec3,
-}
-
-const SEASONS: [Season; 4] = [
-    Season {
-        name: "approaching",
-        earth: DVec3::NEG_Z,
-    },
-    Season {
-        name: "moving left",
-        earth: DVec3::NEG_X,
-    },
-    Season {
-        name: "receding",
-        earth: DVec3::Z,
-    },
-    Season {
-        name: "moving right",
-        earth: DVec3::X,
-    },
-];
-
-fn azimuth_deg(d: DVec3) -> f64 {
-    d.x.atan2(-d.z).to_degrees()
-}
 
 /// The control fixture with the cube moving with `u`: a V_obj when the
 /// model has the Lorentz transform, an H_obj otherwise, its centre at
@@ -72,7 +46,7 @@ fn moving(control: &Fixture, u: DVec3, model: Model) -> Result<(Fixture, DVec3),
         .iter_mut()
         .find(|o| o.name == CUBE)
         .ok_or("aberration: no cube")?;
-    let rest_centre = super::uniform(&cube.motion)
+    let rest_centre = crate::observer::uniform(&cube.motion)
         .ok_or("aberration: the cube must move uniformly")?
         .0
         .x;
@@ -118,7 +92,7 @@ fn rest_centre(control: &Fixture) -> Result<DVec3, String> {
         .objects
         .iter()
         .find(|o| o.name == CUBE)
-        .and_then(|o| super::uniform(&o.motion))
+        .and_then(|o| crate::observer::uniform(&o.motion))
     {
         Some((start, _)) => Ok(start.x),
         None => Err(format!("{NAME}: no uniformly moving cube")),
@@ -151,63 +125,6 @@ fn expected_edges_earth_moving(centre: DVec3, w: DVec3, lorentz: bool) -> (f64, 
             aberrate_galilean(n, w)
         })
     })
-}
-
-/// One view of the cube: the Earth's season at speed `beta` (None: the
-/// control view, at rest) under `model`.
-#[derive(Clone, Copy)]
-struct Case {
-    season: Option<Season>,
-    beta: f64,
-    model: Model,
-}
-
-impl Case {
-    /// The view's name, prefixing its quantities.
-    fn label(&self) -> String {
-        match self.season {
-            None => "at rest".into(),
-            Some(s) => format!("{} {}c {}", s.name, self.beta, self.model),
-        }
-    }
-
-    /// Every view in report order: at rest (under the fixture's model),
-    /// then each of the `speeds`, model and season.
-    fn all(base: Model, speeds: &[f64]) -> Vec<Case> {
-        let mut cases = vec![Case {
-            season: None,
-            beta: 0.0,
-            model: base,
-        }];
-        for &beta in speeds {
-            for model in [Model::CLASSICAL, Model::RELATIVISTIC] {
-                for s in SEASONS {
-                    cases.push(Case {
-                        season: Some(s),
-                        beta,
-                        model,
-                    });
-                }
-            }
-        }
-        cases
-    }
-}
-
-/// The silhouette's edges on the horizon as measured, and the azimuths
-/// (left, right) first principles expect for them.
-struct Seen {
-    left: Reading,
-    right: Reading,
-    expected: (f64, f64),
-}
-
-/// How a season is seen: as the cube moving past the camera at rest, or
-/// (the paper's way) as the Earth moving past the cube at rest.
-#[derive(Clone, Copy, PartialEq)]
-enum Frame {
-    CubeMoving,
-    EarthMoving,
 }
 
 /// The quantities of one view of the cube, named after it.
@@ -244,7 +161,7 @@ impl ViewTable {
 /// directions aberrated into the camera's frame.
 fn earth_seen(control: &Fixture, w: DVec3, model: Model, effort: &Effort) -> Result<Seen, String> {
     let fe = earth_moving(control, w);
-    let earth = Setup {
+    let earth = Observer {
         fixture: &fe,
         model,
         camera_t: 0.0,
@@ -267,7 +184,7 @@ fn view(
 ) -> Result<(Vec<Quantity>, ViewReport), String> {
     let u = case.season.map_or(DVec3::ZERO, |s| -s.earth * case.beta);
     let (f, centre) = moving(control, u, case.model)?;
-    let setup = Setup {
+    let setup = Observer {
         fixture: &f,
         model: case.model,
         camera_t: 0.0,
@@ -307,13 +224,13 @@ fn view(
 
 /// The views [`run`] renders, for `--view`: each case's fixture (the cube
 /// moving, or at rest for the control), model and camera time 0.
-pub fn views(control: &Fixture, speeds: &[f64]) -> Result<Vec<super::named::NamedView>, String> {
+pub(super) fn views(control: &Fixture, speeds: &[f64]) -> Result<Vec<NamedView>, String> {
     Case::all(fixture_model(control), speeds)
         .into_iter()
         .map(|case| {
             let u = case.season.map_or(DVec3::ZERO, |s| -s.earth * case.beta);
             let (fixture, _) = moving(control, u, case.model)?;
-            Ok(super::named::NamedView {
+            Ok(NamedView {
                 name: case.label(),
                 fixture,
                 model: case.model,
@@ -326,7 +243,7 @@ pub fn views(control: &Fixture, speeds: &[f64]) -> Result<Vec<super::named::Name
 /// Every view of the cube at each of the orbital `speeds` (fractions of c):
 /// its edges against the retarded (cube moving) and aberrated (Earth
 /// moving) azimuths, and the paper's figures where it prints them.
-pub fn run(control: &Fixture, speeds: &[f64], effort: &Effort) -> Result<Findings, String> {
+pub(super) fn run(control: &Fixture, speeds: &[f64], effort: &Effort) -> Result<CheckOutcome, String> {
     let mut quantities = Vec::new();
     let mut views = Vec::new();
     for case in Case::all(fixture_model(control), speeds) {
@@ -334,5 +251,5 @@ pub fn run(control: &Fixture, speeds: &[f64], effort: &Effort) -> Result<Finding
         quantities.extend(q);
         views.push(v);
     }
-    Ok(Findings { views, quantities })
+    Ok(CheckOutcome { views, quantities })
 }

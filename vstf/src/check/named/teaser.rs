@@ -8,12 +8,14 @@
 //! instantaneous (infinite band) or retarded (finite bands) positions of
 //! the feet of those edges.
 
-use super::{
-    difference, fixture_model, motion_of, Effort, Findings, OnPlane, Probed, Quantity, Reading,
-    Setup, Unit,
-};
+use crate::check::findings::CheckOutcome;
+use crate::check::named::view::NamedView;
+use crate::check::probe::Effort;
+use crate::check::row::{difference, Quantity, Reading, Unit};
+use crate::check::traced_edge::{OnPlane, ProbeImage};
 use crate::fixture::Fixture;
 use crate::measure::Plane;
+use crate::observer::{fixture_model, motion_of, Observer};
 use crate::oracle::{instantaneous, retarded};
 use glam::DVec3;
 use renderer::{LightSpeed, Model};
@@ -69,10 +71,10 @@ fn bands(f: &Fixture) -> Result<[(&'static str, Model, f64); 3], String> {
 }
 
 /// The bands [`run`] renders, for `--view`.
-pub fn views(f: &Fixture) -> Result<Vec<super::named::NamedView>, String> {
+pub(super) fn views(f: &Fixture) -> Result<Vec<NamedView>, String> {
     Ok(bands(f)?
         .into_iter()
-        .map(|(band, model, tc)| super::named::NamedView {
+        .map(|(band, model, tc)| NamedView {
             name: band.into(),
             fixture: f.clone(),
             model,
@@ -83,11 +85,11 @@ pub fn views(f: &Fixture) -> Result<Vec<super::named::NamedView>, String> {
 
 /// Each flange's edges on the stage in each band, against the feet of
 /// those edges: instantaneous (infinite light speed) or retarded.
-pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+pub(super) fn run(f: &Fixture, effort: &Effort) -> Result<CheckOutcome, String> {
     let mut quantities = Vec::new();
     let mut views = Vec::new();
     for (band, model, tc) in bands(f)? {
-        let setup = Setup {
+        let setup = Observer {
             fixture: f,
             model,
             camera_t: tc,
@@ -136,7 +138,7 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
             .collect();
         views.push(view);
     }
-    Ok(Findings { views, quantities })
+    Ok(CheckOutcome { views, quantities })
 }
 
 /// Where a flange's leading and trailing edges stand on the stage,
@@ -152,11 +154,11 @@ struct Feet {
 
 /// Measures the feet of one flange's edges on a probe aimed at it, and
 /// computes where first principles put them.
-fn flange_feet(setup: &Setup, band: &str, fl: &Flange, effort: &Effort) -> Result<Feet, String> {
+fn flange_feet(setup: &Observer, band: &str, fl: &Flange, effort: &Effort) -> Result<Feet, String> {
     let (model, tc, cam) = (setup.model, setup.camera_t, setup.camera_x());
     let m = motion_of(setup.fixture, fl.front, model)?;
     let (start, v) = (m.start, m.velocity);
-    let probe = Probed::aimed(setup, &[fl.front, fl.side], 0.1, effort)?;
+    let probe = ProbeImage::aimed(setup, &[fl.front, fl.side], 0.1, effort)?;
     let front = OnPlane {
         plane: Plane::z(start.x.z + DEPTH),
         coords: |p: DVec3| (p.y - start.x.y, p.x),
@@ -165,9 +167,9 @@ fn flange_feet(setup: &Setup, band: &str, fl: &Flange, effort: &Effort) -> Resul
     };
     // The leading edge faces the direction of motion: scan in from that side.
     let sweep = if v.x > 0.0 {
-        probe.from_right()
+        probe.sweep_leftwards()
     } else {
-        probe.from_left()
+        probe.sweep_rightwards()
     };
     let fail = |what: &str, e: String| format!("{NAME} {band} flange {}: {what}: {e}", fl.tag);
     let lead = probe

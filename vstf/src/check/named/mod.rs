@@ -2,30 +2,24 @@
 //! kinds cannot express, implemented in Rust and declared in the fixture
 //! file with their parameters (docs/checks.md lists them).
 
-use super::runner::Findings;
-use super::setup::{fixture_model, Effort};
-use super::{aberration, relativity, stage, teaser, terrell};
+mod aberration;
+mod relativity;
+mod stage;
+mod teaser;
+mod terrell;
+mod view;
+
+pub use view::NamedView;
+
+use crate::check::findings::CheckOutcome;
+use crate::check::probe::Effort;
 use crate::fixture::checks::NamedSpec;
 use crate::fixture::Fixture;
-use renderer::Model;
-
-/// A view a named kind renders for its golden image: its name, the fixture
-/// it renders (possibly a derived copy: the cube moving instead of the
-/// camera, a season's speed), the model and the camera time.
-pub struct NamedView {
-    /// The view's name (also its golden image's).
-    pub name: String,
-    /// The fixture rendered.
-    pub fixture: Fixture,
-    /// The model rendered with.
-    pub model: Model,
-    /// The camera's lab time.
-    pub camera_t: f64,
-}
+use crate::observer::fixture_model;
 
 /// The views the named kind `n` renders on `f`, in the order it renders
 /// them, so that `--view` can reproduce each.
-pub fn views(f: &Fixture, n: &NamedSpec) -> Result<Vec<NamedView>, String> {
+pub(super) fn views(f: &Fixture, n: &NamedSpec) -> Result<Vec<NamedView>, String> {
     let own = |name: &str| NamedView {
         name: name.into(),
         fixture: f.clone(),
@@ -41,7 +35,7 @@ pub fn views(f: &Fixture, n: &NamedSpec) -> Result<Vec<NamedView>, String> {
 }
 
 /// Runs the named kind `n` on `f`.
-pub fn run(f: &Fixture, n: &NamedSpec, effort: &Effort) -> Result<Findings, String> {
+pub(super) fn run(f: &Fixture, n: &NamedSpec, effort: &Effort) -> Result<CheckOutcome, String> {
     match n {
         NamedSpec::Stage { axes, grid, depth } => {
             let bars = stage::Bars {

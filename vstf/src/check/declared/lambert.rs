@@ -14,11 +14,12 @@
 //! fast light), and n' the mesh's rest-frame normal turned towards the
 //! viewer there; 0 where the lamp is behind the surface.
 
-use super::path::BodyPath;
-use super::row::{Reading, Unit};
-use super::setup::{Probe, Setup};
+use crate::check::path::BodyPath;
+use crate::check::probe::Probe;
+use crate::check::row::{Reading, Unit};
 use crate::fixture::checks::LambertSpec;
 use crate::measure;
+use crate::observer::Observer;
 use crate::oracle::{aberrate_galilean, aberrate_lorentz};
 use glam::DVec3;
 use renderer::{LightSpeed, ObjectKind, Shape};
@@ -46,7 +47,11 @@ fn rest_normal(shape: &Shape, p: DVec3) -> Option<DVec3> {
 }
 
 /// Measures the Lambert check `l`: rendered with `measuring`, expected from `described`.
-pub fn measure(measuring: &Setup, described: &Setup, l: &LambertSpec) -> Result<Found, String> {
+pub(super) fn measure(
+    measuring: &Observer,
+    described: &Observer,
+    l: &LambertSpec,
+) -> Result<Found, String> {
     let f = described.fixture;
     let obj = f.object(&l.object)?;
     let model = described.model;
@@ -81,7 +86,7 @@ pub fn measure(measuring: &Setup, described: &Setup, l: &LambertSpec) -> Result<
 
     let mut plain = measuring.fixture.clone();
     (plain.spec.image.doppler, plain.spec.image.searchlight) = (false, false);
-    let probe = Setup {
+    let probe = Observer {
         fixture: &plain,
         ..*measuring
     };

@@ -8,12 +8,13 @@
 //! camera is at x = 0), so both edges of its top face are measured; of the
 //! bars at x = 1 and 2 only the right edges (the left side faces are in view).
 
-use super::{
-    difference, fixture_model, Effort, Findings, OnPlane, Probe, Probed, Quantity, Reading, Setup,
-    Sweep, Unit,
-};
+use crate::check::findings::CheckOutcome;
+use crate::check::probe::{Effort, Probe};
+use crate::check::row::{difference, Quantity, Reading, Unit};
+use crate::check::traced_edge::{OnPlane, ProbeImage, Sweep};
 use crate::fixture::{Fixture, MeshSpec};
 use crate::measure::Plane;
+use crate::observer::{fixture_model, Observer};
 use glam::DVec3;
 
 const NAME: &str = "stage";
@@ -22,7 +23,7 @@ const NAME: &str = "stage";
 /// holding the axis bars and the grid bars, and the depth on the stage
 /// around which edges are measured (between two bars across, e.g. 2.5).
 /// Probes are 2:1 strips across it: only depths within 0.35 of it are used.
-pub struct Bars<'a> {
+pub(super) struct Bars<'a> {
     /// The object holding the x and z axis bars.
     pub axes: &'a str,
     /// The object holding the grid bars.
@@ -57,8 +58,8 @@ fn bar_along_z(f: &Fixture, object: &str, x: f64) -> Result<(f64, f64, f64), Str
 /// The stage's measurements: the axis bar's centre and width, the right
 /// edges of the bars x = 1 and 2 and their spacing, against the fixture's
 /// mesh (the paper: bars 1/20 wide on 1 l.unit centres).
-pub fn run(f: &Fixture, bars: &Bars, effort: &Effort) -> Result<Findings, String> {
-    let setup = Setup {
+pub(super) fn run(f: &Fixture, bars: &Bars, effort: &Effort) -> Result<CheckOutcome, String> {
+    let setup = Observer {
         fixture: f,
         model: fixture_model(f),
         camera_t: f.spec.camera.t,
@@ -115,7 +116,7 @@ pub fn run(f: &Fixture, bars: &Bars, effort: &Effort) -> Result<Findings, String
         .iter()
         .flat_map(|&x| [-6.0, 0.0, 6.0].map(|z| (DVec3::new(x, top, z) - cam).normalize()))
         .collect();
-    Ok(Findings {
+    Ok(CheckOutcome {
         views: vec![setup.full_view("view", &marks)?],
         quantities,
     })
@@ -135,13 +136,13 @@ fn on_stage(top: f64, depth: f64) -> OnPlane<impl Fn(DVec3) -> (f64, f64)> {
 /// A 2:1 strip probe of the objects `keep`, looking at `look_at` with
 /// horizontal field of view `hfov_deg`.
 fn strip(
-    setup: &Setup,
+    setup: &Observer,
     keep: &[&str],
     look_at: DVec3,
     hfov_deg: f64,
     effort: &Effort,
-) -> Result<Probed, String> {
-    Probed::render(
+) -> Result<ProbeImage, String> {
+    ProbeImage::render(
         setup,
         &Probe {
             keep,
@@ -156,7 +157,7 @@ fn strip(
 /// Both edges of the top face of the z axis bar, alone in a narrow probe,
 /// at the measured depth.
 fn axis_bar_edges(
-    setup: &Setup,
+    setup: &Observer,
     bars: &Bars,
     top: f64,
     effort: &Effort,
@@ -166,11 +167,11 @@ fn axis_bar_edges(
     let probe = strip(setup, &[bars.axes], DVec3::new(0.0, top, z), 4.0, effort)?;
     let stage = on_stage(top, z);
     let left = probe
-        .fit(&stage, probe.from_left(), probe.background(), effort)
+        .fit(&stage, probe.sweep_rightwards(), probe.background(), effort)
         .map_err(|e| fail("axis bar left edge", e))?
         .at(z);
     let right = probe
-        .fit(&stage, probe.from_right(), probe.background(), effort)
+        .fit(&stage, probe.sweep_leftwards(), probe.background(), effort)
         .map_err(|e| fail("axis bar right edge", e))?
         .at(z);
     Ok((left, right))
@@ -179,7 +180,7 @@ fn axis_bar_edges(
 /// The right edges of the grid bars x = 1 and 2 at the measured depth,
 /// each scanned leftwards from midway to the next bar.
 fn grid_bar_right_edges(
-    setup: &Setup,
+    setup: &Observer,
     bars: &Bars,
     top: f64,
     effort: &Effort,

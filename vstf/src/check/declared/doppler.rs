@@ -14,12 +14,14 @@
 //! Tolerances follow from the 8-bit quantisation of the measured pixels
 //! (half a step on each channel).
 
-use super::path::BodyPath;
-use super::{Effort, Probe, Reading, Setup};
+use crate::check::path::BodyPath;
+use crate::check::probe::{Effort, Probe};
+use crate::check::row::Reading;
 use crate::fixture::checks::DopplerFrom;
 use crate::fixture::Fixture;
 use crate::measure::colorimetry::{xyz_of_rgb, Blackbody, Chromaticity};
 use crate::measure::{self, Pinhole};
+use crate::observer::Observer;
 use crate::oracle::{body_point, doppler_factor, gamma_of_squared, retarded};
 use glam::DVec3;
 use image::RgbImage;
@@ -110,7 +112,7 @@ fn searchlight_factor(on: DVec3, off: DVec3, power: f64) -> Reading {
 /// effects (in the order of `variants`), and the lab direction they look
 /// along.
 fn panel_pixels(
-    setup: &Setup,
+    setup: &Observer,
     variants: &[Fixture],
     name: &str,
     (look, hfov_deg): (DVec3, f64),
@@ -119,7 +121,7 @@ fn panel_pixels(
     let (model, tc) = (setup.model, setup.camera_t);
     let mut seen = Vec::new();
     for v in variants {
-        let s = Setup {
+        let s = Observer {
             fixture: v,
             model,
             camera_t: tc,
@@ -159,7 +161,7 @@ pub(super) const POINT_PROBE_FOV: f64 = 0.2;
 /// One object's centre pixel under the four combinations of the colour
 /// effects, measured once and read by every Doppler check of it, with the
 /// factor D = 1 / (gamma (1 - u.k)) expected along its line of sight.
-pub struct Panel {
+pub(super) struct Panel {
     /// Without effects, searchlight in RGB, shifted, shifted with searchlight.
     pixels: [DVec3; 4],
     source: Blackbody,
@@ -194,17 +196,17 @@ fn point_factor(v: DVec3, k: DVec3, lorentzian: bool) -> (f64, f64) {
 impl Panel {
     /// Measures the object `name` on probes of `measuring`; its emission
     /// and motion are read from `described`.
-    pub fn measure(
-        measuring: &Setup,
-        described: &Setup,
+    pub(super) fn measure(
+        measuring: &Observer,
+        described: &Observer,
         name: &str,
         effort: &Effort,
     ) -> Result<Panel, String> {
         let f = described.fixture;
         let source = blackbody_of(f, name)?;
         let obj = f.object(name)?;
-        let (start, u) =
-            super::uniform(&obj.motion).ok_or_else(|| format!("{name} must move uniformly"))?;
+        let (start, u) = crate::observer::uniform(&obj.motion)
+            .ok_or_else(|| format!("{name} must move uniformly"))?;
         let lorentz = described.model.lorentz;
         let middle = body_point(start.t, start.x, u, DVec3::ZERO, lorentz);
         let mark = retarded(&middle, described.camera_t, described.camera_x()).map(|r| r.direction);
@@ -233,9 +235,9 @@ impl Panel {
     /// clocks are Lorentzian (a V_obj under the Lorentz transform), else 1;
     /// 1 with infinitely fast light. The keyframes' velocity slack
     /// ([`BodyPath::velocity_slack`]) is carried into D by |dD/dv|.
-    pub fn at_point(
-        measuring: &Setup,
-        described: &Setup,
+    pub(super) fn at_point(
+        measuring: &Observer,
+        described: &Observer,
         name: &str,
         r: DVec3,
     ) -> Result<Panel, String> {
@@ -276,7 +278,7 @@ impl Panel {
     /// factor expected.
     /// A pixel with a channel at full scale (clipped) reads no factor: an
     /// error, never a wrong value.
-    pub fn read(&self, from: DopplerFrom) -> Result<(Reading, f64), String> {
+    pub(super) fn read(&self, from: DopplerFrom) -> Result<(Reading, f64), String> {
         let [plain, rgb_lit, shifted, shifted_lit] = self.pixels;
         let used: &[DVec3] = match from {
             DopplerFrom::Colour => &[shifted],

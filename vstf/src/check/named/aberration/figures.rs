@@ -2,8 +2,8 @@
 //! 11-16), as a table, and the quantities derived from the silhouette's
 //! edges that they are figures of.
 
-use super::{Case, Frame, Seen};
-use crate::check::{Reading, Unit};
+use super::cases::{Case, Frame, Seen};
+use crate::check::row::{Reading, Unit};
 use renderer::Model;
 
 /// Where the control view's right edge lies, degrees: the near face's

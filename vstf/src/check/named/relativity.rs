@@ -8,12 +8,14 @@
 //! cube's directions aberrated into the moving camera's frame, or the moving
 //! cube's retarded directions for the camera at rest.
 
-use super::{
-    background, difference, is_background, Edge, EdgeTrace, Effort, Findings, Probe, Quantity,
-    Reading, Setup, Unit,
-};
+use crate::check::findings::CheckOutcome;
+use crate::check::named::view::NamedView;
+use crate::check::probe::{Effort, Probe};
+use crate::check::row::{difference, Quantity, Reading, Unit};
+use crate::check::traced_edge::{Edge, EdgeTrace};
 use crate::fixture::Fixture;
 use crate::measure::edge;
+use crate::observer::{background, is_background, Observer};
 use crate::oracle::{
     aberrate_galilean, aberrate_lorentz, body_point, extremes_on_polygon, retarded, to_frame_of,
 };
@@ -27,7 +29,7 @@ const HALF: f64 = 1.5;
 const SPAN: f64 = 1000.0;
 
 /// The camera's rest-frame attitude: azimuth of a camera-frame direction.
-fn azimuth(setup: &Setup, d: DVec3) -> f64 {
+fn azimuth(setup: &Observer, d: DVec3) -> f64 {
     let c = &setup.fixture.spec.camera;
     let forward = (c.look_at.unwrap_or(c.position + DVec3::NEG_Z) - c.position).normalize();
     let right = forward.cross(c.up).normalize();
@@ -47,7 +49,7 @@ fn object_moving(f: &Fixture, model: Model) -> Result<Fixture, String> {
         .iter_mut()
         .find(|o| o.name == CUBE)
         .ok_or("relativity: no cube")?;
-    let centre = super::uniform(&cube.motion)
+    let centre = crate::observer::uniform(&cube.motion)
         .ok_or("relativity: the cube must move uniformly")?
         .0
         .x;
@@ -74,7 +76,7 @@ fn object_moving(f: &Fixture, model: Model) -> Result<Fixture, String> {
 
 /// The silhouette's left and right crossings of the horizon (camera-frame
 /// azimuths, degrees), measured on a probe render.
-fn measure(setup: &Setup, effort: &Effort) -> Result<(Reading, Reading), String> {
+fn measure(setup: &Observer, effort: &Effort) -> Result<(Reading, Reading), String> {
     let c = &setup.fixture.spec.camera;
     let look = c.look_at.unwrap_or(c.position + DVec3::NEG_Z);
     let (img, camera) = setup.probe(&Probe {
@@ -121,7 +123,7 @@ fn measure(setup: &Setup, effort: &Effort) -> Result<(Reading, Reading), String>
 
 /// Lab directions of the points on the horizon at the given camera-frame
 /// azimuths, for the report's markers.
-fn horizon_marks(setup: &Setup, azimuths: &[f64]) -> Vec<DVec3> {
+fn horizon_marks(setup: &Observer, azimuths: &[f64]) -> Vec<DVec3> {
     let c = &setup.fixture.spec.camera;
     let forward = (c.look_at.unwrap_or(c.position + DVec3::NEG_Z) - c.position).normalize();
     let right = forward.cross(c.up).normalize();
@@ -147,7 +149,7 @@ const SQUARE: [DVec3; 4] = [
 /// Camera moving: the static cube's points are seen along their lab
 /// directions, aberrated into the camera's frame (Lorentz or Galilean).
 /// Returns the extreme azimuths (left, right).
-fn expected_camera_moving(a: &Setup) -> Result<(f64, f64), String> {
+fn expected_camera_moving(a: &Observer) -> Result<(f64, f64), String> {
     let c = &a.fixture.spec.camera;
     let v = c.velocity.unwrap_or(DVec3::ZERO);
     let centre = match a
@@ -156,7 +158,7 @@ fn expected_camera_moving(a: &Setup) -> Result<(f64, f64), String> {
         .objects
         .iter()
         .find(|o| o.name == CUBE)
-        .and_then(|o| super::uniform(&o.motion))
+        .and_then(|o| crate::observer::uniform(&o.motion))
     {
         Some((start, _)) => start.x,
         None => return Err("relativity: no uniformly moving cube".into()),
@@ -175,7 +177,7 @@ fn expected_camera_moving(a: &Setup) -> Result<(f64, f64), String> {
 
 /// Cube moving: the moving cube's points at their retarded positions.
 /// Returns the extreme azimuths (left, right).
-fn expected_cube_moving(b: &Setup) -> Result<(f64, f64), String> {
+fn expected_cube_moving(b: &Observer) -> Result<(f64, f64), String> {
     let c = &b.fixture.spec.camera;
     let cube = b
         .fixture
@@ -185,7 +187,7 @@ fn expected_cube_moving(b: &Setup) -> Result<(f64, f64), String> {
         .find(|o| o.name == CUBE)
         .ok_or("no cube")?;
     let (start, u) =
-        super::uniform(&cube.motion).ok_or("relativity: the cube must move uniformly")?;
+        crate::observer::uniform(&cube.motion).ok_or("relativity: the cube must move uniformly")?;
     let seen = |r: DVec3| {
         let p = body_point(start.t, start.x, u, r, b.model.lorentz);
         retarded(&p, c.t, c.position).map_or(f64::NAN, |s| azimuth(b, s.direction))
@@ -195,11 +197,11 @@ fn expected_cube_moving(b: &Setup) -> Result<(f64, f64), String> {
 
 /// The views [`run`] renders, for `--view`: in each model, the camera
 /// moving past the cube and the cube moving past the camera.
-pub fn views(f: &Fixture) -> Result<Vec<super::named::NamedView>, String> {
+pub(super) fn views(f: &Fixture) -> Result<Vec<NamedView>, String> {
     let t = f.spec.camera.t;
     let mut out = Vec::new();
     for model in [Model::RELATIVISTIC, Model::CLASSICAL] {
-        let view = |name: String, fixture: Fixture| super::named::NamedView {
+        let view = |name: String, fixture: Fixture| NamedView {
             name,
             fixture,
             model,
@@ -218,18 +220,18 @@ pub fn views(f: &Fixture) -> Result<Vec<super::named::NamedView>, String> {
 /// by the camera at rest with the cube moving, each against its own first
 /// principles, and their differences (zero under relativity; the classical
 /// model's Galilean transform does not make them agree).
-pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
+pub(super) fn run(f: &Fixture, effort: &Effort) -> Result<CheckOutcome, String> {
     let t = f.spec.camera.t;
     let mut quantities = Vec::new();
     let mut views = Vec::new();
     for model in [Model::RELATIVISTIC, Model::CLASSICAL] {
         let moving_object = object_moving(f, model)?;
-        let a = Setup {
+        let a = Observer {
             fixture: f,
             model,
             camera_t: t,
         };
-        let b = Setup {
+        let b = Observer {
             fixture: &moving_object,
             model,
             camera_t: t,
@@ -273,5 +275,5 @@ pub fn run(f: &Fixture, effort: &Effort) -> Result<Findings, String> {
             views.push(view);
         }
     }
-    Ok(Findings { views, quantities })
+    Ok(CheckOutcome { views, quantities })
 }

@@ -16,10 +16,13 @@
 //! outline direction is one whose ray is tangent to it, found by bisection
 //! along each direction from the centre.
 
-use super::{Effort, Probed, Reading, Setup, Unit};
+use crate::check::probe::Effort;
+use crate::check::row::{Reading, Unit};
+use crate::check::traced_edge::ProbeImage;
 use crate::fixture::checks::OutlineRead;
 use crate::fixture::Fixture;
 use crate::measure::{azimuth, edge, elevation, Scan};
+use crate::observer::Observer;
 use crate::oracle::{aberrate_lorentz, to_frame_of};
 use glam::{DVec2, DVec3};
 use renderer::Event;
@@ -90,11 +93,11 @@ fn fit_sky_circle(dirs: &[DVec3]) -> Option<SkyCircle> {
 /// row scanned from both sides, and from every column; and the angular size
 /// of a pixel.
 fn measured_outline(
-    setup: &Setup,
+    setup: &Observer,
     object: &str,
     effort: &Effort,
 ) -> Result<(Vec<DVec3>, Vec<DVec3>, f64), String> {
-    let probe = Probed::aimed(setup, &[object], 0.15, effort)?;
+    let probe = ProbeImage::aimed(setup, &[object], 0.15, effort)?;
     let (img, camera) = (&probe.img, &probe.camera);
     let outside = probe.background();
     let (w, h) = (i64::from(img.width()), i64::from(img.height()));
@@ -232,7 +235,7 @@ impl Sphere {
             .sphere_radius()
             .ok_or("the sphere must be analytic")?;
         let (start, velocity) =
-            super::uniform(&obj.motion).ok_or("the sphere must move uniformly")?;
+            crate::observer::uniform(&obj.motion).ok_or("the sphere must move uniformly")?;
         Ok(Sphere {
             radius,
             start,
@@ -255,7 +258,7 @@ impl Sphere {
 /// An outline measured once and read by every check of it: each value
 /// read off the measured outline with its uncertainty, beside the same
 /// value read off the expected outline.
-pub struct Outline {
+pub(super) struct Outline {
     values: Vec<(OutlineRead, Reading, f64)>,
     /// Whether the sphere is Lorentz-contracted (its outline a circle).
     contracted: bool,
@@ -266,9 +269,9 @@ pub struct Outline {
 impl Outline {
     /// Measures the outline of the sphere `object` on a probe of
     /// `measuring`, and expects it from `described`'s scene data.
-    pub fn measure(
-        measuring: &Setup,
-        described: &Setup,
+    pub(super) fn measure(
+        measuring: &Observer,
+        described: &Observer,
         object: &str,
         effort: &Effort,
     ) -> Result<Outline, String> {
@@ -300,7 +303,7 @@ impl Outline {
     /// (radius, RMS, centre) is read only for a Lorentz-contracted sphere,
     /// whose outline is a circle: another outline's circle fit depends on
     /// how its points are sampled.
-    pub fn read(&self, what: OutlineRead) -> Result<(Reading, f64, Unit), String> {
+    pub(super) fn read(&self, what: OutlineRead) -> Result<(Reading, f64, Unit), String> {
         let circular = matches!(
             what,
             OutlineRead::Radius

@@ -9,12 +9,13 @@
 //! the front face's apparent length, and its length with the light delay
 //! removed (the contraction, which Terrell rotation masks).
 
-use super::{
-    difference, fixture_model, motion_of, Edge, Effort, Findings, OnPlane, Probed, Quantity,
-    Reading, Setup, UniformMotion, Unit,
-};
+use crate::check::findings::CheckOutcome;
+use crate::check::probe::Effort;
+use crate::check::row::{difference, Quantity, Reading, Unit};
+use crate::check::traced_edge::{Edge, OnPlane, ProbeImage};
 use crate::fixture::Fixture;
 use crate::measure::Plane;
+use crate::observer::{fixture_model, motion_of, Observer, UniformMotion};
 use crate::oracle::{gamma, retarded};
 use glam::DVec3;
 
@@ -34,7 +35,7 @@ const CORNERS: [(f64, f64, f64); 6] = [
 
 /// The flange's two faces as the fixture declares them: the front (the
 /// plane z = DEPTH of its local coordinates) and the side (x = 0).
-pub struct Faces<'a> {
+pub(super) struct Faces<'a> {
     /// The front face's object.
     pub front: &'a str,
     /// The side face's object.
@@ -57,13 +58,13 @@ struct Edges {
 
 /// Traces and fits the flange's edges on a probe aimed at its front and side.
 fn measure_edges(
-    setup: &Setup,
+    setup: &Observer,
     faces: &Faces,
     m: &UniformMotion,
     effort: &Effort,
 ) -> Result<Edges, String> {
     let name = &setup.fixture.name;
-    let probe = Probed::aimed(setup, &[faces.front, faces.side], 0.1, effort)?;
+    let probe = ProbeImage::aimed(setup, &[faces.front, faces.side], 0.1, effort)?;
     let start = m.start;
     let face = |z: f64| OnPlane {
         plane: Plane::z(z),
@@ -75,13 +76,13 @@ fn measure_edges(
     let fail = |what: &str, e: String| format!("{name}: {what}: {e}");
     Ok(Edges {
         trailing: probe
-            .fit(&front, probe.from_right(), is_front, effort)
+            .fit(&front, probe.sweep_leftwards(), is_front, effort)
             .map_err(|e| fail("trailing edge", e))?,
         leading: probe
-            .fit(&front, probe.from_right(), probe.background(), effort)
+            .fit(&front, probe.sweep_leftwards(), probe.background(), effort)
             .map_err(|e| fail("leading edge", e))?,
         far: probe
-            .fit(&back, probe.from_left(), probe.background(), effort)
+            .fit(&back, probe.sweep_rightwards(), probe.background(), effort)
             .map_err(|e| fail("far edge", e))?,
     })
 }
@@ -89,7 +90,7 @@ fn measure_edges(
 /// Where a point of the flange (in its local coordinates) is seen from
 /// the camera event: its straight worldline against the camera's past
 /// light cone.
-fn seen(setup: &Setup, m: &UniformMotion, x: f64, y: f64, z: f64) -> Result<DVec3, String> {
+fn seen(setup: &Observer, m: &UniformMotion, x: f64, y: f64, z: f64) -> Result<DVec3, String> {
     retarded(
         &m.point(DVec3::new(x, y, z)),
         setup.camera_t,
@@ -109,10 +110,10 @@ fn seen(setup: &Setup, m: &UniformMotion, x: f64, y: f64, z: f64) -> Result<DVec
 /// apparent length and its length with the light delay removed, which is
 /// the Lorentz contraction 1/gamma (the paper: 0.5 at 0.866c) for the
 /// V_obj and 1 for the H_obj.
-pub fn run(f: &Fixture, faces: &Faces, effort: &Effort) -> Result<Findings, String> {
+pub(super) fn run(f: &Fixture, faces: &Faces, effort: &Effort) -> Result<CheckOutcome, String> {
     let model = fixture_model(f);
     let m = motion_of(f, faces.front, model)?;
-    let setup = Setup {
+    let setup = Observer {
         fixture: f,
         model,
         camera_t: f.spec.camera.t,
@@ -126,7 +127,7 @@ pub fn run(f: &Fixture, faces: &Faces, effort: &Effort) -> Result<Findings, Stri
         .filter_map(|&(x, y, z)| seen(&setup, &m, x, y, z).ok())
         .map(|p| (p - cam).normalize())
         .collect();
-    Ok(Findings {
+    Ok(CheckOutcome {
         views: vec![setup.full_view("view", &marks)?],
         quantities,
     })
@@ -144,7 +145,7 @@ struct SeenPoints {
 }
 
 impl SeenPoints {
-    fn of(setup: &Setup, m: &UniformMotion) -> Result<SeenPoints, String> {
+    fn of(setup: &Observer, m: &UniformMotion) -> Result<SeenPoints, String> {
         let seen = |x: f64, y: f64, z: f64| seen(setup, m, x, y, z);
         Ok(SeenPoints {
             upper: seen(0.0, HEIGHT, DEPTH)?,
@@ -159,7 +160,7 @@ impl SeenPoints {
 /// The table: each quantity read off the fitted edges against the seen
 /// points, with the paper's figure (Figures 17-18).
 fn quantities(
-    setup: &Setup,
+    setup: &Observer,
     m: &UniformMotion,
     edges: &Edges,
     points: &SeenPoints,
@@ -228,7 +229,7 @@ fn quantities(
 /// The front's length with the light delay removed, over its proper
 /// length, from the leading and trailing edges read at mid-height: the
 /// Lorentz contraction 1/gamma for a V_obj, 1 for an H_obj.
-fn contraction(setup: &Setup, m: &UniformMotion, lead: &Reading, trail: &Reading) -> Quantity {
+fn contraction(setup: &Observer, m: &UniformMotion, lead: &Reading, trail: &Reading) -> Quantity {
     let (tc, cam) = (setup.camera_t, setup.camera_x());
     let lab_width = if m.contracted {
         WIDTH / gamma(m.velocity.length())

@@ -8,13 +8,13 @@
 //! the camera event nor any worldline, so it sees exactly the events the full
 //! view sees; the full view is rendered for the report.
 
-use super::runner::ViewReport;
-use crate::fixture::{Fixture, Overrides, View};
-use crate::measure::{self, Kinematics, Pinhole};
-use crate::oracle::{body_point, PointWorldline};
+use crate::check::findings::ViewReport;
+use crate::fixture::{Overrides, View};
+use crate::measure::{self, Pinhole};
+use crate::observer::{is_background, Observer};
 use glam::DVec3;
 use image::RgbImage;
-use renderer::{Event, LightSpeed, Model, Motion, Traversal};
+use renderer::Traversal;
 
 /// Width of the full views: the report's images and the golden images,
 /// the same at every effort so that `cargo test` and `vstf check` compare
@@ -43,16 +43,11 @@ impl Effort {
     }
 }
 
-/// The model the fixture names (no overrides).
-pub fn fixture_model(fixture: &Fixture) -> Model {
-    fixture.model(&Overrides::default())
-}
-
 /// A probe render's parameters: which objects it keeps, where it looks
 /// (a point seen from the camera's position, in the camera's frame), its
 /// horizontal field of view, image size and samples per pixel.
 #[derive(Clone, Copy, Debug)]
-pub struct Probe<'k> {
+pub(crate) struct Probe<'k> {
     /// The names of the objects rendered; every other object is removed.
     pub keep: &'k [&'k str],
     /// The point looked at.
@@ -65,66 +60,11 @@ pub struct Probe<'k> {
     pub spp: u32,
 }
 
-/// A fixture with a model and camera time chosen.
-pub struct Setup<'a> {
-    /// The fixture looked at (possibly a modified copy of the loaded one).
-    pub fixture: &'a Fixture,
-    /// The physics the renders use.
-    pub model: Model,
-    /// The camera's lab time, t.units.
-    pub camera_t: f64,
-}
-
-impl Setup<'_> {
-    /// The camera's position at this setup's time: where the fixture puts
-    /// it at its own time, moved on with the camera's velocity (a camera at
-    /// rest stays put).
-    pub fn camera_x(&self) -> DVec3 {
-        let c = &self.fixture.spec.camera;
-        match c.velocity {
-            Some(v) if v != DVec3::ZERO => c.position + v * (self.camera_t - c.t),
-            _ => c.position,
-        }
-    }
-
-    /// The image size at `width` with the fixture's aspect ratio.
-    fn size(&self, width: u32) -> (u32, u32) {
-        let im = &self.fixture.spec.image;
-        let height =
-            ((f64::from(width) * f64::from(im.height) / f64::from(im.width)).round() as u32).max(1);
-        (width, height)
-    }
-
-    /// How this setup's model turns a moving camera's lines of sight.
-    fn kinematics(&self) -> Kinematics {
-        Kinematics::of(
-            self.model.light_speed == LightSpeed::Finite,
-            self.model.lorentz,
-        )
-    }
-
-    /// The measurements' model of the fixture's camera at `width` x
-    /// `height`, built from the camera description as the fixture's view is.
-    pub fn pinhole(&self, (width, height): (u32, u32)) -> Result<Pinhole, String> {
-        let c = &self.fixture.spec.camera;
-        let still = match (c.look_at, c.yaw_deg, c.pitch_deg) {
-            (Some(look_at), _, _) => {
-                Pinhole::looking_at(c.position, look_at, c.up, c.vfov_deg, (width, height))
-            }
-            (None, yaw, pitch) => Pinhole::yaw_pitch(
-                c.position,
-                (yaw.unwrap_or(0.0), pitch.unwrap_or(0.0)),
-                c.vfov_deg,
-                (width, height),
-            ),
-        };
-        still
-            .and_then(|p| p.moving(c.velocity.unwrap_or(DVec3::ZERO), self.kinematics()))
-            .ok_or_else(|| format!("{}: degenerate camera", self.fixture.name))
-    }
-
+/// The renders a check makes as an [`Observer`]: full views for the
+/// report and golden images, probes aimed at the measured objects.
+impl Observer<'_> {
     /// The view rendered for the report and the golden image at `width`.
-    pub fn report_view(&self, width: u32) -> Result<View, String> {
+    pub(crate) fn report_view(&self, width: u32) -> Result<View, String> {
         let (width, height) = self.size(width);
         let o = Overrides {
             model: Some(self.model),
@@ -135,19 +75,19 @@ impl Setup<'_> {
             doppler: false,
             searchlight: false,
         };
-        crate::run::view(self.fixture, &o)
+        Ok(crate::run::view(self.fixture, &o)?)
     }
 
     /// The full view at [`VIEW_WIDTH`], with `markers` at the pixels of
     /// the given lab directions.
-    pub fn full_view(&self, name: &str, directions: &[DVec3]) -> Result<ViewReport, String> {
+    pub(crate) fn full_view(&self, name: &str, directions: &[DVec3]) -> Result<ViewReport, String> {
         let unlabelled: Vec<(DVec3, String)> =
             directions.iter().map(|d| (*d, String::new())).collect();
         self.full_view_labelled(name, &unlabelled)
     }
 
-    /// [`Setup::full_view`] with each marker's row named (empty: none).
-    pub fn full_view_labelled(
+    /// [`Observer::full_view`] with each marker's row named (empty: none).
+    pub(crate) fn full_view_labelled(
         &self,
         name: &str,
         marks: &[(DVec3, String)],
@@ -172,7 +112,7 @@ impl Setup<'_> {
     /// probe camera moves as the fixture's does. Returns the image and the
     /// measurements' own model of the probe camera, built from the same
     /// parameters.
-    pub fn probe(&self, p: &Probe) -> Result<(RgbImage, Pinhole), String> {
+    pub(crate) fn probe(&self, p: &Probe) -> Result<(RgbImage, Pinhole), String> {
         let (look_at, hfov_deg, (width, height)) = (p.look_at, p.hfov_deg, p.size);
         let aspect = f64::from(width) / f64::from(height);
         let vfov_deg = 2.0
@@ -212,7 +152,7 @@ impl Setup<'_> {
     /// Renders only the objects `keep` through the fixture's own camera
     /// at `size` and `spp` (the view's measuring image), with the
     /// measurements' own model of that camera.
-    pub fn measuring_render(
+    pub(crate) fn measuring_render(
         &self,
         keep: &[&str],
         size: (u32, u32),
@@ -221,8 +161,8 @@ impl Setup<'_> {
         self.measuring_render_bouncing(keep, size, spp, 0)
     }
 
-    /// [`Setup::measuring_render`] following `max_depth` mirror bounces.
-    pub fn measuring_render_bouncing(
+    /// [`Observer::measuring_render`] following `max_depth` mirror bounces.
+    pub(crate) fn measuring_render_bouncing(
         &self,
         keep: &[&str],
         (width, height): (u32, u32),
@@ -251,7 +191,7 @@ impl Setup<'_> {
     /// bounding box in the image; returns the look-at point (one l.unit
     /// along the central line of sight) and a field of view covering the box
     /// with `margin` (fraction) to spare.
-    pub fn aim(&self, keep: &[&str], margin: f64) -> Result<(DVec3, f64), String> {
+    pub(crate) fn aim(&self, keep: &[&str], margin: f64) -> Result<(DVec3, f64), String> {
         let wide = self.fixture.spec.camera.vfov_deg.max(30.0);
         let look = self
             .fixture
@@ -293,72 +233,5 @@ impl Setup<'_> {
             self.camera_x() + centre,
             (2.0 * half.to_degrees() * (1.0 + margin)).min(170.0),
         ))
-    }
-}
-
-/// Whether a colour is the (flat) background of a probe.
-pub fn is_background(c: DVec3, bg: DVec3) -> bool {
-    (c - bg).abs().max_element() < 12.0 / 255.0
-}
-
-/// An object's straight worldline as the fixture gives it.
-#[derive(Clone, Copy, Debug)]
-pub struct UniformMotion {
-    /// The event where its reference point starts.
-    pub start: Event,
-    /// Its lab velocity, as a fraction of light speed.
-    pub velocity: DVec3,
-    /// Whether it is Lorentz-contracted under the model (a V_obj under the
-    /// Lorentz transform).
-    pub contracted: bool,
-}
-
-impl UniformMotion {
-    /// The worldline of the body point at `r` (object coordinates; rest
-    /// frame for a contracted object).
-    pub fn point(&self, r: DVec3) -> PointWorldline {
-        body_point(
-            self.start.t,
-            self.start.x,
-            self.velocity,
-            r,
-            self.contracted,
-        )
-    }
-}
-
-/// The uniform motion under `model` of the object named `name`, read from
-/// the fixture.
-pub fn motion_of(fixture: &Fixture, name: &str, model: Model) -> Result<UniformMotion, String> {
-    let obj = fixture.object(name)?;
-    let contracted = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
-    let (start, velocity) = uniform(&obj.motion).ok_or_else(|| {
-        format!(
-            "{}: object {name:?} does not move uniformly",
-            fixture.file.display()
-        )
-    })?;
-    Ok(UniformMotion {
-        start,
-        velocity,
-        contracted,
-    })
-}
-
-/// The background colour of probes, as stored in 8 bits.
-pub fn background(fixture: &Fixture) -> DVec3 {
-    (fixture.scene.background.clamp(DVec3::ZERO, DVec3::ONE) * 255.0).round() / 255.0
-}
-
-/// The start event and lab velocity of a uniform motion, read from the
-/// scene's description (the velocity of an extrusion is dx / dt); `None`
-/// for keyframed or accelerated motion.
-pub fn uniform(motion: &Motion) -> Option<(Event, DVec3)> {
-    match motion {
-        Motion::Extrusion { start, extrusion } => Some((*start, extrusion.x / extrusion.t)),
-        Motion::Velocity {
-            start, velocity, ..
-        } => Some((*start, *velocity)),
-        Motion::Keyframes(_) | Motion::Hyperbolic(_) => None,
     }
 }

@@ -24,12 +24,12 @@
 //!   beta_max dz / (2 rho_min alpha) plus 3 standard errors of the mean and
 //!   the area method's resolution 1/(n sqrt 12).
 
-use super::row::{Reading, Unit};
-use super::setup::{is_background, motion_of, Setup};
+use crate::check::row::{Reading, Unit};
 use crate::emulator::{Body, Form, Gate, Snapshot};
 use crate::fixture::checks::{view_size, EmulatorRead, EmulatorSpec, ViewSpec};
 use crate::fixture::Fixture;
 use crate::measure::{self, Scan};
+use crate::observer::{is_background, motion_of, Observer};
 use crate::oracle::{contract, retarded};
 use glam::DVec3;
 use image::{Rgb, RgbImage};
@@ -72,7 +72,7 @@ fn flat(f: &Fixture, keep: &[&str]) -> Result<Fixture, String> {
 }
 
 /// The kept objects as the emulator's bodies, contracted as the model has it.
-fn bodies(setup: &Setup, keep: &[&str]) -> Result<Vec<Body>, String> {
+fn bodies(setup: &Observer, keep: &[&str]) -> Result<Vec<Body>, String> {
     keep.iter()
         .map(|name| {
             let m = motion_of(setup.fixture, name, setup.model)?;
@@ -105,7 +105,7 @@ fn bodies(setup: &Setup, keep: &[&str]) -> Result<Vec<Body>, String> {
 
 /// The gate: `slices` slices over the distances at which the bodies can be
 /// seen, from where each reference point is seen, two reaches either side.
-fn gate(setup: &Setup, bodies: &[Body], slices: usize) -> Result<(Gate, f64), String> {
+fn gate(setup: &Observer, bodies: &[Body], slices: usize) -> Result<(Gate, f64), String> {
     let camera = setup.camera_x();
     let (mut near, mut far, mut closest) = (f64::INFINITY, 0.0f64, f64::INFINITY);
     for b in bodies {
@@ -181,9 +181,9 @@ fn band(classes: &[Option<usize>], (w, h): (u32, u32), b: i64) -> Vec<bool> {
 
 /// Measures the emulator check `e` in `view`; also where each kept
 /// object's reference point is seen, to mark.
-pub fn measure(
-    measuring: &Setup,
-    described: &Setup,
+pub(super) fn measure(
+    measuring: &Observer,
+    described: &Observer,
     e: &EmulatorSpec,
     view: &ViewSpec,
 ) -> Result<(Found, Vec<DVec3>), String> {
@@ -204,8 +204,8 @@ pub fn measure(
 
 /// The comparison of the two images (see the module's documentation).
 fn compare(
-    measuring: &Setup,
-    described: &Setup,
+    measuring: &Observer,
+    described: &Observer,
     e: &EmulatorSpec,
     view: &ViewSpec,
 ) -> Result<Found, String> {
@@ -214,7 +214,7 @@ fn compare(
     let (gate, closest) = gate(described, &bodies, e.slices)?;
     let size = view_size(&measuring.fixture.spec, view);
     let flat = flat(measuring.fixture, &keep)?;
-    let tracer = Setup {
+    let tracer = Observer {
         fixture: &flat,
         ..*measuring
     };

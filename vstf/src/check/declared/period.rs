@@ -9,9 +9,10 @@
 //! light delay): approaching, the camera sees the blinking faster; receding,
 //! slower.
 
-use super::{Reading, Setup};
+use crate::check::row::Reading;
 use crate::fixture::checks::PeriodSpec;
 use crate::fixture::{Fixture, Overrides};
+use crate::observer::Observer;
 use crate::oracle::{body_point, gamma, retarded};
 use glam::DVec3;
 use renderer::{Event, Model, ObjectKind, Shape, Traversal};
@@ -141,8 +142,8 @@ impl Blinker {
             .material
             .blink
             .ok_or_else(|| format!("{name} does not blink"))?;
-        let (start, velocity) =
-            super::uniform(&obj.motion).ok_or_else(|| format!("{name} must move uniformly"))?;
+        let (start, velocity) = crate::observer::uniform(&obj.motion)
+            .ok_or_else(|| format!("{name} must move uniformly"))?;
         let extremes = match &obj.shape {
             Shape::Mesh(m) => m.vertices.clone(),
             Shape::Sphere { radius } => [DVec3::X, DVec3::Y, DVec3::Z]
@@ -233,9 +234,9 @@ const MAX_SWITCHES: usize = 10_000_000;
 /// period expected from `described`; and where its reference point is seen
 /// at the view's camera time, to mark. The animation is the same at every
 /// effort: its precision is set by the frame step.
-pub fn measure(
-    measuring: &Setup,
-    described: &Setup,
+pub(super) fn measure(
+    measuring: &Observer,
+    described: &Observer,
     p: &PeriodSpec,
 ) -> Result<(Reading, f64, Option<DVec3>), String> {
     let frames = Frames {

@@ -3,16 +3,17 @@
 //! camera onto a known plane, and fitted by a polynomial; values read off
 //! the fit carry the fit's prediction error.
 
-use super::row::Reading;
-use super::setup::{background, is_background, Effort, Probe, Setup};
+use crate::check::probe::{Effort, Probe};
+use crate::check::row::Reading;
 use crate::measure::{self, Pinhole, PolyFit, Scan};
+use crate::observer::{background, is_background, Observer};
 use glam::DVec3;
 use image::RgbImage;
 
 /// An edge traced down the image: for every row, the sub-pixel boundary
 /// found by `find`, mapped onto `plane`, as (height coordinate, position
 /// coordinate) pairs selected by `coords`, kept where the height lies in `range`.
-pub struct EdgeTrace {
+pub(super) struct EdgeTrace {
     /// The (height, position) points of the edge on the plane.
     pub points: Vec<(f64, f64)>,
     /// Mean footprint of a pixel across the edge on the plane, l.units.
@@ -20,7 +21,7 @@ pub struct EdgeTrace {
 }
 
 /// Traces an edge down the image rows onto a plane (see [`EdgeTrace`]).
-pub fn trace_rows(
+pub(super) fn trace_rows(
     img: &RgbImage,
     camera: &Pinhole,
     plane: measure::Plane,
@@ -58,7 +59,7 @@ pub fn trace_rows(
 
 /// A probe render ready for tracing edges: the image, the measurements'
 /// own model of its camera, and the fixture's background colour.
-pub struct Probed {
+pub(super) struct ProbeImage {
     /// The probe image.
     pub img: RgbImage,
     /// The measurements' model of the probe camera.
@@ -69,7 +70,7 @@ pub struct Probed {
 /// Where an edge lies and how it is fitted: the plane its points are
 /// mapped onto, the (height, position) coordinates read off that plane,
 /// the heights kept, and the degree of the polynomial fitted.
-pub struct OnPlane<C> {
+pub(super) struct OnPlane<C> {
     /// The plane the edge lies on.
     pub plane: measure::Plane,
     /// (height, position) of a point on the plane.
@@ -83,18 +84,18 @@ pub struct OnPlane<C> {
 /// Where a row scan starts (a column) and which way it steps (+1 rightwards,
 /// -1 leftwards).
 #[derive(Clone, Copy, Debug)]
-pub struct Sweep {
+pub(super) struct Sweep {
     /// The first column looked at.
     pub from: i64,
     /// The step between columns.
     pub step: i64,
 }
 
-impl Probed {
+impl ProbeImage {
     /// Renders the probe `p` of `setup`.
-    pub fn render(setup: &Setup, p: &Probe) -> Result<Probed, String> {
+    pub(super) fn render(setup: &Observer, p: &Probe) -> Result<ProbeImage, String> {
         let (img, camera) = setup.probe(p)?;
-        Ok(Probed {
+        Ok(ProbeImage {
             img,
             camera,
             bg: background(setup.fixture),
@@ -102,15 +103,15 @@ impl Probed {
     }
 
     /// A square probe at `effort` aimed at the objects `keep`, covering
-    /// them with `margin` (fraction) to spare ([`Setup::aim`]).
-    pub fn aimed(
-        setup: &Setup,
+    /// them with `margin` (fraction) to spare ([`Observer::aim`]).
+    pub(super) fn aimed(
+        setup: &Observer,
         keep: &[&str],
         margin: f64,
         effort: &Effort,
-    ) -> Result<Probed, String> {
+    ) -> Result<ProbeImage, String> {
         let (look_at, hfov_deg) = setup.aim(keep, margin)?;
-        Probed::render(
+        ProbeImage::render(
             setup,
             &Probe {
                 keep,
@@ -123,12 +124,12 @@ impl Probed {
     }
 
     /// Rows scanned rightwards from the left border.
-    pub fn from_left(&self) -> Sweep {
+    pub(super) fn sweep_rightwards(&self) -> Sweep {
         Sweep { from: 0, step: 1 }
     }
 
     /// Rows scanned leftwards from the right border.
-    pub fn from_right(&self) -> Sweep {
+    pub(super) fn sweep_leftwards(&self) -> Sweep {
         Sweep {
             from: i64::from(self.img.width()) - 1,
             step: -1,
@@ -136,14 +137,14 @@ impl Probed {
     }
 
     /// Whether a colour is this probe's background.
-    pub fn background(&self) -> impl Fn(DVec3) -> bool {
+    pub(super) fn background(&self) -> impl Fn(DVec3) -> bool {
         let bg = self.bg;
         move |c| is_background(c, bg)
     }
 
     /// Traces an edge down the rows: each row scanned along `sweep` up to
     /// where `inside` stops holding, onto the plane of `on`.
-    pub fn trace(
+    pub(super) fn trace(
         &self,
         on: &OnPlane<impl Fn(DVec3) -> (f64, f64)>,
         sweep: Sweep,
@@ -159,8 +160,8 @@ impl Probed {
         )
     }
 
-    /// Traces an edge (see [`Probed::trace`]) and fits it.
-    pub fn fit(
+    /// Traces an edge (see [`ProbeImage::trace`]) and fits it.
+    pub(super) fn fit(
         &self,
         on: &OnPlane<impl Fn(DVec3) -> (f64, f64)>,
         sweep: Sweep,
@@ -176,7 +177,7 @@ impl Probed {
 /// residual scatter floored at the area method's resolution (1/n pixel for
 /// n x n strata, taken as a uniform error: /sqrt(12)), so that a perfectly
 /// clean fit never claims more than the sampling can give.
-pub struct Edge {
+pub(super) struct Edge {
     /// The robust polynomial fit of position against height.
     pub fit: PolyFit,
     floor_scale: f64,
@@ -184,7 +185,7 @@ pub struct Edge {
 
 impl Edge {
     /// Fits a polynomial of `degree` to the traced edge.
-    pub fn fit(trace: &EdgeTrace, degree: usize, effort: &Effort) -> Result<Edge, String> {
+    pub(super) fn fit(trace: &EdgeTrace, degree: usize, effort: &Effort) -> Result<Edge, String> {
         let fit = PolyFit::fit_robust(&trace.points, degree)
             .ok_or_else(|| format!("too few edge points ({})", trace.points.len()))?;
         let floor = trace.footprint / effort.strata() / 12f64.sqrt();
@@ -193,7 +194,7 @@ impl Edge {
     }
 
     /// The value sum w_i f(x_i) of weighted readings.
-    pub fn combine(&self, terms: &[(f64, f64)]) -> Reading {
+    pub(super) fn combine(&self, terms: &[(f64, f64)]) -> Reading {
         let value = terms.iter().map(|&(w, x)| w * self.fit.eval(x)).sum();
         Reading {
             value,
@@ -202,7 +203,7 @@ impl Edge {
     }
 
     /// The edge's position at height `x`.
-    pub fn at(&self, x: f64) -> Reading {
+    pub(super) fn at(&self, x: f64) -> Reading {
         self.combine(&[(1.0, x)])
     }
 }

@@ -3,18 +3,19 @@
 //! sphere of directions (elevation against azimuth, in the observer's own
 //! frame), and the fit is read at elevation 0.
 
-use super::{azimuth_deg, CUBE, NAME};
-use crate::check::{
-    background, is_background, Edge, EdgeTrace, Effort, OnPlane, Probe, Probed, Reading, Setup,
-};
+use super::cases::{azimuth_deg, CUBE, NAME};
+use crate::check::probe::{Effort, Probe};
+use crate::check::row::Reading;
+use crate::check::traced_edge::{Edge, EdgeTrace, OnPlane, ProbeImage};
 use crate::measure::{Pinhole, Plane};
+use crate::observer::{background, is_background, Observer};
 use glam::DVec3;
 
 /// Measures the silhouette edge on the horizon near azimuth `near_deg`:
 /// a narrow probe aimed there, the edge traced over rows and fitted
 /// against elevation, read at elevation 0.
 fn measure_edge(
-    setup: &Setup,
+    setup: &Observer,
     near_deg: f64,
     right: bool,
     effort: &Effort,
@@ -23,7 +24,7 @@ fn measure_edge(
     let look = DVec3::new(a.sin(), 0.0, -a.cos());
     // A strip 3 degrees wide and 0.6 tall across the horizon, half the
     // probe's width: the angle targets (0.05 deg) are met ~100x over.
-    let mut probe = Probed::render(
+    let mut probe = ProbeImage::render(
         setup,
         &Probe {
             keep: &[CUBE],
@@ -34,9 +35,9 @@ fn measure_edge(
         },
     )?;
     let sweep = if right {
-        probe.from_right()
+        probe.sweep_leftwards()
     } else {
-        probe.from_left()
+        probe.sweep_rightwards()
     };
     // Angles are the observer's: lines of sight in the camera's own frame
     // (the same as the lab's when the camera is at rest).
@@ -69,7 +70,7 @@ fn measure_angular(camera: &Pinhole) -> f64 {
 
 /// Rough azimuths (left, right) of the silhouette on the horizon, from a
 /// wide render.
-fn coarse_edges(setup: &Setup) -> Result<(f64, f64), String> {
+fn coarse_edges(setup: &Observer) -> Result<(f64, f64), String> {
     // A wide strip across the horizon first; where the cube reaches its
     // border (beyond +-85 degrees), a second strip turned towards that side.
     let (l, r) = coarse_strip(setup, 0.0, 170.0)?;
@@ -93,7 +94,7 @@ type CoarseEdge = (f64, bool);
 /// a strip centred on azimuth `centre_deg`, each with whether it lies on the
 /// strip's border.
 fn coarse_strip(
-    setup: &Setup,
+    setup: &Observer,
     centre_deg: f64,
     hfov_deg: f64,
 ) -> Result<(CoarseEdge, CoarseEdge), String> {
@@ -122,7 +123,10 @@ fn coarse_strip(
 }
 
 /// Measures both silhouette edges of a setup on the horizon.
-pub(super) fn measure_edges(setup: &Setup, effort: &Effort) -> Result<(Reading, Reading), String> {
+pub(super) fn measure_edges(
+    setup: &Observer,
+    effort: &Effort,
+) -> Result<(Reading, Reading), String> {
     let (coarse_l, coarse_r) = coarse_edges(setup)?;
     Ok((
         measure_edge(setup, coarse_l, false, effort)?,

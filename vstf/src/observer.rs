@@ -1,0 +1,165 @@
+//! What a fixture looks like to a measurement: the observer's event and
+//! model, the measurements' own pinhole model of the fixture's camera, image
+//! sizes, and the uniform motions read from the scene's description.
+//!
+//! Built from the fixture's plain data with [`crate::measure`] and
+//! [`crate::oracle`] only, never the renderer's camera or boosts, so that a
+//! check's expectation cannot share a bug with the image it measures.
+
+use crate::fixture::checks::ViewSpec;
+use crate::fixture::{Fixture, Overrides};
+use crate::measure::{Kinematics, Pinhole};
+use crate::oracle::{body_point, PointWorldline};
+use glam::DVec3;
+use renderer::{Event, LightSpeed, Model, Motion};
+
+/// The model the fixture names (no overrides).
+pub(crate) fn fixture_model(fixture: &Fixture) -> Model {
+    fixture.model(&Overrides::default())
+}
+
+/// A fixture with a model and camera time chosen: the observer a check
+/// measures as.
+pub(crate) struct Observer<'a> {
+    /// The fixture looked at (possibly a modified copy of the loaded one).
+    pub fixture: &'a Fixture,
+    /// The physics the renders use.
+    pub model: Model,
+    /// The camera's lab time, t.units.
+    pub camera_t: f64,
+}
+
+impl<'a> Observer<'a> {
+    /// The observer of the declared view `v` of `f`: its camera time and
+    /// model, the fixture's where the view sets none.
+    pub(crate) fn declared(f: &'a Fixture, v: &ViewSpec) -> Observer<'a> {
+        let mut model = match v.model {
+            Some(m) => m.model(),
+            None => fixture_model(f),
+        };
+        if let Some(l) = v.lorentz {
+            model.lorentz = l;
+        }
+        Observer {
+            fixture: f,
+            model,
+            camera_t: v.t.unwrap_or(f.spec.camera.t),
+        }
+    }
+}
+
+impl Observer<'_> {
+    /// The camera's position at this setup's time: where the fixture puts
+    /// it at its own time, moved on with the camera's velocity (a camera at
+    /// rest stays put).
+    pub(crate) fn camera_x(&self) -> DVec3 {
+        let c = &self.fixture.spec.camera;
+        match c.velocity {
+            Some(v) if v != DVec3::ZERO => c.position + v * (self.camera_t - c.t),
+            _ => c.position,
+        }
+    }
+
+    /// The image size at `width` with the fixture's aspect ratio.
+    pub(crate) fn size(&self, width: u32) -> (u32, u32) {
+        let im = &self.fixture.spec.image;
+        let height =
+            ((f64::from(width) * f64::from(im.height) / f64::from(im.width)).round() as u32).max(1);
+        (width, height)
+    }
+
+    /// How this setup's model turns a moving camera's lines of sight.
+    pub(crate) fn kinematics(&self) -> Kinematics {
+        Kinematics::of(
+            self.model.light_speed == LightSpeed::Finite,
+            self.model.lorentz,
+        )
+    }
+
+    /// The measurements' model of the fixture's camera at `width` x
+    /// `height`, built from the camera description as the fixture's view is.
+    pub(crate) fn pinhole(&self, (width, height): (u32, u32)) -> Result<Pinhole, String> {
+        let c = &self.fixture.spec.camera;
+        let still = match (c.look_at, c.yaw_deg, c.pitch_deg) {
+            (Some(look_at), _, _) => {
+                Pinhole::looking_at(c.position, look_at, c.up, c.vfov_deg, (width, height))
+            }
+            (None, yaw, pitch) => Pinhole::yaw_pitch(
+                c.position,
+                (yaw.unwrap_or(0.0), pitch.unwrap_or(0.0)),
+                c.vfov_deg,
+                (width, height),
+            ),
+        };
+        still
+            .and_then(|p| p.moving(c.velocity.unwrap_or(DVec3::ZERO), self.kinematics()))
+            .ok_or_else(|| format!("{}: degenerate camera", self.fixture.name))
+    }
+}
+
+/// Whether a colour is the (flat) background of a probe.
+pub(crate) fn is_background(c: DVec3, bg: DVec3) -> bool {
+    (c - bg).abs().max_element() < 12.0 / 255.0
+}
+
+/// An object's straight worldline as the fixture gives it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct UniformMotion {
+    /// The event where its reference point starts.
+    pub start: Event,
+    /// Its lab velocity, as a fraction of light speed.
+    pub velocity: DVec3,
+    /// Whether it is Lorentz-contracted under the model (a V_obj under the
+    /// Lorentz transform).
+    pub contracted: bool,
+}
+
+impl UniformMotion {
+    /// The worldline of the body point at `r` (object coordinates; rest
+    /// frame for a contracted object).
+    pub(crate) fn point(&self, r: DVec3) -> PointWorldline {
+        body_point(
+            self.start.t,
+            self.start.x,
+            self.velocity,
+            r,
+            self.contracted,
+        )
+    }
+}
+
+/// The uniform motion under `model` of the object named `name`, read from
+/// the fixture.
+pub(crate) fn motion_of(fixture: &Fixture, name: &str, model: Model) -> Result<UniformMotion, String> {
+    let obj = fixture.object(name)?;
+    let contracted = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
+    let (start, velocity) = uniform(&obj.motion).ok_or_else(|| {
+        format!(
+            "{}: object {name:?} does not move uniformly",
+            fixture.file.display()
+        )
+    })?;
+    Ok(UniformMotion {
+        start,
+        velocity,
+        contracted,
+    })
+}
+
+/// The background colour of probes, as stored in 8 bits.
+pub(crate) fn background(fixture: &Fixture) -> DVec3 {
+    (fixture.scene.background.clamp(DVec3::ZERO, DVec3::ONE) * 255.0).round() / 255.0
+}
+
+/// The start event and lab velocity of a uniform motion, read from the
+/// scene's description (the velocity of an extrusion is dx / dt); `None`
+/// for keyframed or accelerated motion.
+pub(crate) fn uniform(motion: &Motion) -> Option<(Event, DVec3)> {
+    match motion {
+        Motion::Extrusion { start, extrusion } => Some((*start, extrusion.x / extrusion.t)),
+        Motion::Velocity {
+            start, velocity, ..
+        } => Some((*start, *velocity)),
+        Motion::Keyframes(_) | Motion::Hyperbolic(_) => None,
+    }
+}
