@@ -75,7 +75,13 @@ impl Body {
 
     /// A sphere of rest radius `radius` moving with `velocity`, contracted
     /// when `contracted`.
-    pub(crate) fn sphere(radius: f64, t0: f64, x0: DVec3, velocity: DVec3, contracted: bool) -> Body {
+    pub(crate) fn sphere(
+        radius: f64,
+        t0: f64,
+        x0: DVec3,
+        velocity: DVec3,
+        contracted: bool,
+    ) -> Body {
         let speed = velocity.length();
         let form = Form::Ellipsoid {
             radius,

@@ -130,7 +130,11 @@ impl UniformMotion {
 
 /// The uniform motion under `model` of the object named `name`, read from
 /// the fixture.
-pub(crate) fn motion_of(fixture: &Fixture, name: &str, model: Model) -> Result<UniformMotion, String> {
+pub(crate) fn motion_of(
+    fixture: &Fixture,
+    name: &str,
+    model: Model,
+) -> Result<UniformMotion, String> {
     let obj = fixture.object(name)?;
     let contracted = model.lorentz && obj.kind == renderer::ObjectKind::VObj;
     let (start, velocity) = uniform(&obj.motion).ok_or_else(|| {

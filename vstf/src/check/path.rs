@@ -328,7 +328,13 @@ impl BodyPath {
     ///
     /// `ends` is the edge the point lies on, at parameter `s` along it (a
     /// side's bend is a property of the whole side).
-    pub(super) fn keyframe_shift(&self, ends: [DVec3; 2], s: f64, seen: &Retarded, camera: DVec3) -> f64 {
+    pub(super) fn keyframe_shift(
+        &self,
+        ends: [DVec3; 2],
+        s: f64,
+        seen: &Retarded,
+        camera: DVec3,
+    ) -> f64 {
         let r = ends[0] + (ends[1] - ends[0]) * s;
         let k = (camera - seen.x).normalize();
         match self {

@@ -243,7 +243,11 @@ pub(super) fn views(control: &Fixture, speeds: &[f64]) -> Result<Vec<NamedView>,
 /// Every view of the cube at each of the orbital `speeds` (fractions of c):
 /// its edges against the retarded (cube moving) and aberrated (Earth
 /// moving) azimuths, and the paper's figures where it prints them.
-pub(super) fn run(control: &Fixture, speeds: &[f64], effort: &Effort) -> Result<CheckOutcome, String> {
+pub(super) fn run(
+    control: &Fixture,
+    speeds: &[f64],
+    effort: &Effort,
+) -> Result<CheckOutcome, String> {
     let mut quantities = Vec::new();
     let mut views = Vec::new();
     for case in Case::all(fixture_model(control), speeds) {

@@ -8,6 +8,7 @@
 //! with `VSTF_REQUIRE_BROWSER` set (as `.ci/run` does once it has installed
 //! them) their absence is a failure.
 
+use crate::support::{copy_tree, repo_root, tamper, vstf, RunExt, Scratch};
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
@@ -163,39 +164,26 @@ fn free_port() -> u16 {
         .port()
 }
 
-fn copy_dir(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for e in std::fs::read_dir(from).unwrap() {
-        let e = e.unwrap();
-        std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
-    }
-}
-
 /// A project of one fixture whose golden frame 920 is tampered, checked so
 /// that the view is pending: its folder, the golden's path and the pending
 /// render.
-fn pending_project() -> (PathBuf, PathBuf, Vec<u8>) {
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let dir = std::env::temp_dir().join(format!("vstf-browser-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+fn pending_project() -> (Scratch, PathBuf, Vec<u8>) {
+    let repo = repo_root();
+    let dir = Scratch::new("browser");
     std::fs::create_dir_all(dir.join("fixtures")).unwrap();
     std::fs::copy(
         repo.join("fixtures/flange.json"),
         dir.join("fixtures/flange.json"),
     )
     .unwrap();
-    copy_dir(&repo.join("golden/flange"), &dir.join("golden/flange"));
+    copy_tree(&repo.join("golden/flange"), &dir.join("golden/flange"));
     let golden = dir.join("golden/flange/frame-920.png");
-    let mut img = image::open(&golden).unwrap().to_rgb8();
-    img.get_pixel_mut(10, 10).0[0] ^= 1;
-    img.save(&golden).unwrap();
-    let vstf = env!("CARGO_BIN_EXE_vstf");
-    let checked = Command::new(vstf)
+    tamper(&golden);
+    let checked = vstf()
         .current_dir(&dir)
         .args(["check", "flange", "--quick"])
-        .output()
-        .unwrap();
-    assert!(!checked.status.success(), "the tampered golden passed");
+        .run();
+    assert!(!checked.success(), "the tampered golden passed: {checked}");
     let actual = std::fs::read(dir.join("target/vstf/flange/frame-920/actual.png")).unwrap();
 
     (dir, golden, actual)
@@ -203,9 +191,8 @@ fn pending_project() -> (PathBuf, PathBuf, Vec<u8>) {
 
 /// `vstf serve` on a free port in `dir`, and its page's address.
 fn start_server(dir: &Path) -> (Reaper, String) {
-    let vstf = env!("CARGO_BIN_EXE_vstf");
     let mut server = Reaper(
-        Command::new(vstf)
+        vstf()
             .current_dir(dir)
             .args(["serve", "--port", "0"])
             .env_remove("CI")
@@ -360,5 +347,5 @@ fn the_page_renders_debugs_and_approves_in_a_real_browser() {
     );
     let _ = http(&d.addr, "DELETE", &format!("/session/{}", d.session), None);
     drop(server);
-    let _ = std::fs::remove_dir_all(&dir);
+    drop(dir);
 }

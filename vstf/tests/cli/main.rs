@@ -1,0 +1,26 @@
+//! The `vstf` binary as a user runs it: one test binary (linked once), its
+//! modules by command, all running the built executable through `support`.
+
+mod support;
+
+/// `vstf animate`: sequences, GIFs and APNGs, labels, resuming.
+mod animate;
+/// `vstf bench --quick`.
+mod bench;
+/// `vstf serve` driven in a real browser (skips without chromium).
+mod browser;
+/// `vstf check`: its table, JSON and golden images, in and out of a copy
+/// of this repository.
+mod check;
+/// `vstf debug` and `vstf debug-diff`.
+mod debug;
+/// `vstf approve`, `reject` and `review`: golden images one view at a time.
+mod golden;
+/// Projects: none, one from `vstf init`, a fixture given as a file.
+mod project;
+/// `vstf render` and `vstf list --views`.
+mod render;
+/// Sharded `animate` and `check` runs and `vstf merge`.
+mod shards;
+/// How a run ends when interrupted or when its reader goes away.
+mod signals;
