@@ -420,9 +420,9 @@ fn named_kinds_views_reproduce_their_goldens() {
             };
             for v in vstf::check::named::views(&f, n).unwrap() {
                 let (fixture, view) = vstf::check::declared::golden_view(&f, &v.name).unwrap();
-                let img = vstf::run::render(&fixture, &view, renderer::Traversal::Bvh)
-                    .unwrap()
-                    .to_rgb8();
+                let img = vstf::output::rgb8(
+                    &vstf::run::render(&fixture, &view, renderer::Traversal::Bvh).unwrap(),
+                );
                 let golden = image::open(store.golden_path(&name, &v.name))
                     .unwrap()
                     .to_rgb8();
