@@ -5,16 +5,16 @@
 //!
 //! 1. `scene`: 3D objects as given ([`Scene`], [`SceneObject`] with its
 //!    [`Shape`], [`Motion`], [`Material`]), a point [`Light`], in `spacetime`
-//!    terms ([`Event`], [`FourVector`], [`Worldline`], [`Boost`], [`Ray`]).
+//!    terms ([`Event`], [`FourVector`], [`Boost`], [`Ray`]).
 //! 2. `geometry`: temporal extrusion of every triangle along its object's
 //!    path into a prism of three [`Tetrahedron`]s (paper 3.1), keyframed and
-//!    accelerated paths first resolved into [`Pose`]s; analytic spheres kept
+//!    accelerated paths first resolved into poses; analytic spheres kept
 //!    exact; the ray tests ([`Hit`]): a prism of uniform motion whole, as its
 //!    triangle at rest in the comoving frame within its lab times, and a
 //!    keyframe interval's tetrahedra by the barycentric solve (paper 3.2).
 //! 3. `database`: the static 4D [`Database`] of all prisms, built once
 //!    (paper 3, items 1-2), each object's path cut into straight
-//!    [`Stretch`]es, searched through `accel`, a two-level bounding volume
+//!    stretches, searched through `accel`, a two-level bounding volume
 //!    hierarchy over 4D boxes.
 //! 4. `camera`: rays on the camera's past light cone ([`Camera`]; the
 //!    light-speed [`Model`] of paper 4.1.5).
@@ -41,21 +41,17 @@ mod trace;
 
 pub use camera::{Attitude, Camera, Kinematics, Model};
 pub use color::{
-    band_nm, chromaticity, cmf, to_rgb, xyz, xyz_to_rgb, Spectrum, SpectrumError,
-    SpectrumErrorKind, SpectrumField, BAND_LEN,
+    band_nm, chromaticity, cmf, xyz, xyz_to_rgb, Spectrum, SpectrumError, SpectrumErrorKind,
+    SpectrumField, BAND_LEN,
 };
-pub use database::{Database, ObjectRecord, Packing, Stretch, Surface, Traversal};
-pub use geometry::{
-    corner_order, corners_between, extrude, extrude_between, piece, split_between, split_prism,
-    tetrahedron_volume, Barycentric, Hit, Miss, Pose, PrimitiveId, Prism, PrismCorners,
-    Tetrahedron,
-};
+pub use database::{Database, Packing, Traversal};
+pub use geometry::{Barycentric, Hit, PrimitiveId, Tetrahedron};
 pub use render::{pixel, pixel_traced, render, shader, Frame, Image, RenderSettings};
 pub use rng::SplitMix64;
 pub use scene::{
     Blink, Hyperbolic, HyperbolicField, Keyframe, Light, Material, Mesh, MeshError, Motion,
     ObjectKind, Scene, SceneError, SceneErrorKind, SceneField, SceneObject, Shape,
 };
-pub use shading::{Band, Effects, Leg, Shader};
-pub use spacetime::{gamma, Boost, Event, FourVector, LightSpeed, Ray, Worldline};
-pub use trace::{NoTrace, Outcome, RayKind, Recorder, Step, Trace};
+pub use shading::{Effects, Shader};
+pub use spacetime::{Boost, Event, FourVector, LightSpeed, Ray};
+pub use trace::{Outcome, RayKind, Recorder, Step, Trace};

@@ -4,7 +4,7 @@
 mod build;
 mod object;
 
-pub use object::{ObjectRecord, Stretch};
+pub(crate) use object::{ObjectRecord, Stretch};
 
 use crate::accel::{Lanes, StretchPrisms, TwoLevel, PACKET};
 use crate::geometry::{
@@ -192,8 +192,9 @@ impl Database {
         }
     }
 
-    /// Prism `p`'s six corners in the paper's cut ([`PrismCorners`]): the
-    /// corners of its triangle at its start and at its end.
+    /// Prism `p`'s six corners in the paper's cut: the corners of its
+    /// triangle at its start in the cut's order, then the same corners, in
+    /// the same order, at its end.
     pub fn prism_corners(&self, p: u32) -> PrismCorners {
         let (run, k) = self.run_of(p);
         if !run.stretch.translation {
@@ -298,7 +299,7 @@ impl Database {
     /// The velocity of the point with barycentric coordinates `bary` in
     /// tetrahedron `tet`, interpolated over its prism's corners. The
     /// prism's pieces are (a0 b0 c0 c1), (a0 b0 b1 c1), (a0 a1 b1 c1)
-    /// ([`crate::geometry::split_between`]), so piece 0 holds the bottom
+    /// ([`crate::geometry::piece`]), so piece 0 holds the bottom
     /// corners and c1, piece 1 holds b1 and piece 2 a1.
     fn corner_weighted_velocity(&self, tet: u32, bary: &[f64; 4]) -> DVec3 {
         const CORNERS: [[usize; 4]; 3] = [[0, 1, 2, 2], [0, 1, 1, 2], [0, 0, 1, 2]];

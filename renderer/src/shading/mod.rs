@@ -8,5 +8,5 @@ mod frame;
 mod mirror;
 mod shader;
 
-pub use doppler::{Effects, Leg};
-pub use shader::{Band, Shader};
+pub use doppler::Effects;
+pub use shader::Shader;
