@@ -26,6 +26,53 @@
 //!
 //! Natural units throughout (c = 1); events are lab-frame (t, x, y, z) in f64,
 //! y up, the stage in the x-z plane.
+//!
+//! # Example
+//!
+//! A cube moving at 0.5c seen by a camera at rest: the camera at lab time 0
+//! sees the light the cube sent about 4 time units earlier, when it was in
+//! front of the camera.
+//!
+//! ```
+//! use glam::DVec3;
+//! use renderer::{
+//!     render, Attitude, Camera, Database, Event, FourVector, Light, Material, Mesh, Model,
+//!     Motion, ObjectKind, RenderSettings, Scene, SceneObject, Shape,
+//! };
+//!
+//! // A 2 x 2 x 2 cube (rest frame) moving along +x at 0.5c, centred on
+//! // the origin at t = -4.
+//! let cube = SceneObject {
+//!     name: "cube".into(),
+//!     kind: ObjectKind::VObj,
+//!     shape: Shape::Mesh(Mesh::cuboid(DVec3::splat(-1.0), DVec3::splat(1.0))),
+//!     motion: Motion::Extrusion {
+//!         start: Event::new(-20.0, DVec3::new(-8.0, 0.0, 0.0)),
+//!         extrusion: FourVector::new(40.0, DVec3::new(20.0, 0.0, 0.0)),
+//!     },
+//!     material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
+//! };
+//! let scene = Scene {
+//!     objects: vec![cube],
+//!     light: Light {
+//!         position: DVec3::new(0.0, 10.0, 10.0),
+//!         color: DVec3::ONE,
+//!         ambient: 0.3,
+//!         spectrum: None,
+//!     },
+//!     background: DVec3::ZERO,
+//! };
+//! let model = Model::RELATIVISTIC;
+//! let db = Database::build(&scene, model.lorentz)?;
+//! let at = Event::new(0.0, DVec3::new(0.0, 0.0, 5.0));
+//! let look = Attitude::LookAt { look_at: DVec3::ZERO, up: DVec3::Y };
+//! let camera = Camera::new(at, look, 60.0, 16, 12).expect("a valid attitude");
+//! let image = render(&db, &scene, &camera, 0.0, model, &RenderSettings::default());
+//! let pixel = |x: u32, y: u32| image.pixels[(y * image.width + x) as usize];
+//! assert_ne!(pixel(8, 6), scene.background, "the cube is seen in the middle");
+//! assert_eq!(pixel(0, 0), scene.background, "and not in the corner");
+//! # Ok::<(), renderer::SceneError>(())
+//! ```
 
 mod accel;
 mod camera;
