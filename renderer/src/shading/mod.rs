@@ -5,6 +5,7 @@
 mod carried;
 mod doppler;
 mod frame;
+mod lit;
 mod mirror;
 mod shader;
 
