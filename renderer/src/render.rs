@@ -58,13 +58,14 @@ pub struct Image {
 }
 
 impl Image {
-    /// 8 bits per channel; values are stored linearly (no sRGB curve) so
-    /// that a pixel's value is proportional to the coverage of an edge.
-    pub fn to_rgb8(&self) -> image::RgbImage {
-        let mut out = image::RgbImage::new(self.width, self.height);
-        for (p, c) in out.pixels_mut().zip(&self.pixels) {
-            let q = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
-            *p = image::Rgb([q(c.x), q(c.y), q(c.z)]);
+    /// 8 bits per channel, three bytes (R, G, B) a pixel, row-major from
+    /// the top left; values are stored linearly (no sRGB curve) so that a
+    /// pixel's value is proportional to the coverage of an edge.
+    pub fn to_rgb8_bytes(&self) -> Vec<u8> {
+        let q = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+        let mut out = Vec::with_capacity(3 * self.pixels.len());
+        for c in &self.pixels {
+            out.extend([q(c.x), q(c.y), q(c.z)]);
         }
         out
     }

@@ -10,7 +10,6 @@ extern crate approx;
 /// Temporal extrusion, light-cone intersection, analytic spheres and
 /// keyframed motion: what the 4D database holds and what rays find in it.
 mod spacetime {
-    mod extrusion;
     mod keyframes;
     mod lightcone;
     mod packets;

@@ -234,7 +234,7 @@ fn render_frame(
         camera_t: t,
         ..*view
     };
-    let mut img = crate::run::render_with(db, f, &frame)?.to_rgb8();
+    let mut img = crate::output::rgb8(&crate::run::render_with(db, f, &frame)?);
     if label {
         let scale = crate::label::label_scale(img.width());
         crate::label::draw_label(&mut img, &format!("t = {}", time_label(t)), scale);

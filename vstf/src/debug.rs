@@ -63,12 +63,11 @@ pub fn trace_pixel(
         settings: &view.settings,
     };
     let color = renderer::pixel_traced(&shader, &frame, x, y, &mut rec);
-    let one = renderer::Image {
+    let one = crate::output::rgb8(&renderer::Image {
         width: 1,
         height: 1,
         pixels: vec![color],
-    }
-    .to_rgb8();
+    });
     Ok(PixelLog {
         fixture: f.name.clone(),
         model: view.model.to_string(),

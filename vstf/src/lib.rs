@@ -48,5 +48,5 @@ pub use error::Error;
 pub use fixture::{FieldError, Fixture, FixtureError, Overrides, View};
 pub use golden::{Comparison, Fuzzy, Store};
 pub use label::{draw_label, label_scale};
-pub use output::{write_atomic, write_png};
+pub use output::{rgb8, write_atomic, write_png};
 pub use project::Project;

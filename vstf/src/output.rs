@@ -196,6 +196,13 @@ pub fn write_png(path: &Path, img: &image::RgbImage) -> Result<(), Error> {
         .map_err(|e| Error::io(path, format!("cannot write {}: {e}", path.display())))
 }
 
+/// A rendered image as 8-bit RGB, the form PNGs are written and compared
+/// in (the renderer's own bytes, [`renderer::Image::to_rgb8_bytes`]).
+pub fn rgb8(image: &renderer::Image) -> image::RgbImage {
+    image::RgbImage::from_raw(image.width, image.height, image.to_rgb8_bytes())
+        .expect("an image has width * height pixels")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -204,7 +204,7 @@ impl Site {
 
     fn render(&self, fr: &Frame) -> Result<Vec<u8>, String> {
         let (entry, view) = self.prepare(fr)?;
-        let img = crate::run::render_with(&entry.1, &entry.0, &view)?.to_rgb8();
+        let img = crate::output::rgb8(&crate::run::render_with(&entry.1, &entry.0, &view)?);
         let mut png = Vec::new();
         img.write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png)
             .map_err(|e| e.to_string())?;

@@ -5,7 +5,8 @@ mod cie;
 mod spectrum;
 mod validate;
 
-pub use cie::{band_nm, chromaticity, cmf, to_rgb, xyz, xyz_to_rgb, BAND_LEN};
+pub(crate) use cie::to_rgb;
+pub use cie::{band_nm, chromaticity, cmf, xyz, xyz_to_rgb, BAND_LEN};
 pub use spectrum::Spectrum;
 pub use validate::{SpectrumError, SpectrumErrorKind, SpectrumField};
 

@@ -77,3 +77,81 @@ impl ObjectRecord {
         p.clock.to_rest(event - reference).x
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::database::Database;
+    use crate::scene::{Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject, Shape};
+    use crate::spacetime::{Event, FourVector};
+    use glam::DVec3;
+
+    /// A scene of the given objects under a light far above.
+    fn scene(objects: Vec<SceneObject>) -> Scene {
+        Scene {
+            objects,
+            light: Light {
+                position: DVec3::new(0.0, 100.0, 0.0),
+                color: DVec3::ONE,
+                ambient: 0.3,
+                spectrum: None,
+            },
+            background: DVec3::ZERO,
+        }
+    }
+
+    /// An object named `name` of the given kind, mesh and motion, matte
+    /// orange (0.8, 0.5, 0.2), neither an analytic sphere nor blinking.
+    fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> SceneObject {
+        SceneObject {
+            name: name.into(),
+            kind,
+            shape: Shape::Mesh(mesh),
+            motion,
+            material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
+        }
+    }
+
+    /// A point of a moving object is where it is in the object's own frame,
+    /// whatever the lab time: for a vertex at rest-frame offset p of a cube at
+    /// 0.6c, `local_point` of the vertex's lab event at any time is p, with and
+    /// without the Lorentz transform. (Position minus start position would
+    /// grow by v t: the negative control.)
+    #[test]
+    fn a_vertex_stays_at_its_offset_in_the_objects_frame() {
+        let v = DVec3::new(0.6, 0.0, 0.0);
+        let gamma = 1.0 / (1.0 - v.length_squared()).sqrt();
+        let start = Event::new(-10.0, DVec3::new(-4.0, 0.5, -3.0));
+        let motion = Motion::Extrusion {
+            start,
+            extrusion: FourVector::new(20.0, v * 20.0),
+        };
+        let mesh = Mesh::cuboid(DVec3::splat(-1.0), DVec3::new(1.0, 2.0, 1.5));
+        for (kind, lorentz) in [
+            (ObjectKind::HObj, true),
+            (ObjectKind::VObj, true),
+            (ObjectKind::VObj, false),
+        ] {
+            let contracted = kind == ObjectKind::VObj && lorentz;
+            let s = scene(vec![object("cube", kind, mesh.clone(), motion.clone())]);
+            let db = Database::build(&s, lorentz).unwrap();
+            let record = &db.objects()[0];
+            for &p in &mesh.vertices {
+                for t in [-8.0, 0.0, 7.5] {
+                    let lab = if contracted {
+                        DVec3::new(p.x / gamma, p.y, p.z)
+                    } else {
+                        p
+                    };
+                    let event = Event::new(t, start.x + v * (t - start.t) + lab);
+                    let local = record.local_point(event);
+                    assert!(
+                        (local - p).length() < 1e-12,
+                        "{kind:?} lorentz {lorentz}: vertex {p} at t = {t} shows as {local}"
+                    );
+                    let naive = event.x - start.x;
+                    assert!((naive - p).length() > 0.5, "the control does not move");
+                }
+            }
+        }
+    }
+}

@@ -4,7 +4,7 @@
 
 use super::Pose;
 use crate::scene::Mesh;
-use crate::spacetime::{Event, FourVector, Worldline};
+use crate::spacetime::Event;
 use glam::DVec3;
 use std::cmp::Ordering;
 
@@ -72,25 +72,6 @@ pub fn corner_order(corners: [DVec3; 3]) -> [usize; 3] {
     order
 }
 
-/// The prism `bottom[i] -> bottom[i] + extrusion` as three tetrahedra.
-/// With corners ordered a < b < c by [`corner_order`] (0 = start, 1 = end):
-/// (a0 b0 c0 c1), (a0 b0 b1 c1), (a0 a1 b1 c1).
-pub fn split_prism(
-    bottom: [Event; 3],
-    extrusion: FourVector,
-    order: [usize; 3],
-) -> [[Event; 4]; 3] {
-    split_between(bottom, bottom.map(|e| e + extrusion), order)
-}
-
-/// The prism with bottom corners `lo` and top corners `hi` (corner i moving
-/// straight from `lo[i]` to `hi[i]`) as three tetrahedra, cut as in
-/// [`split_prism`].
-pub fn split_between(lo: [Event; 3], hi: [Event; 3], order: [usize; 3]) -> [[Event; 4]; 3] {
-    let corners = corners_between(lo, hi, order);
-    [0, 1, 2].map(|k| piece(&corners, k))
-}
-
 /// A prism's six corners in its cut's order: the bottom corners a0, b0, c0
 /// (a < b < c by [`corner_order`]), then the top corners a1, b1, c1. The
 /// database keeps these, once per prism, and its tetrahedra are read off
@@ -110,34 +91,6 @@ pub fn corners_between(lo: [Event; 3], hi: [Event; 3], order: [usize; 3]) -> Pri
 /// Piece `k` (0..3) of the prism with `corners`, as a tetrahedron's corners.
 pub fn piece(corners: &PrismCorners, k: usize) -> [Event; 4] {
     PIECES[k].map(|i| corners[i])
-}
-
-/// Extrudes every triangle of `mesh` (lab-frame shape, relative to the
-/// worldline's reference point) along `worldline`, appending prisms and
-/// their corners. The caller has validated the mesh and the worldline.
-pub fn extrude(
-    mesh: &Mesh,
-    worldline: &Worldline,
-    object: u32,
-    prisms: &mut Vec<Prism>,
-    corners_out: &mut Vec<PrismCorners>,
-) {
-    for (t, _) in mesh.triangles.iter().enumerate() {
-        let corners = mesh.corners(t);
-        let normal = (corners[1] - corners[0])
-            .cross(corners[2] - corners[0])
-            .normalize();
-        prisms.push(Prism {
-            object,
-            triangle: t as u32,
-            normal,
-            end_normal: normal,
-            span: (worldline.start.t, worldline.end().t),
-        });
-        let bottom = corners.map(|p| Event::new(worldline.start.t, worldline.start.x + p));
-        let top = bottom.map(|e| e + worldline.extrusion);
-        corners_out.push(corners_between(bottom, top, corner_order(corners)));
-    }
 }
 
 /// Extrudes every triangle of `mesh` over one keyframe interval: each
@@ -169,14 +122,5 @@ pub fn extrude_between(
     }
 }
 
-/// Euclidean 3-volume of a tetrahedron embedded in 4D (sqrt of the Gram
-/// determinant of its edges, over 6). Used by tests of the tiling.
-pub fn tetrahedron_volume(v: &[Event; 4]) -> f64 {
-    let e = [v[1] - v[0], v[2] - v[0], v[3] - v[0]].map(|e| e.to_xyzt());
-    let g = glam::DMat3::from_cols_array_2d(&[
-        [e[0].dot(e[0]), e[0].dot(e[1]), e[0].dot(e[2])],
-        [e[1].dot(e[0]), e[1].dot(e[1]), e[1].dot(e[2])],
-        [e[2].dot(e[0]), e[2].dot(e[1]), e[2].dot(e[2])],
-    ]);
-    g.determinant().max(0.0).sqrt() / 6.0
-}
+#[cfg(test)]
+mod tests;

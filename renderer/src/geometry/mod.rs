@@ -12,14 +12,14 @@ mod sphere;
 mod tetrahedron;
 mod triangle;
 
-pub use extrude::{
-    corner_order, corners_between, extrude, extrude_between, piece, split_between, split_prism,
-    tetrahedron_volume, Prism, PrismCorners, Tetrahedron,
+pub use extrude::Tetrahedron;
+pub(crate) use extrude::{
+    corner_order, corners_between, extrude_between, piece, Prism, PrismCorners,
 };
 pub(crate) use filter::{reach, CornerRows, FilterRay, LANES};
-pub use hit::{nearer, Barycentric, Hit, Miss, PrimitiveId};
-pub(crate) use poses::resolve;
-pub use poses::Pose;
+pub(crate) use hit::{nearer, Miss};
+pub use hit::{Barycentric, Hit, PrimitiveId};
+pub(crate) use poses::{resolve, Pose};
 pub(crate) use sphere::Sphere;
 pub(crate) use tetrahedron::PreparedTet;
 pub(crate) use triangle::{comoving_line, intersect_prism, ComovingRay};

@@ -2,7 +2,8 @@
 //! the Doppler shift.
 
 use super::doppler::Effects;
-use super::shader::{sample, scaled, Band, Lit, Shader};
+use super::lit::Lit;
+use super::shader::{sample, scaled, Band, Shader};
 use crate::color::{self, Spectrum, BAND_LEN};
 use crate::scene::Material;
 use crate::trace::{Step, Trace};

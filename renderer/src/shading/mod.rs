@@ -5,8 +5,9 @@
 mod carried;
 mod doppler;
 mod frame;
+mod lit;
 mod mirror;
 mod shader;
 
-pub use doppler::{Effects, Leg};
-pub use shader::{Band, Shader};
+pub use doppler::Effects;
+pub use shader::Shader;

@@ -7,7 +7,8 @@ mod event;
 mod ray;
 
 pub use boost::Boost;
-pub use event::{Event, FourVector, Worldline};
+pub(crate) use event::Worldline;
+pub use event::{Event, FourVector};
 pub use ray::{LightSpeed, Ray};
 
 use glam::DVec3;

@@ -419,9 +419,8 @@ fn named_kinds_views_reproduce_their_goldens() {
                 continue;
             }
             let (fixture, view) = vstf::check::golden_view(&f, &v.name).unwrap();
-            let img = vstf::run::render(&fixture, &view, renderer::Traversal::Bvh)
-                .unwrap()
-                .to_rgb8();
+            let img =
+                vstf::rgb8(&vstf::run::render(&fixture, &view, renderer::Traversal::Bvh).unwrap());
             let golden = image::open(store.golden_path(&name, &v.name))
                 .unwrap()
                 .to_rgb8();

@@ -38,7 +38,7 @@ fn a_static_scene_renders_the_same_in_all_three_models() {
             vstf::run::render(&f, &view, Traversal::Bvh).unwrap()
         })
         .collect();
-    let rgb: Vec<_> = images.iter().map(Image::to_rgb8).collect();
+    let rgb: Vec<_> = images.iter().map(vstf::rgb8).collect();
     assert_eq!(
         rgb[0], rgb[1],
         "infinite and classical differ on a static scene"
@@ -64,9 +64,7 @@ fn a_moving_scene_differs_between_models() {
     let f = workspace_tests::fixture("flange");
     let render = |m| {
         let view = vstf::run::view(&f, &small(Some(m))).unwrap();
-        vstf::run::render(&f, &view, Traversal::Bvh)
-            .unwrap()
-            .to_rgb8()
+        vstf::rgb8(&vstf::run::render(&f, &view, Traversal::Bvh).unwrap())
     };
     assert_ne!(render(Model::INFINITE), render(Model::CLASSICAL));
 }

@@ -80,7 +80,7 @@ pub fn measure(path: &Path, frames: usize) -> Result<Measured, String> {
     };
     for k in 0..frames.max(1) {
         let c = cpu_seconds();
-        let img = crate::run::render_with(&db, &f, &view)?.to_rgb8();
+        let img = crate::output::rgb8(&crate::run::render_with(&db, &f, &view)?);
         m.frame_cpu = m.frame_cpu.min(cpu_seconds() - c);
         if k == 0 {
             m.first_frame = start.elapsed().as_secs_f64();

@@ -93,7 +93,7 @@ impl Observer<'_> {
         marks: &[(DVec3, String)],
     ) -> Result<ViewReport, String> {
         let view = self.report_view(VIEW_WIDTH)?;
-        let image = crate::run::render(self.fixture, &view, Traversal::Bvh)?.to_rgb8();
+        let image = crate::output::rgb8(&crate::run::render(self.fixture, &view, Traversal::Bvh)?);
         let pinhole = self.pinhole(self.size(VIEW_WIDTH))?;
         let (markers, rows) = marks
             .iter()
@@ -146,7 +146,7 @@ impl Observer<'_> {
         )
         .and_then(|p| p.moving(velocity, self.kinematics()))
         .ok_or("degenerate probe camera")?;
-        Ok((img.to_rgb8(), pinhole))
+        Ok((crate::output::rgb8(&img), pinhole))
     }
 
     /// Renders only the objects `keep` through the fixture's own camera
@@ -184,7 +184,7 @@ impl Observer<'_> {
             },
         )?;
         let img = crate::run::render(&probe, &view, Traversal::Bvh)?;
-        Ok((img.to_rgb8(), self.pinhole((width, height))?))
+        Ok((crate::output::rgb8(&img), self.pinhole((width, height))?))
     }
 
     /// Aims a probe at the kept objects: a coarse wide render finds their

@@ -32,7 +32,7 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), Error> {
     let started = Instant::now();
     let (fixture, view, db) = prepare(root, &fixture, &view, brute_force, true)?;
     let image = vstf::run::render_with(&db, &fixture, &view)?;
-    vstf::write_png(&out, &image.to_rgb8())?;
+    vstf::write_png(&out, &vstf::rgb8(&image))?;
     for warning in vstf::out_of_view(&fixture, &view) {
         eprintln!("warning: {warning}");
     }
@@ -84,7 +84,7 @@ fn all_models(
             ..args.clone()
         };
         let (fixture, view, db) = prepare(root, name, &one, brute_force, true)?;
-        let mut img = vstf::run::render_with(&db, &fixture, &view)?.to_rgb8();
+        let mut img = vstf::rgb8(&vstf::run::render_with(&db, &fixture, &view)?);
         let label = format!(
             "{}, t = {}",
             view.model,

@@ -1,0 +1,363 @@
+//! The shared builder of both hierarchies: binary, over items given by
+//! their 4D bounds.
+//!
+//! Splits are chosen by the surface area heuristic over binned centroids
+//! on x, y, z and t, with the 4D boundary measure of a box as its area: the
+//! time slices of moving objects are told apart by t, while for static
+//! objects (which all live for the whole scene) a split along t gains
+//! nothing and is not chosen.
+
+use super::{rounding_margin, Bounds4, Built, Child, PairNode};
+use glam::DVec4;
+
+const LEAF_SIZE: usize = 4;
+/// Deeper subtrees become leaves (a bound on the recursion of the build).
+const MAX_DEPTH: usize = 48;
+
+/// Half the boundary 3-volume of a 4D box (x, y, z, t; c = 1): by Cauchy's
+/// formula, proportional to the chance that a random line meets it, the
+/// surface area heuristic's measure in 4D. A short-lived box is less likely
+/// to be met than a long-lived one of the same size.
+fn area(min: DVec4, max: DVec4) -> f64 {
+    let d = (max - min).max(DVec4::ZERO);
+    d.x * d.y * d.z + d.w * (d.x * d.y + d.y * d.z + d.z * d.x)
+}
+
+/// An item while the hierarchy is built: its bounds beside its index, so
+/// that every pass over a node's items reads them in order.
+#[derive(Clone, Copy, Debug)]
+struct Item {
+    bounds: Bounds4,
+    index: u32,
+}
+
+/// The box of a set of items and the box of their centroids.
+#[derive(Clone, Copy, Debug)]
+struct Extent {
+    min: DVec4,
+    max: DVec4,
+    cmin: DVec4,
+    cmax: DVec4,
+}
+
+impl Extent {
+    const EMPTY: Extent = Extent {
+        min: DVec4::INFINITY,
+        max: DVec4::NEG_INFINITY,
+        cmin: DVec4::INFINITY,
+        cmax: DVec4::NEG_INFINITY,
+    };
+
+    #[inline]
+    fn add(&mut self, b: &Bounds4) {
+        self.min = self.min.min(b.min);
+        self.max = self.max.max(b.max);
+        let c = b.centroid();
+        self.cmin = self.cmin.min(c);
+        self.cmax = self.cmax.max(c);
+    }
+
+    fn of(items: &[Item]) -> Extent {
+        let mut e = Extent::EMPTY;
+        items.iter().for_each(|i| e.add(&i.bounds));
+        e
+    }
+}
+
+/// Subtrees of at least this many items are built on both threads.
+const PARALLEL_ITEMS: usize = 16_384;
+
+/// Centroid bins per axis of the surface area heuristic.
+const BINS: usize = 16;
+
+/// The bin of a place `x` along an axis (in bins from the lowest
+/// centroid): `(x as usize).min(BINS - 1)` for every x, NaN and the
+/// infinities included, through i64, whose saturating conversion takes
+/// fewer instructions than usize's.
+#[inline(always)]
+fn bin_at(x: f64) -> usize {
+    (x as i64).clamp(0, BINS as i64 - 1) as usize
+}
+
+/// Chooses a split of `items` (of extent `ext`) by the surface area
+/// heuristic over binned centroids on x, y, z and t, one pass binning every
+/// axis; moves the left part first and returns its length and both parts'
+/// extents; `None` when no split beats a leaf. Deterministic: the same
+/// items in the same order give the same split and order.
+fn sah_split(items: &mut [Item], ext: &Extent) -> Option<(usize, Extent, Extent)> {
+    let (min, max, cmin, extent) = (ext.min, ext.max, ext.cmin, ext.cmax - ext.cmin);
+    let scale = DVec4::select(extent.cmpgt(DVec4::ZERO), BINS as f64 / extent, DVec4::ZERO);
+    // A centroid's place in the bins of every axis (an array: glam's own
+    // index is a branch on the axis).
+    let place = |c: DVec4| ((c - cmin) * scale).to_array();
+    let axes: Vec<usize> = (0..4).filter(|&a| extent[a] > 0.0).collect();
+    let mut count = [[0usize; BINS]; 4];
+    let mut bmin = [[DVec4::splat(f64::INFINITY); BINS]; 4];
+    let mut bmax = [[DVec4::splat(f64::NEG_INFINITY); BINS]; 4];
+    for item in items.iter() {
+        let c = place(item.bounds.centroid());
+        for &axis in &axes {
+            let b = bin_at(c[axis]);
+            count[axis][b] += 1;
+            bmin[axis][b] = bmin[axis][b].min(item.bounds.min);
+            bmax[axis][b] = bmax[axis][b].max(item.bounds.max);
+        }
+    }
+    let parent = area(min, max).max(1e-300);
+    let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins on the left)
+    for &axis in &axes {
+        let (count, bmin, bmax) = (&count[axis], &bmin[axis], &bmax[axis]);
+        // Sweep from the right to know each right part's box.
+        let mut right_area = [0.0; BINS];
+        let mut rcount = [0usize; BINS];
+        let (mut rmin, mut rmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
+        let mut n = 0;
+        for b in (1..BINS).rev() {
+            rmin = rmin.min(bmin[b]);
+            rmax = rmax.max(bmax[b]);
+            n += count[b];
+            right_area[b] = area(rmin, rmax);
+            rcount[b] = n;
+        }
+        let (mut lmin, mut lmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
+        let mut lcount = 0;
+        for split in 1..BINS {
+            lmin = lmin.min(bmin[split - 1]);
+            lmax = lmax.max(bmax[split - 1]);
+            lcount += count[split - 1];
+            if lcount == 0 || rcount[split] == 0 {
+                continue;
+            }
+            let cost = 1.0
+                + (area(lmin, lmax) * lcount as f64 + right_area[split] * rcount[split] as f64)
+                    / parent;
+            if best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, axis, split));
+            }
+        }
+    }
+    let (cost, axis, split) = best?;
+    if cost >= items.len() as f64 {
+        return None;
+    }
+    let mut mid = 0;
+    let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
+    for i in 0..items.len() {
+        let b = items[i].bounds;
+        if bin_at(place(b.centroid())[axis]) < split {
+            left.add(&b);
+            items.swap(i, mid);
+            mid += 1;
+        } else {
+            right.add(&b);
+        }
+    }
+    Some((mid, left, right))
+}
+
+/// Pads a box so that hits accepted with barycentric slack are never culled.
+pub(super) fn pad(min: DVec4, max: DVec4) -> (DVec4, DVec4) {
+    let e = rounding_margin(min, max) + DVec4::splat(1e-300);
+    (min - e, max + e)
+}
+
+/// Builds the subtree over `items` (at `first` in the item order), its
+/// inner nodes appended to `nodes` children first; returns it as a child,
+/// with its padded box. Large subtrees build their two halves on both
+/// threads, the second into nodes of its own appended after the first's:
+/// the same nodes in the same order as a build on one thread.
+fn build_into<N: PairNode>(
+    nodes: &mut Vec<N>,
+    items: &mut [Item],
+    ext: Extent,
+    (first, depth): (usize, usize),
+) -> (Child, Bounds4) {
+    let (pmin, pmax) = pad(ext.min, ext.max);
+    let padded = Bounds4::new(pmin, pmax);
+    let split = if items.len() <= LEAF_SIZE || depth >= MAX_DEPTH {
+        None
+    } else {
+        sah_split(items, &ext)
+    };
+    let Some((mid, lext, rext)) = split else {
+        let leaf = Child {
+            index: first as u32,
+            count: items.len() as u32,
+        };
+        return (leaf, padded);
+    };
+    let parallel = items.len() >= PARALLEL_ITEMS;
+    let (left, right) = items.split_at_mut(mid);
+    let (at_left, at_right) = ((first, depth + 1), (first + mid, depth + 1));
+    let (l, r) = if parallel {
+        let (l, (r, own)) = rayon::join(
+            || build_into(nodes, left, lext, at_left),
+            || {
+                let mut own = Vec::new();
+                let r = build_into(&mut own, right, rext, at_right);
+                (r, own)
+            },
+        );
+        (l, append(nodes, own, r))
+    } else {
+        let l = build_into(nodes, left, lext, at_left);
+        (l, build_into(nodes, right, rext, at_right))
+    };
+    nodes.push(N::pair([l.1, r.1], [l.0, r.0]));
+    let inner = Child {
+        index: (nodes.len() - 1) as u32,
+        count: 0,
+    };
+    (inner, padded)
+}
+
+/// Appends a subtree built into nodes of its own, renumbering its inner
+/// nodes by where they land; returns its root renumbered alike.
+fn append<N: PairNode>(
+    nodes: &mut Vec<N>,
+    subtree: Vec<N>,
+    root: (Child, Bounds4),
+) -> (Child, Bounds4) {
+    let base = nodes.len() as u32;
+    let moved = |c: &mut Child| {
+        if c.count == 0 {
+            c.index += base;
+        }
+    };
+    nodes.reserve_exact(subtree.len());
+    for mut n in subtree {
+        n.children_mut().iter_mut().for_each(moved);
+        nodes.push(n);
+    }
+    let (mut child, bounds) = root;
+    moved(&mut child);
+    (child, bounds)
+}
+
+/// Builds a hierarchy over items given by their 4D bounds, in order: item i
+/// is the i-th bounds.
+pub(in crate::accel) fn build<N: PairNode>(bounds: impl Iterator<Item = Bounds4>) -> Built<N> {
+    let mut items: Vec<Item> = bounds
+        .enumerate()
+        .map(|(i, bounds)| Item {
+            bounds,
+            index: i as u32,
+        })
+        .collect();
+    let mut nodes = Vec::new();
+    let (root, root_bounds) = if items.is_empty() {
+        let none = DVec4::splat(f64::INFINITY);
+        (Child { index: 0, count: 0 }, Bounds4::new(none, -none))
+    } else {
+        let ext = Extent::of(&items);
+        build_into(&mut nodes, &mut items, ext, (0, 0))
+    };
+    Built {
+        nodes,
+        root,
+        root_bounds,
+        order: items.iter().map(|i| i.index).collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::Bvh;
+    use super::*;
+    use crate::rng::SplitMix64;
+
+    /// The bin through i64 is the bin through usize, at every kind of
+    /// value: in range, at the edges, negative, huge, infinite, NaN.
+    #[test]
+    fn bins_are_those_of_the_usize_conversion() {
+        let mut rng = SplitMix64::new(9);
+        let special = [
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            -0.0,
+            0.0,
+            -1e-300,
+            5e-324,
+            -0.5,
+            15.0,
+            15.999999999999998,
+            16.0,
+            9.3e18,
+            -9.3e18,
+            1e300,
+        ];
+        let random = (0..10_000).map(|_| (rng.next_f64() - 0.1) * 20.0);
+        for x in special.into_iter().chain(random) {
+            assert_eq!(bin_at(x), (x as usize).min(BINS - 1), "{x}");
+        }
+    }
+
+    fn random_boxes(n: usize, seed: u64) -> Vec<Bounds4> {
+        let mut rng = SplitMix64::new(seed);
+        (0..n)
+            .map(|_| {
+                let c = DVec4::new(
+                    rng.next_f64(),
+                    rng.next_f64(),
+                    rng.next_f64(),
+                    rng.next_f64(),
+                );
+                let size = DVec4::splat(0.01 * rng.next_f64());
+                Bounds4::new(c * 100.0, c * 100.0 + size)
+            })
+            .collect()
+    }
+
+    fn built_on(threads: usize, boxes: &[Bounds4]) -> Bvh {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| Bvh::build(boxes.iter().copied()))
+    }
+
+    /// A build large enough to split on both threads gives the tree a build
+    /// on one thread gives, node for node; the control, one box moved,
+    /// gives another.
+    #[test]
+    fn the_tree_does_not_depend_on_the_thread_count() {
+        let boxes = random_boxes(4 * PARALLEL_ITEMS, 9);
+        let (one, two) = (built_on(1, &boxes), built_on(2, &boxes));
+        assert!(one.0.nodes.len() > 1000);
+        assert_eq!(one.0.nodes, two.0.nodes);
+        assert_eq!((one.0.root, one.0.order.clone()), (two.0.root, two.0.order));
+        let mut moved = boxes.clone();
+        moved[7].min.x += 50.0;
+        moved[7].max.x += 50.0;
+        assert_ne!(built_on(2, &moved).0.nodes, one.0.nodes);
+    }
+
+    /// Every item sits in exactly one leaf, inside every box on its path.
+    #[test]
+    fn every_item_is_in_one_leaf_inside_its_boxes() {
+        let boxes = random_boxes(3 * PARALLEL_ITEMS, 10);
+        let bvh = built_on(2, &boxes);
+        let mut seen = vec![0u32; boxes.len()];
+        let inside =
+            |b: &Bounds4, min: DVec4, max: DVec4| b.min.cmpge(min).all() && b.max.cmple(max).all();
+        let mut stack = vec![(bvh.0.root, bvh.0.root_bounds)];
+        while let Some((child, bounds)) = stack.pop() {
+            if child.count > 0 {
+                let start = child.index as usize;
+                for &i in &bvh.0.order[start..start + child.count as usize] {
+                    assert!(inside(&boxes[i as usize], bounds.min, bounds.max));
+                    seen[i as usize] += 1;
+                }
+                continue;
+            }
+            let node = &bvh.0.nodes[child.index as usize];
+            for c in 0..2 {
+                let b = Bounds4::new(node.min[c], node.max[c]);
+                assert!(inside(&b, bounds.min, bounds.max));
+                stack.push((node.children[c], b));
+            }
+        }
+        assert!(seen.iter().all(|&n| n == 1));
+    }
+}

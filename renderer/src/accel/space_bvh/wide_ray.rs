@@ -1,0 +1,191 @@
+//! The eight-lane f32 slab test of a ray against a node's boxes, made
+//! conservative.
+
+use super::{down, up, WideNode, WIDTH};
+use glam::DVec3;
+use wide::{f32x8, CmpLe};
+
+/// Relative margin of the f32 slab parameters: each is (face - origin) *
+/// (1/d) with three roundings to nearest of at most 2^-24 each (the
+/// subtraction, 1/d to f32, the product), and the margin itself is applied
+/// to 1/d with one more; 2^-20 covers them with room to spare.
+const MARGIN: f32 = 1.0 / (1u32 << 20) as f32;
+/// Absolute margin, for parameters in f32's subnormal range (where the
+/// roundings are absolute, at most 2^-150 each).
+const TINY: f32 = f32::MIN_POSITIVE;
+
+/// A ray prepared for the eight-lane f32 slab test.
+///
+/// The test is conservative, so that a box the ray enters is never culled:
+/// - each face is met from an origin rounded to f32 toward the side that
+///   moves the crossing outward (for a near face, so that it is crossed no
+///   later; for a far face, no sooner): per axis, one origin for the near
+///   faces and one for the far;
+/// - the crossings are found with 1/d made smaller in magnitude by
+///   [`MARGIN`] for the near faces and larger for the far ones, which
+///   covers the rounding of the subtraction, of 1/d and of the product:
+///   a crossing at a positive parameter (the only kind that can decide,
+///   the searched range starting at zero or later) is so found no later
+///   at a near face and no sooner at a far one; the entry and exit are
+///   then moved out by [`TINY`], for parameters in f32's subnormal range;
+/// - a NaN (0 * inf: an axis the ray is parallel to, its origin exactly on
+///   a face) is dropped, as in f64.
+///
+/// Parameters beyond f32's range become infinite, and a direction component
+/// below 2^-128 makes 1/d infinite: the ray is then treated as parallel to
+/// that axis, which can cull a box only when, on that axis, the box's face
+/// lies within 2^-128 times the longest searched ray parameter of the
+/// origin.
+pub(super) struct WideRay {
+    /// Per axis: the origin for the near faces and for the far faces, and
+    /// 1/d for each, moved by [`MARGIN`] toward zero (near) and away from
+    /// it (far).
+    near_o: [f32x8; 3],
+    far_o: [f32x8; 3],
+    near_inv: [f32x8; 3],
+    far_inv: [f32x8; 3],
+    /// Per axis, the index into a node's faces of the near face and of the
+    /// far one (lower then upper when the direction is positive).
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+impl WideRay {
+    #[inline(always)]
+    pub(super) fn new(o: DVec3, inv: DVec3) -> WideRay {
+        let mut ray = WideRay {
+            near_o: [f32x8::ZERO; 3],
+            far_o: [f32x8::ZERO; 3],
+            near_inv: [f32x8::ZERO; 3],
+            far_inv: [f32x8::ZERO; 3],
+            near: [0, 1, 2],
+            far: [3, 4, 5],
+        };
+        for a in 0..3 {
+            let (lower, upper) = (f32x8::splat(down(o[a])), f32x8::splat(up(o[a])));
+            let inv32 = inv[a] as f32;
+            ray.near_inv[a] = f32x8::splat(inv32 * (1.0 - MARGIN));
+            ray.far_inv[a] = f32x8::splat(inv32 * (1.0 + MARGIN));
+            // 1/(-0) = -inf: a direction of -0 is negative here.
+            if inv[a].is_sign_negative() {
+                (ray.near_o[a], ray.far_o[a]) = (lower, upper);
+                (ray.near[a], ray.far[a]) = (a + 3, a);
+            } else {
+                (ray.near_o[a], ray.far_o[a]) = (upper, lower);
+            }
+        }
+        ray
+    }
+
+    /// Where the ray enters each of a node's eight boxes within `range`
+    /// (in f32, rounded outward), and which it enters (bit i for child i).
+    #[inline(always)]
+    pub(super) fn enter(&self, node: &WideNode, range: (f32, f32)) -> ([f32; WIDTH], u32) {
+        let (entry, entered) = self.enter_lanes(node, range);
+        (entry.to_array(), entered.move_mask() as u32)
+    }
+
+    /// [`WideRay::enter`] with the entries kept in lanes, and a lane of all
+    /// ones for each box entered.
+    #[inline(always)]
+    pub(super) fn enter_lanes(&self, node: &WideNode, range: (f32, f32)) -> (f32x8, f32x8) {
+        let mut entry = f32x8::splat(range.0);
+        let mut exit = f32x8::splat(range.1);
+        for a in 0..3 {
+            let near = (node.faces[self.near[a]] - self.near_o[a]) * self.near_inv[a];
+            let far = (node.faces[self.far[a]] - self.far_o[a]) * self.far_inv[a];
+            entry = max_dropping_nan(entry, near);
+            exit = min_dropping_nan(exit, far);
+        }
+        let tiny = f32x8::splat(TINY);
+        let (entry, exit) = (entry - tiny, exit + tiny);
+        (entry, entry.cmp_le(exit))
+    }
+}
+
+/// Lanewise max(acc, t), a NaN lane of `t` dropped (`acc` is never NaN).
+#[inline(always)]
+fn max_dropping_nan(acc: f32x8, t: f32x8) -> f32x8 {
+    // SSE's maxps returns its second operand when either is NaN.
+    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+    let m = t.fast_max(acc);
+    #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+    let m = acc.max(t);
+    m
+}
+
+/// Lanewise min(acc, t), a NaN lane of `t` dropped (`acc` is never NaN).
+#[inline(always)]
+fn min_dropping_nan(acc: f32x8, t: f32x8) -> f32x8 {
+    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+    let m = t.fast_min(acc);
+    #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+    let m = acc.min(t);
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_support::{aimed_ray, f64_entry, random_box};
+    use super::super::NO_CHILD;
+    use super::*;
+    use crate::rng::SplitMix64;
+
+    /// The same slab test in f32 without care: origin and 1/d rounded to
+    /// nearest, no margin (the negative control).
+    fn naive_enters(b: &[f64; 6], o: DVec3, d: DVec3, range: (f64, f64)) -> bool {
+        let (mut lo, mut hi) = (range.0 as f32, range.1 as f32);
+        for a in 0..3 {
+            let inv = (1.0 / d[a]) as f32;
+            let (t0, t1) = (
+                (b[a] as f32 - o[a] as f32) * inv,
+                (b[a + 3] as f32 - o[a] as f32) * inv,
+            );
+            lo = lo.max(t0.min(t1));
+            hi = hi.min(t0.max(t1));
+        }
+        lo <= hi
+    }
+
+    /// Rays aimed at the corners, edges and faces of boxes at scales from
+    /// 0.05 to 1e5, parallel to an axis or not: the eight-lane f32 test
+    /// enters every box the f64 test enters, no later; the naive f32 test
+    /// (the negative control) culls some.
+    #[test]
+    fn the_f32_slab_test_never_culls_a_box_the_ray_enters() {
+        let mut rng = SplitMix64::new(21);
+        let (mut entered, mut naive_culled) = (0, 0);
+        for n in 0..200_000 {
+            let scale = [0.05, 1.0, 300.0, 1e5][n % 4];
+            let boxes: [[f64; 6]; WIDTH] = [0; WIDTH].map(|_| random_box(&mut rng, scale));
+            let lane = n % WIDTH;
+            let (o, d) = aimed_ray(&mut rng, &boxes[lane], scale);
+            let inv = DVec3::ONE / d;
+            let range = match n % 3 {
+                0 => (0.0, f64::INFINITY),
+                1 => (0.25 * scale, 1e3 * scale),
+                _ => (0.0, (boxes[lane][0] - o.x).abs() + scale),
+            };
+            let node = WideNode {
+                faces: [0, 1, 2, 3, 4, 5].map(|f| f32x8::from(boxes.map(|b| b[f] as f32))),
+                children: [NO_CHILD; WIDTH],
+            };
+            let (entries, mask) = WideRay::new(o, inv).enter(&node, (down(range.0), up(range.1)));
+            for (k, b) in boxes.iter().enumerate() {
+                let Some(exact) = f64_entry(b, o, inv, range) else {
+                    continue;
+                };
+                entered += 1;
+                assert!(
+                    mask & (1 << k) != 0 && f64::from(entries[k]) <= exact,
+                    "culled: box {b:?}, ray {o} + s {d}, range {range:?}"
+                );
+                if k == lane && !naive_enters(b, o, d, range) {
+                    naive_culled += 1;
+                }
+            }
+        }
+        assert!(entered > 100_000, "{entered}");
+        assert!(naive_culled > 100, "the control culled only {naive_culled}");
+    }
+}
