@@ -1,0 +1,234 @@
+//! Presenting check results: the table on the terminal, the JSON rows, and
+//! the static HTML report with images and expected-point markers.
+
+mod html;
+mod markers;
+mod numbers;
+
+pub use html::html;
+pub use markers::with_markers;
+use numbers::num;
+
+use crate::check::Row;
+use std::fmt::Write as _;
+
+/// The measurement table, one line per row.
+pub fn table(rows: &[Row]) -> String {
+    let headers = [
+        "fixture",
+        "quantity",
+        "measured",
+        "expected",
+        "paper",
+        "tolerance",
+        "unit",
+        "result",
+    ];
+    let cells: Vec<[String; 8]> = rows
+        .iter()
+        .map(|r| {
+            [
+                r.fixture.clone(),
+                r.quantity.clone(),
+                num(r.measured),
+                num(r.expected),
+                r.paper.map_or("-".into(), |p| {
+                    if r.paper_disagrees() {
+                        format!("{}*", num(p))
+                    } else {
+                        num(p)
+                    }
+                }),
+                format!("±{}", num(r.tolerance)),
+                r.unit.to_string(),
+                if r.pass { "pass".into() } else { "FAIL".into() },
+            ]
+        })
+        .collect();
+    let mut width: Vec<usize> = headers.iter().map(|h| h.len()).collect();
+    for c in &cells {
+        for (i, s) in c.iter().enumerate() {
+            width[i] = width[i].max(s.chars().count());
+        }
+    }
+    let mut out = String::new();
+    let line = |out: &mut String, c: &[String]| {
+        let parts: Vec<String> = c
+            .iter()
+            .enumerate()
+            .map(|(i, s)| format!("{s:w$}", w = width[i]))
+            .collect();
+        let _ = writeln!(out, "{}", parts.join("  ").trim_end());
+    };
+    line(&mut out, &headers.map(String::from));
+    for c in &cells {
+        line(&mut out, c);
+    }
+    let (pass, fail) = (
+        rows.iter().filter(|r| r.pass).count(),
+        rows.iter().filter(|r| !r.pass).count(),
+    );
+    if rows.iter().any(Row::paper_disagrees) {
+        let _ = writeln!(out, "* the paper's figure differs from first principles by more than the tolerance: see docs/physics.md");
+    }
+    let _ = writeln!(out, "check: {pass} passed, {fail} failed");
+    out
+}
+
+/// The widest line of [`summary_table`].
+pub const SUMMARY_WIDTH: usize = 100;
+
+/// The measurement table in at most [`SUMMARY_WIDTH`] columns: a line per
+/// fixture, then its rows indented (quantity, measured, expected,
+/// tolerance with unit, result), long quantity names shortened with an
+/// ellipsis. The full table ([`table`], with the paper's figures) is what
+/// `vstf check --verbose`, the JSON and the report give.
+pub fn summary_table(rows: &[Row]) -> String {
+    const NUMBER: usize = 10;
+    const UNIT: usize = 14;
+    let quantity =
+        SUMMARY_WIDTH - (2 + 2 + NUMBER + 2 + NUMBER + 2 + (NUMBER + 1) + 1 + UNIT + 1 + 4);
+    let mut out = String::new();
+    let mut fixture = None;
+    for r in rows {
+        if fixture != Some(&r.fixture) {
+            let _ = writeln!(out, "{}", r.fixture);
+            fixture = Some(&r.fixture);
+        }
+        let name = shortened(&r.quantity, quantity);
+        let tolerance = format!("±{}", short_num(r.tolerance));
+        let line = format!(
+            "  {name:quantity$}  {:>NUMBER$}  {:>NUMBER$}  {tolerance:>w$} {:UNIT$} {}",
+            short_num(r.measured),
+            short_num(r.expected),
+            r.unit.to_string(),
+            if r.pass { "pass" } else { "FAIL" },
+            w = NUMBER + 1
+        );
+        let _ = writeln!(out, "{}", line.trim_end());
+    }
+    let (pass, fail) = (
+        rows.iter().filter(|r| r.pass).count(),
+        rows.iter().filter(|r| !r.pass).count(),
+    );
+    let _ = writeln!(out, "check: {pass} passed, {fail} failed");
+    out
+}
+
+/// A number in at most 10 characters: 7 significant digits in [1e-3, 1e5),
+/// else 4 in exponent form.
+fn short_num(x: f64) -> String {
+    let a = x.abs();
+    if !x.is_finite() || (a != 0.0 && !(1e-3..1e5).contains(&a)) {
+        return format!("{x:.3e}");
+    }
+    let digits = if a == 0.0 {
+        0
+    } else {
+        a.log10().floor() as i32
+    };
+    let decimals = (6 - digits).clamp(0, 6) as usize;
+    format!("{x:.decimals$}")
+}
+
+/// `s` in at most `width` characters, cut with an ellipsis.
+fn shortened(s: &str, width: usize) -> String {
+    if s.chars().count() <= width {
+        return s.to_string();
+    }
+    let kept: String = s.chars().take(width.saturating_sub(1)).collect();
+    format!("{kept}…")
+}
+
+/// The rows as a JSON array of objects with keys fixture, quantity,
+/// measured, expected, paper, tolerance, unit, pass.
+pub fn json(rows: &[Row]) -> String {
+    serde_json::to_string_pretty(rows).expect("rows serialise")
+}
+
+/// What `vstf check --json` writes: `{"rows": [...], "goldens": [...]}`,
+/// the rows as [`json`] gives them and one object per golden image
+/// (fixture, view, pass, missing, max_diff, differing, allowed_max_diff,
+/// allowed_max_pixels, worst_pixel, size, pending).
+pub fn check_json(rows: &[Row], goldens: &[&crate::golden::Comparison]) -> String {
+    let goldens: Vec<serde_json::Value> = goldens
+        .iter()
+        .map(|g| {
+            serde_json::json!({
+                "fixture": g.fixture,
+                "view": g.view,
+                "pass": g.pass,
+                "missing": g.missing,
+                "max_diff": g.max_diff,
+                "differing": g.differing,
+                "allowed_max_diff": g.allowed.max_diff,
+                "allowed_max_pixels": g.allowed.max_pixels,
+                "worst_pixel": g.worst_at.map(|(x, y)| [x, y]),
+                "size": [g.size.0, g.size.1],
+                "pending": g.pending.as_ref().map(|p| p.display().to_string()),
+            })
+        })
+        .collect();
+    let value = serde_json::json!({ "rows": rows, "goldens": goldens });
+    serde_json::to_string_pretty(&value).expect("rows serialise")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::Unit;
+
+    /// A marker on a light pixel is drawn black, on a dark one white, each
+    /// outlined in the other, and numbered beside it.
+    #[test]
+    fn markers_contrast_with_what_is_under_them() {
+        let mut img = image::RgbImage::from_pixel(60, 30, image::Rgb([250, 240, 20]));
+        for y in 0..30 {
+            for x in 30..60 {
+                img.put_pixel(x, y, image::Rgb([10, 10, 40]));
+            }
+        }
+        let marked = with_markers(&img, &[(10.5, 10.5), (45.5, 10.5)]);
+        assert_eq!(marked.get_pixel(12, 10).0, [0, 0, 0], "on yellow: black");
+        assert_eq!(
+            marked.get_pixel(12, 11).0,
+            [255, 255, 255],
+            "its outline: white"
+        );
+        assert_eq!(
+            marked.get_pixel(47, 10).0,
+            [255, 255, 255],
+            "on dark blue: white"
+        );
+        let numbered =
+            (15..25).any(|x| (15..25).any(|y| marked.get_pixel(x, y).0 == [255, 255, 255]));
+        assert!(numbered, "no number beside the first marker");
+    }
+
+    /// Long names, negative and tiny numbers and the widest unit still fit
+    /// in 100 columns; the full table keeps the name whole (the control).
+    #[test]
+    fn the_summary_fits_in_a_hundred_columns() {
+        let name = "emulator, 58 slices, the paper's 6 cm gate: pixels disagreeing away from edges";
+        let row = Row {
+            fixture: "hornof-2025".into(),
+            quantity: name.into(),
+            measured: -1.234_567e-7,
+            expected: -98_765.432_1,
+            paper: Some(53.13),
+            tolerance: 1.5e-12,
+            unit: Unit::LUnitsPerTUnit,
+            pass: false,
+        };
+        let text = summary_table(std::slice::from_ref(&row));
+        for line in text.lines() {
+            assert!(
+                line.chars().count() <= SUMMARY_WIDTH,
+                "{} columns: {line}",
+                line.chars().count()
+            );
+        }
+        assert!(text.contains('…') && text.contains("FAIL"), "{text}");
+        assert!(table(&[row]).contains(name));
+    }
+}
