@@ -2,7 +2,7 @@
 //! docs/checks.md), measured from probe renders and expected by the oracle
 //! from the scene's description.
 //!
-//! Each general check gives one row. Edges and corners (`edges.rs`) find the
+//! Each general check gives one row. Edges and corners (`edge.rs`) find the
 //! edge point whose seen image lands where it is read by a root search along
 //! the edge over the point's worldline against the camera's past light cone;
 //! the measurement traces the edge to sub-pixel precision and fits it, so
@@ -13,7 +13,7 @@
 //! rows, their uncertainties in quadrature. Named kinds ([`crate::check::named`])
 //! give the rows of the paper's scenes.
 
-mod edges;
+mod edge;
 
 mod doppler;
 mod emulated;
@@ -212,7 +212,7 @@ impl<'a> Evaluation<'a> {
             MeasureSpec::Edge(e) => {
                 let v = self.view(&e.view)?;
                 let (reading, mark) =
-                    edges::edge(&v.measuring, &v.described, v.spec, e, self.effort)?;
+                    edge::edge(&v.measuring, &v.described, v.spec, e, self.effort)?;
                 self.mark(v.index, Some(mark), &c.name);
                 Ok(EarlierRow {
                     camera_t: Some(v.measuring.camera_t),
@@ -222,7 +222,7 @@ impl<'a> Evaluation<'a> {
             MeasureSpec::Corner(k) => {
                 let v = self.view(&k.view)?;
                 let (reading, mark) =
-                    edges::corner(&v.measuring, &v.described, v.spec, k, self.effort)?;
+                    edge::corner(&v.measuring, &v.described, v.spec, k, self.effort)?;
                 self.mark(v.index, Some(mark), &c.name);
                 Ok(EarlierRow {
                     camera_t: Some(v.measuring.camera_t),
