@@ -328,8 +328,25 @@ pub fn finish(out: &Output, n: usize, fps: u32) -> Result<(), String> {
         Output::Apng(file) => (file, encode_apng(&load_frames(&out.frames_dir(), n)?, fps)?),
     };
     write_atomic(file, &bytes).map_err(|e| format!("cannot write {}: {e}", file.display()))?;
-    std::fs::remove_dir_all(out.frames_dir())
-        .map_err(|e| format!("cannot remove {}: {e}", out.frames_dir().display()))
+    remove_frames_dir(&out.frames_dir())
+}
+
+/// Removes the frames and shard manifests vstf wrote into `dir`, file by
+/// file (never a recursive delete, so nothing else there and nothing behind
+/// a link is touched), then `dir` if it is left empty.
+fn remove_frames_dir(dir: &Path) -> Result<(), String> {
+    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let name = e.file_name();
+        let name = name.to_string_lossy();
+        let ours = frame_index(&name).is_some()
+            || (name.starts_with("animation") && name.ends_with(".txt"));
+        if ours && e.file_type().is_ok_and(|t| t.is_file()) {
+            std::fs::remove_file(e.path())
+                .map_err(|err| format!("cannot remove {}: {err}", e.path().display()))?;
+        }
+    }
+    let _ = std::fs::remove_dir(dir);
+    Ok(())
 }
 
 fn encode_gif(frames: &[RgbImage], fps: u32) -> Result<Vec<u8>, String> {

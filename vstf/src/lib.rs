@@ -20,6 +20,7 @@
 
 mod aim;
 mod budget;
+mod confine;
 mod emulator;
 mod label;
 mod observer;

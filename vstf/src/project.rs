@@ -84,6 +84,7 @@ impl Project {
     /// The project's approved and pending images.
     pub fn store(&self) -> Store {
         Store {
+            root: self.root.clone(),
             golden: self.root.join("golden"),
             pending: self.root.join("target").join("vstf"),
         }

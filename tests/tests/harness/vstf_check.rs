@@ -373,7 +373,9 @@ fn a_one_pixel_change_in_a_real_render_is_caught_without_touching_golden() {
     let golden_path = real.golden_path(&r.fixture, &view.name);
     let before = std::fs::read(&golden_path).unwrap();
     let scratch = std::env::temp_dir().join(format!("vstf-pending-{}", std::process::id()));
+    // The repository's goldens and a scratch pending folder share only `/`.
     let store = Store {
+        root: std::path::PathBuf::from("/"),
         golden: real.golden.clone(),
         pending: scratch.clone(),
     };

@@ -130,6 +130,20 @@ fn store_report(r: &FixtureReport, dir: &Path, m: &mut Manifest) -> Result<(), S
     m.add(dir, r.fixture.clone(), &file)
 }
 
+/// Removes the JSON files (reports and manifest) an earlier run of a shard
+/// wrote in its folder `own`: file by file, never a recursive delete, so a
+/// link or another file there is left as it is.
+fn clear_reports(own: &Path) -> Result<(), String> {
+    for e in std::fs::read_dir(own).into_iter().flatten().flatten() {
+        let json = e.path().extension().is_some_and(|x| x == "json");
+        if json && e.file_type().is_ok_and(|t| t.is_file()) {
+            std::fs::remove_file(e.path())
+                .map_err(|err| format!("cannot clear {}: {err}", e.path().display()))?;
+        }
+    }
+    Ok(())
+}
+
 /// Stores shard `shard`'s `reports` (of a job of `items` fixtures, results
 /// depending on `scene`) in its folder under `dir`, with its manifest;
 /// returns the manifest's path.
@@ -139,10 +153,7 @@ pub fn store(
     (shard, scene, items): (Shard, String, usize),
 ) -> Result<PathBuf, String> {
     let own = shard_dir(dir, shard);
-    if own.exists() {
-        std::fs::remove_dir_all(&own)
-            .map_err(|e| format!("cannot clear {}: {e}", own.display()))?;
-    }
+    clear_reports(&own)?;
     std::fs::create_dir_all(&own).map_err(|e| format!("cannot create {}: {e}", own.display()))?;
     let mut m = Manifest::new("check", scene, shard, items);
     for r in reports {

@@ -34,6 +34,21 @@ pub fn run(args: InitArgs) -> Result<(), Error> {
         )));
     }
     let fixture = dir.join("fixtures").join("moving-cube.json");
+    for link in [
+        dir.join("fixtures"),
+        dir.join(".gitignore"),
+        dir.join("README.md"),
+    ]
+    .iter()
+    .chain([dir.join(vstf::project::MARKER), fixture.clone()].iter())
+    {
+        if is_link(link) {
+            return Err(Error::usage(format!(
+                "{} is a symbolic link: init writes only new files of its own (nothing was written)",
+                link.display()
+            )));
+        }
+    }
     for owned in [dir.join(vstf::project::MARKER), fixture.clone()] {
         if owned.exists() {
             return Err(Error::usage(format!(
@@ -60,6 +75,11 @@ pub fn run(args: InitArgs) -> Result<(), Error> {
     println!("  vstf approve moving-cube   # then vstf check passes");
     println!("docs/checks.md of vstf explains the checks in fixtures/moving-cube.json");
     Ok(())
+}
+
+/// Whether `path` is a symbolic link, dangling or not.
+fn is_link(path: &Path) -> bool {
+    std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink())
 }
 
 /// Writes a new file atomically, creating its folder.

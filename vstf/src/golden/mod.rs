@@ -53,6 +53,8 @@ impl Pending {
 /// Where goldens and pending images live.
 #[derive(Clone, Debug)]
 pub struct Store {
+    /// The project's root: nothing between it and the images may be a link.
+    pub root: PathBuf,
     /// Approved images, `<fixture>/<view>.png`.
     pub golden: PathBuf,
     /// Pending images, `<fixture>/<view>/{actual,expected,diff}.png`.
@@ -115,12 +117,10 @@ impl Store {
             measured.is_some_and(|m| m.max <= allowed.max_diff && m.pixels <= allowed.max_pixels);
         let dir = self.pending_dir(fixture, view);
         let pending = if pass {
-            if dir.exists() {
-                std::fs::remove_dir_all(&dir)
-                    .map_err(|e| Error::io(&dir, format!("cannot clear {}: {e}", dir.display())))?;
-            }
+            crate::confine::clear_pending(&self.root, &dir)?;
             None
         } else {
+            crate::confine::real_folder(&self.root, &dir)?;
             crate::output::write_png(&dir.join("actual.png"), actual)?;
             if let Some(e) = &expected {
                 crate::output::write_png(&dir.join("expected.png"), e)?;
@@ -219,8 +219,7 @@ impl Store {
         let chosen = self.select(names)?;
         for p in &chosen {
             let dir = p.actual.parent().expect("pending images live in a folder");
-            std::fs::remove_dir_all(dir)
-                .map_err(|e| Error::io(dir, format!("cannot clear {}: {e}", dir.display())))?;
+            crate::confine::clear_pending(&self.root, dir)?;
         }
         Ok(chosen)
     }
@@ -249,6 +248,7 @@ impl Store {
                 )
             })?;
             let dest = self.golden_path(&p.fixture, &p.view);
+            crate::confine::real_folder(&self.root, dest.parent().unwrap_or(&self.golden))?;
             if std::fs::symlink_metadata(&dest).is_ok_and(|m| m.file_type().is_symlink()) {
                 return Err(Error::Golden {
                     message: format!(
@@ -260,8 +260,7 @@ impl Store {
             crate::output::write_atomic(&dest, &bytes)
                 .map_err(|e| Error::io(&dest, format!("cannot write {}: {e}", dest.display())))?;
             let dir = p.actual.parent().expect("pending images live in a folder");
-            std::fs::remove_dir_all(dir)
-                .map_err(|e| Error::io(dir, format!("cannot clear {}: {e}", dir.display())))?;
+            crate::confine::clear_pending(&self.root, dir)?;
         }
         Ok(chosen)
     }
@@ -290,6 +289,7 @@ mod tests {
         Store {
             golden: root.join("golden"),
             pending: root.join("pending"),
+            root,
         }
     }
 
@@ -438,5 +438,64 @@ mod tests {
             "{e}"
         );
         assert_eq!(std::fs::read_to_string(&elsewhere).unwrap(), "not an image");
+    }
+
+    /// A cloned repository's `target/vstf -> ../victim`: a passing check
+    /// that clears stale pending images deletes nothing in the victim, and
+    /// a failing one writes nothing there.
+    #[test]
+    fn a_linked_pending_folder_is_neither_cleared_nor_written() {
+        let s = temp_store("linked-pending");
+        let victim = s.root.join("victim");
+        std::fs::create_dir_all(victim.join("a/one")).unwrap();
+        std::fs::write(victim.join("a/one/important.txt"), "keep").unwrap();
+        std::os::unix::fs::symlink(&victim, &s.pending).unwrap();
+        crate::output::write_png(&s.golden_path("a", "one"), &picture()).unwrap();
+        let e = s
+            .check("a", "one", &picture(), Fuzzy::default())
+            .unwrap_err();
+        assert!(
+            matches!(&e, Error::Io { path, .. } if *path == s.pending),
+            "{e}"
+        );
+        let mut other = picture();
+        other.put_pixel(0, 0, Rgb([0, 0, 0]));
+        assert!(s.check("a", "one", &other, Fuzzy::default()).is_err());
+        assert_eq!(
+            std::fs::read_to_string(victim.join("a/one/important.txt")).unwrap(),
+            "keep"
+        );
+        assert!(!victim.join("a/one/actual.png").exists());
+        // Control: a real pending folder takes the mismatch.
+        std::fs::remove_file(&s.pending).unwrap();
+        assert!(s
+            .check("a", "one", &other, Fuzzy::default())
+            .unwrap()
+            .pending
+            .is_some());
+    }
+
+    /// With `golden/` linked outside the project, approve writes nothing.
+    #[test]
+    fn approve_does_not_write_through_a_linked_golden_folder() {
+        let s = temp_store("linked-golden");
+        assert!(
+            s.check("a", "one", &picture(), Fuzzy::default())
+                .unwrap()
+                .missing
+        );
+        let elsewhere = s.root.join("elsewhere");
+        std::fs::create_dir_all(&elsewhere).unwrap();
+        std::os::unix::fs::symlink(&elsewhere, &s.golden).unwrap();
+        let e = s.approve(None, false).unwrap_err();
+        assert!(
+            matches!(&e, Error::Io { path, .. } if *path == s.golden),
+            "{e}"
+        );
+        assert!(std::fs::read_dir(&elsewhere).unwrap().next().is_none());
+        // Control: a real golden folder takes the approval.
+        std::fs::remove_file(&s.golden).unwrap();
+        assert_eq!(s.approve(None, false).unwrap().len(), 1);
+        assert!(s.golden_path("a", "one").is_file());
     }
 }

@@ -127,3 +127,66 @@ const FAST_BALL: &str = r#"{
     {"name": "lamp: D from the searchlight, RGB", "measure": {"doppler": {"view": "now", "object": "lamp", "from": "searchlight_rgb"}}}
   ]
 }"#;
+
+/// `init` never writes through a link a cloned repository holds, dangling
+/// or not; a real folder beside it still works.
+#[test]
+fn init_refuses_a_dangling_link() {
+    let dir = Scratch::new("init-link");
+    let outside = dir.join("outside");
+    std::fs::create_dir_all(dir.join("proj")).unwrap();
+    std::os::unix::fs::symlink(outside.join("created.toml"), dir.join("proj/vstf.toml")).unwrap();
+    vstf()
+        .current_dir(&dir)
+        .args(["init", "proj"])
+        .run()
+        .fails_with("is a symbolic link");
+    assert!(!outside.exists(), "init wrote outside the project");
+    // Control: a real folder is made into a project.
+    vstf()
+        .current_dir(&dir)
+        .args(["init", "real"])
+        .run()
+        .succeeds();
+    assert!(dir.join("real/fixtures/moving-cube.json").is_file());
+}
+
+/// A cloned repository with a committed link `target/vstf -> ../victim`:
+/// a passing `vstf check` used to clear the victim's "stale pending"
+/// folders. It now refuses, naming the link, and deletes nothing; with a
+/// real `target/vstf` the same check passes.
+#[test]
+fn check_never_deletes_through_a_linked_pending_folder() {
+    let dir = Scratch::new("linked-target");
+    let project = dir.join("cloned");
+    vstf()
+        .current_dir(&dir)
+        .args(["init", "cloned"])
+        .run()
+        .succeeds();
+    let run = |args: &[&str]| {
+        vstf()
+            .current_dir(&project)
+            .env_remove("CI")
+            .args(args)
+            .run()
+    };
+    run(&["check", "moving-cube", "--quick"]).fails();
+    run(&["approve", "--all"]).succeeds();
+    let victim = dir.join("victim");
+    std::fs::create_dir_all(victim.join("moving-cube/t-10")).unwrap();
+    std::fs::write(victim.join("moving-cube/t-10/important.txt"), "keep").unwrap();
+    std::fs::write(victim.join("moving-cube/t-10/actual.png"), "not ours").unwrap();
+    std::fs::remove_dir_all(project.join("target/vstf")).ok();
+    std::fs::create_dir_all(project.join("target")).unwrap();
+    std::os::unix::fs::symlink(&victim, project.join("target/vstf")).unwrap();
+    run(&["check", "moving-cube", "--quick"]).fails_with("is a symbolic link");
+    assert_eq!(
+        std::fs::read_to_string(victim.join("moving-cube/t-10/important.txt")).unwrap(),
+        "keep"
+    );
+    assert!(victim.join("moving-cube/t-10/actual.png").exists());
+    // Control: a real target/vstf, and the check passes.
+    std::fs::remove_file(project.join("target/vstf")).unwrap();
+    run(&["check", "moving-cube", "--quick"]).succeeds();
+}
