@@ -75,17 +75,24 @@ pub enum Error {
         /// The summary printed.
         message: String,
     },
+    /// Work stopped by Ctrl-C, with what was finished.
+    Interrupted {
+        /// What was finished and where it is.
+        message: String,
+    },
     /// A failure of a part without a kind of its own (frame sequences,
     /// shards, ray logs, benchmarks, the local viewer).
     Other(String),
 }
 
 impl Error {
-    /// The process's exit status: 1 for a verdict that failed, 2 for work
-    /// that could not be done.
+    /// The process's exit status: 1 for a verdict that failed, 130 (as a
+    /// shell reports SIGINT) for work interrupted, 2 for work that could
+    /// not be done.
     pub fn exit_code(&self) -> u8 {
         match self {
             Error::Failed { .. } => 1,
+            Error::Interrupted { .. } => 130,
             _ => 2,
         }
     }
@@ -128,6 +135,7 @@ impl fmt::Display for Error {
             | Error::Golden { message }
             | Error::Usage { message }
             | Error::Failed { message }
+            | Error::Interrupted { message }
             | Error::Other(message) => f.write_str(message),
         }
     }

@@ -79,10 +79,12 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), Error> {
     bar.finish_and_clear();
     let dir = output.frames_dir();
     if done < owned {
-        return Err(Error::Other(format!(
-            "interrupted: {done} of {owned} frames finished, in {}",
-            dir.display()
-        )));
+        return Err(Error::Interrupted {
+            message: format!(
+                "interrupted: {done} of {owned} frames finished, in {}",
+                dir.display()
+            ),
+        });
     }
     if shard != vstf::shard::Shard::WHOLE {
         eprintln!(
