@@ -2,6 +2,7 @@
 //! 3.2, eq. 11-12), and the light-speed models of paper 4.1.5 (Figure 1)
 //! that decide how its rays and a moving camera behave.
 
+use crate::math;
 use crate::spacetime::{Boost, Event, FourVector, LightSpeed, Ray};
 use glam::DVec3;
 #[cfg(feature = "serde")]
@@ -101,7 +102,11 @@ impl Camera {
             Attitude::YawPitch { yaw_deg, pitch_deg } => {
                 let (y, p) = (yaw_deg.to_radians(), pitch_deg.to_radians());
                 (
-                    DVec3::new(-y.sin() * p.cos(), p.sin(), -y.cos() * p.cos()),
+                    DVec3::new(
+                        -math::sin(y) * math::cos(p),
+                        math::sin(p),
+                        -math::cos(y) * math::cos(p),
+                    ),
                     DVec3::Y,
                 )
             }
@@ -114,7 +119,7 @@ impl Camera {
             right,
             up,
             vfov_deg,
-            tan_half_v: (vfov_deg.to_radians() / 2.0).tan(),
+            tan_half_v: math::tan(vfov_deg.to_radians() / 2.0),
             width,
             height,
             velocity: DVec3::ZERO,

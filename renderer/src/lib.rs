@@ -79,6 +79,7 @@ mod camera;
 mod color;
 mod database;
 mod geometry;
+mod math;
 mod render;
 mod rng;
 mod scene;

@@ -9,6 +9,7 @@
 //! the white balance is a von Kries-style adaptation of E to the sRGB white.
 
 use super::spectrum::{basis, window};
+use crate::math;
 use glam::{DMat3, DVec3};
 use std::sync::OnceLock;
 
@@ -38,7 +39,7 @@ const XYZ_TO_SRGB: DMat3 = DMat3::from_cols(
 /// `below` to the left of `mu` and `above` to its right.
 fn lobe(nm: f64, mu: f64, below: f64, above: f64) -> f64 {
     let t = (nm - mu) / if nm < mu { below } else { above };
-    (-0.5 * t * t).exp()
+    math::exp(-0.5 * t * t)
 }
 
 /// CIE 1931 2-degree colour matching functions (xbar, ybar, zbar) at `nm`, by

@@ -192,7 +192,7 @@ mod tests {
         let from = target
             + (DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) - 0.5)
                 * size
-                * 10f64.powf(3.0 * rng.next_f64());
+                * crate::math::powf(10.0, 3.0 * rng.next_f64());
         let d = (target - from).extend(-(target - from).length() * rng.next_f64());
         (from.extend(rng.next_f64()), d)
     }

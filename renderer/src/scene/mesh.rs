@@ -1,6 +1,7 @@
 //! Triangle meshes in an object's own coordinates (l.units, relative to the
 //! object's reference point), a few primitives, and a Wavefront OBJ reader.
 
+use crate::math;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::fmt;
@@ -184,9 +185,9 @@ impl Mesh {
                 std::f64::consts::PI * f64::from(j) / f64::from(nv),
             );
             DVec3::new(
-                theta.sin() * phi.cos(),
-                theta.cos(),
-                theta.sin() * phi.sin(),
+                math::sin(theta) * math::cos(phi),
+                math::cos(theta),
+                math::sin(theta) * math::sin(phi),
             ) * radius
         };
         for j in 0..nv {

@@ -3,6 +3,7 @@
 //! acceleration (paper 3.1, and the curved temporal extrusions of paper 6).
 
 use super::{Fault, HyperbolicField as H, SceneErrorKind as K, SceneField};
+use crate::math;
 use crate::spacetime::{Event, FourVector};
 use glam::DVec3;
 
@@ -106,7 +107,7 @@ pub(crate) const MAX_KEYFRAMES: usize = 100_000;
 impl Hyperbolic {
     /// Rapidity at the start, phi0 = atanh(initial_velocity).
     pub fn initial_rapidity(&self) -> f64 {
-        self.initial_velocity.atanh()
+        math::atanh(self.initial_velocity)
     }
 
     /// The reference point's position along `direction` at lab time `t`,
@@ -117,8 +118,8 @@ impl Hyperbolic {
     pub fn along(&self, xi: f64, t: f64) -> f64 {
         let a = self.acceleration;
         let phi0 = self.initial_rapidity();
-        let big_t = t - self.start.t + phi0.sinh() / a;
-        (1.0 / a + xi).hypot(big_t) - phi0.cosh() / a
+        let big_t = t - self.start.t + math::sinh(phi0) / a;
+        math::hypot(1.0 / a + xi, big_t) - math::cosh(phi0) / a
     }
 
     /// The reference point's proper time at lab time `t`:
@@ -126,7 +127,7 @@ impl Hyperbolic {
     pub fn proper_time(&self, t: f64) -> f64 {
         let a = self.acceleration;
         let phi0 = self.initial_rapidity();
-        ((a * (t - self.start.t) + phi0.sinh()).asinh() - phi0) / a
+        (math::asinh(a * (t - self.start.t) + math::sinh(phi0)) - phi0) / a
     }
 
     /// Rejects a motion that cannot be generated; the error names the field.

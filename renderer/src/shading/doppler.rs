@@ -48,7 +48,7 @@ impl Effects {
             Leg::Radiance => 4 + spectral,
             Leg::PointSource => 2 + spectral,
         };
-        f.powi(exponent)
+        crate::math::powi(f, exponent)
     }
 }
 

@@ -7,6 +7,7 @@ use super::doppler;
 use super::frame::SurfaceFrame;
 use super::shader::{ray_step, self_hit_margin, Shader};
 use crate::geometry::Hit;
+use crate::math;
 use crate::spacetime::{Event, LightSpeed, Ray};
 use crate::trace::{NoTrace, RayKind, Trace};
 use glam::DVec3;
@@ -120,7 +121,7 @@ impl Shader<'_> {
             if !shadowed && m.specular > 0.0 {
                 let r = 2.0 * lambert * n_s - l_s;
                 let cos = r.dot(view_s);
-                specular = m.specular * if cos < 0.0 { 0.0 } else { cos }.powf(m.shininess);
+                specular = m.specular * math::powf(if cos < 0.0 { 0.0 } else { cos }, m.shininess);
             }
         }
         let from_light = self.to_surface(velocity, gamma, -l);

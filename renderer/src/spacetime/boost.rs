@@ -46,7 +46,7 @@ impl Boost {
 
     /// Rapidity artanh|beta| (paper 3, item 2c.ii).
     pub fn rapidity(&self) -> f64 {
-        self.beta.length().atanh()
+        crate::math::atanh(self.beta.length())
     }
 
     /// Rest frame -> lab frame:
