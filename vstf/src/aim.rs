@@ -73,10 +73,11 @@ fn line_of_sight(f: &Fixture) -> DVec3 {
                 c.yaw_deg.unwrap_or(0.0).to_radians(),
                 c.pitch_deg.unwrap_or(0.0).to_radians(),
             );
+            // libm, as the renderer's camera: the same bits on every platform.
             DVec3::new(
-                -yaw.sin() * pitch.cos(),
-                pitch.sin(),
-                -yaw.cos() * pitch.cos(),
+                -libm::sin(yaw) * libm::cos(pitch),
+                libm::sin(pitch),
+                -libm::cos(yaw) * libm::cos(pitch),
             )
         }
     }

@@ -115,10 +115,9 @@ impl Observer<'_> {
     pub(crate) fn probe(&self, p: &Probe) -> Result<(RgbImage, Pinhole), String> {
         let (look_at, hfov_deg, (width, height)) = (p.look_at, p.hfov_deg, p.size);
         let aspect = f64::from(width) / f64::from(height);
-        let vfov_deg = 2.0
-            * ((hfov_deg.to_radians() / 2.0).tan() / aspect)
-                .atan()
-                .to_degrees();
+        // libm: a probe renders the same pixels on every platform.
+        let vfov_deg =
+            2.0 * libm::atan(libm::tan(hfov_deg.to_radians() / 2.0) / aspect).to_degrees();
         let mut probe = self.fixture.only(p.keep).map_err(|e| e.to_string())?;
         let (camera, image) = (&mut probe.spec.camera, &mut probe.spec.image);
         (camera.t, camera.position) = (self.camera_t, self.camera_x());

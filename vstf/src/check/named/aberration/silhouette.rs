@@ -21,7 +21,7 @@ fn measure_edge(
     effort: &Effort,
 ) -> Result<Reading, String> {
     let a = near_deg.to_radians();
-    let look = DVec3::new(a.sin(), 0.0, -a.cos());
+    let look = DVec3::new(libm::sin(a), 0.0, -libm::cos(a));
     // A strip 3 degrees wide and 0.6 tall across the horizon, half the
     // probe's width: the angle targets (0.05 deg) are met ~100x over.
     let mut probe = ProbeImage::render(
@@ -101,7 +101,7 @@ fn coarse_strip(
     let a = centre_deg.to_radians();
     let (img, camera) = setup.probe(&Probe {
         keep: &[CUBE],
-        look_at: DVec3::new(a.sin(), 0.0, -a.cos()),
+        look_at: DVec3::new(libm::sin(a), 0.0, -libm::cos(a)),
         hfov_deg,
         size: (1441, 3),
         spp: 1,
