@@ -69,10 +69,7 @@ impl Budget {
     /// Refuses a scene whose database would exceed the memory budget.
     pub fn check_scene(&self, scene: &Scene) -> Result<(), String> {
         let p = prisms(scene);
-        let bytes = p
-            .translated
-            .saturating_mul(BYTES_PER_TRANSLATED_PRISM)
-            .saturating_add(p.keyframed.saturating_mul(BYTES_PER_KEYFRAMED_PRISM));
+        let bytes = database_bytes(scene);
         if bytes <= self.memory {
             return Ok(());
         }
@@ -111,6 +108,14 @@ impl Budget {
             ),
         })
     }
+}
+
+/// The estimate of the memory a scene's database takes, bytes.
+pub(crate) fn database_bytes(scene: &Scene) -> u64 {
+    let p = prisms(scene);
+    p.translated
+        .saturating_mul(BYTES_PER_TRANSLATED_PRISM)
+        .saturating_add(p.keyframed.saturating_mul(BYTES_PER_KEYFRAMED_PRISM))
 }
 
 /// How many prisms a scene's database will hold, by how they are tested.

@@ -147,7 +147,7 @@ impl Driver {
 }
 
 /// Kills the child when dropped (a failing test leaves no process behind).
-struct Reaper(Child);
+pub(crate) struct Reaper(Child);
 
 impl Drop for Reaper {
     fn drop(&mut self) {
@@ -167,9 +167,9 @@ fn free_port() -> u16 {
 /// A project of one fixture whose golden frame 920 is tampered, checked so
 /// that the view is pending: its folder, the golden's path and the pending
 /// render.
-fn pending_project() -> (Scratch, PathBuf, Vec<u8>) {
+pub(crate) fn pending_project(name: &str) -> (Scratch, PathBuf, Vec<u8>) {
     let repo = repo_root();
-    let dir = Scratch::new("browser");
+    let dir = Scratch::new(name);
     std::fs::create_dir_all(dir.join("fixtures")).unwrap();
     std::fs::copy(
         repo.join("fixtures/flange.json"),
@@ -190,7 +190,7 @@ fn pending_project() -> (Scratch, PathBuf, Vec<u8>) {
 }
 
 /// `vstf serve` on a free port in `dir`, and its page's address.
-fn start_server(dir: &Path) -> (Reaper, String) {
+pub(crate) fn start_server(dir: &Path) -> (Reaper, String) {
     let mut server = Reaper(
         vstf()
             .current_dir(dir)
@@ -259,7 +259,7 @@ fn the_page_renders_debugs_and_approves_in_a_real_browser() {
         eprintln!("SKIPPED: {msg}");
         return;
     };
-    let (dir, golden, actual) = pending_project();
+    let (dir, golden, actual) = pending_project("browser");
     let (server, page) = start_server(&dir);
     let (_chromedriver, d) = start_browser(&driver, &browser);
     // Load the pending view; its render arrives.
@@ -303,6 +303,7 @@ fn the_page_renders_debugs_and_approves_in_a_real_browser() {
         debug.starts_with("pixel (") && (debug.contains("HIT") || debug.contains("met nothing")),
         "{debug}"
     );
+    a_foreign_form_cannot_approve(&d, &page, &golden);
     // Approve the pending view: the golden becomes the render.
     d.click("#approve");
     d.wait_for(
@@ -348,4 +349,59 @@ fn the_page_renders_debugs_and_approves_in_a_real_browser() {
     let _ = http(&d.addr, "DELETE", &format!("/session/{}", d.session), None);
     drop(server);
     drop(dir);
+}
+
+/// A one-page HTTP server on another free port of loopback (a page of
+/// another origin), answering `html` to every request; its address.
+fn serve_one_page(html: &str) -> String {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = listener.local_addr().unwrap();
+    let html = html.to_string();
+    std::thread::spawn(move || {
+        for stream in listener.incoming().flatten().take(8) {
+            let mut stream = stream;
+            let mut buf = [0u8; 4096];
+            let _ = stream.read(&mut buf);
+            let _ = write!(
+                stream,
+                "HTTP/1.1 200 OK\r\nContent-Type: text/html\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{html}",
+                html.len()
+            );
+        }
+    });
+    format!("http://{addr}/")
+}
+
+/// A page of another origin (another local port) auto-submits a
+/// `text/plain` form to approve the pending view: the golden stays as it
+/// is; then the browser goes back to the page.
+fn a_foreign_form_cannot_approve(d: &Driver, page: &str, golden: &Path) {
+    // A page of another origin (another local port) auto-submits a
+    // text/plain form to approve: the golden stays as it is.
+    let before = std::fs::read(golden).unwrap();
+    let evil = serve_one_page(&format!(
+        "<form id=f method=post enctype=text/plain action='{page}api/approve?fixture=flange&view=frame%20920'>\
+         <input name=x value=1></form><script>document.getElementById('f').submit()</script>"
+    ));
+    d.call("POST", "/url", Some(json!({ "url": evil })));
+    d.wait_for("the form's answer", "return document.readyState", |v| {
+        v == "complete"
+    });
+    std::thread::sleep(Duration::from_millis(500));
+    let said = d.script("return document.body ? document.body.innerText : ''");
+    assert_eq!(
+        std::fs::read(golden).unwrap(),
+        before,
+        "a cross-origin form approved: {said}"
+    );
+    d.call(
+        "POST",
+        "/url",
+        Some(json!({"url": format!("{page}?fixture=flange&view=frame%20920")})),
+    );
+    d.wait_for(
+        "the page again",
+        "return document.getElementById('hash').textContent",
+        |v| v.as_str().is_some_and(|s| !s.is_empty()),
+    );
 }

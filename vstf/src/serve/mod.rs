@@ -8,6 +8,9 @@
 //! them). Frames render on demand; each scene's database is built once and
 //! kept. The page has no external assets: it works offline.
 
+mod cache;
+mod guard;
+
 use crate::error::Error;
 use crate::fixture::{Fixture, Overrides, View};
 use crate::golden::{slug, Store};
@@ -17,6 +20,7 @@ use glam::DVec3;
 use renderer::{Database, Model, Motion, Traversal};
 use std::collections::HashMap;
 use std::io::Cursor;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use tiny_http::{Header, Method, Request, Response, Server};
 
@@ -34,14 +38,27 @@ struct Frame {
     speed: f64,
 }
 
-type Cache = HashMap<(String, String, bool, u64), Arc<(Fixture, Database)>>;
+type Cache = cache::Lru<(String, String, bool, u64), (Fixture, Database)>;
 
-/// The server's state: the project, the databases built so far and each
-/// fixture's last check.
+/// The default byte budget of the database cache.
+pub const DEFAULT_CACHE_BYTES: u64 = 512 << 20;
+
+/// Most renders, debug traces and checks running at once; more get 503.
+const MAX_BUSY: usize = 2;
+
+/// Most requests handled at once; more are answered 503 at once.
+const MAX_CONNECTIONS: usize = 16;
+
+/// The server's state: the project, its token and own addresses, the
+/// databases built so far (within a byte budget) and each fixture's last
+/// check.
 pub struct Site {
     project: Project,
+    token: String,
+    hosts: [String; 3],
     databases: Mutex<Cache>,
     checked: Mutex<HashMap<String, serde_json::Value>>,
+    busy: AtomicUsize,
 }
 
 fn query(url: &str) -> HashMap<String, String> {
@@ -147,13 +164,45 @@ fn with_speed(f: &Fixture, k: f64) -> Result<Fixture, String> {
 }
 
 impl Site {
-    /// The site of `project`.
-    pub fn new(project: Project) -> Site {
-        Site {
+    /// The site of `project` served at `port`, keeping at most
+    /// `cache_bytes` of databases.
+    pub fn new(project: Project, port: u16, cache_bytes: u64) -> Result<Site, Error> {
+        let token = guard::new_token()
+            .map_err(|e| Error::io("/dev/urandom", format!("cannot make a token: {e}")))?;
+        Ok(Site {
             project,
-            databases: Mutex::new(HashMap::new()),
+            token,
+            hosts: guard::own_hosts(port),
+            databases: Mutex::new(cache::Lru::new(cache_bytes)),
             checked: Mutex::new(HashMap::new()),
+            busy: AtomicUsize::new(0),
+        })
+    }
+
+    /// The bytes of databases kept now.
+    pub fn cached_bytes(&self) -> u64 {
+        self.databases.lock().map_or(0, |c| c.used())
+    }
+
+    /// `name` if it is one of the project's fixtures; a 404 that repeats
+    /// only a short, quoted form of the name otherwise.
+    fn known(&self, name: &str) -> Result<(), (u16, String)> {
+        if self.project.fixture_names().iter().any(|n| n == name) {
+            return Ok(());
         }
+        let shown: String = name.chars().take(64).collect();
+        Err((404, format!("no fixture named {shown:?} in this project")))
+    }
+
+    /// Runs `work` if fewer than [`MAX_BUSY`] are running; 503 otherwise.
+    fn when_free<T>(&self, work: impl FnOnce() -> Result<T, String>) -> Result<T, (u16, String)> {
+        if self.busy.fetch_add(1, Ordering::SeqCst) >= MAX_BUSY {
+            self.busy.fetch_sub(1, Ordering::SeqCst);
+            return Err((503, "busy: try again in a moment".into()));
+        }
+        let result = work();
+        self.busy.fetch_sub(1, Ordering::SeqCst);
+        result.map_err(|e| (400, e))
     }
 
     fn store(&self) -> Store {
@@ -191,11 +240,16 @@ impl Site {
             .lock()
             .map_err(|_| "the database cache is poisoned")?;
         let entry = match cache.get(&key) {
-            Some(e) => e.clone(),
+            Some(e) => e,
             None => {
+                drop(cache);
+                let bytes = crate::budget::database_bytes(&fixture.scene);
                 let db = crate::run::database(&fixture, model.lorentz, Traversal::Bvh)?;
                 let e = Arc::new((fixture, db));
-                cache.insert(key, e.clone());
+                self.databases
+                    .lock()
+                    .map_err(|_| "the database cache is poisoned")?
+                    .insert(key, e.clone(), bytes);
                 e
             }
         };
@@ -316,57 +370,102 @@ impl Site {
         }
     }
 
-    /// Answers one request.
+    /// Answers one request: the guard first ([`guard`]), then the page or
+    /// the endpoint asked for, by fixture and view names of this project.
     pub fn handle(&self, req: Request) {
         let url = req.url().to_string();
         let path = url.split('?').next().unwrap_or("").to_string();
         let q = query(&url);
-        let post = *req.method() == Method::Post;
-        let text = |s: String| ("text/plain; charset=utf-8", s.into_bytes());
-        let result: Result<(&str, Vec<u8>), String> = match (path.as_str(), post) {
-            ("/", false) => Ok(("text/html; charset=utf-8", PAGE.as_bytes().to_vec())),
-            ("/api/fixtures", false) => {
-                Ok(("application/json", self.fixtures().to_string().into_bytes()))
-            }
-            ("/api/render", false) => Frame::of(&q)
-                .and_then(|fr| self.render(&fr))
-                .map(|b| ("image/png", b)),
-            ("/api/debug", false) => Frame::of(&q).and_then(|fr| {
-                let at = |k: &str| {
-                    q.get(k)
-                        .and_then(|v| v.parse::<u32>().ok())
-                        .ok_or_else(|| format!("{k}: a pixel index"))
-                };
-                self.debug(&fr, (at("x")?, at("y")?)).map(text)
-            }),
-            ("/api/image", false) => {
-                let (f, v, k) = (q.get("fixture"), q.get("view"), q.get("kind"));
-                match (f, v, k) {
-                    (Some(f), Some(v), Some(k)) => self.image(f, v, k).map(|b| ("image/png", b)),
-                    _ => Err("fixture, view and kind are needed".into()),
-                }
-            }
-            ("/api/check", true) => match q.get("fixture") {
-                Some(f) => self
-                    .check(f)
-                    .map(|v| ("application/json", v.to_string().into_bytes())),
-                None => Err("fixture is needed".into()),
-            },
-            ("/api/approve" | "/api/reject", true) => match (q.get("fixture"), q.get("view")) {
-                (Some(f), Some(v)) => self.decide(f, v, path == "/api/approve").map(text),
-                _ => Err("fixture and view are needed".into()),
-            },
-            _ => Err(format!("no such page: {} {path}", req.method())),
-        };
+        let result = self.answer(&req, &path, &q);
         let response = match result {
             Ok((kind, body)) => Response::from_data(body).with_header(header("Content-Type", kind)),
-            Err(e) => Response::from_data(e.into_bytes())
-                .with_status_code(400)
+            Err((code, e)) => Response::from_data(e.into_bytes())
+                .with_status_code(code)
                 .with_header(header("Content-Type", "text/plain; charset=utf-8")),
         };
         let _ = req.respond(response.with_header(header("Cache-Control", "no-store")));
     }
+
+    /// The answer to `req` for `path`: its content type and body, or a
+    /// status and message.
+    fn answer(&self, req: &Request, path: &str, q: &Query) -> Answer {
+        let named = |name: &'static str| {
+            req.headers()
+                .iter()
+                .find(|h| h.field.equiv(name))
+                .map(|h| h.value.as_str())
+        };
+        let asked = guard::Asked {
+            host: named("Host"),
+            origin: named("Origin"),
+            token: named(guard::TOKEN_HEADER).or(q.get("token").map(String::as_str)),
+            content_type: named("Content-Type"),
+            post: *req.method() == Method::Post,
+        };
+        if path == "/" {
+            guard::page(&asked, &self.hosts)?;
+            let page = PAGE.replace("{{VSTF_TOKEN}}", &self.token);
+            return Ok(("text/html; charset=utf-8", page.into_bytes()));
+        }
+        let changes = matches!(path, "/api/approve" | "/api/reject" | "/api/check");
+        guard::api(&asked, (&self.hosts, &self.token), changes)?;
+        if changes && !asked.post {
+            return Err((405, "this endpoint takes POST".into()));
+        }
+        if let Some(f) = q.get("fixture") {
+            self.known(f)?;
+        }
+        self.endpoint(path, q)
+    }
+
+    /// The endpoint `path` with its query `q`, the guard passed.
+    fn endpoint(&self, path: &str, q: &Query) -> Answer {
+        let text = |s: String| ("text/plain; charset=utf-8", s.into_bytes());
+        let need = |k: &str| q.get(k).ok_or((400, format!("{k} is needed")));
+        match path {
+            "/api/fixtures" => Ok(("application/json", self.fixtures().to_string().into_bytes())),
+            "/api/render" => {
+                let fr = Frame::of(q).map_err(|e| (400, e))?;
+                self.when_free(|| self.render(&fr))
+                    .map(|b| ("image/png", b))
+            }
+            "/api/debug" => {
+                let fr = Frame::of(q).map_err(|e| (400, e))?;
+                let at = |k: &str| {
+                    q.get(k)
+                        .and_then(|v| v.parse::<u32>().ok())
+                        .ok_or((400, format!("{k}: a pixel index")))
+                };
+                let (x, y) = (at("x")?, at("y")?);
+                self.when_free(|| self.debug(&fr, (x, y))).map(text)
+            }
+            "/api/image" => {
+                let (f, v, k) = (need("fixture")?, need("view")?, need("kind")?);
+                self.image(f, v, k)
+                    .map(|b| ("image/png", b))
+                    .map_err(|e| (404, e))
+            }
+            "/api/check" => {
+                let f = need("fixture")?;
+                self.when_free(|| self.check(f))
+                    .map(|v| ("application/json", v.to_string().into_bytes()))
+            }
+            "/api/approve" | "/api/reject" => {
+                let (f, v) = (need("fixture")?, need("view")?);
+                self.decide(f, v, path == "/api/approve")
+                    .map(text)
+                    .map_err(|e| (400, e))
+            }
+            _ => Err((404, format!("no such page: {path}"))),
+        }
+    }
 }
+
+/// A request's query parameters.
+type Query = HashMap<String, String>;
+
+/// An answer: content type and body, or a status and message.
+type Answer = Result<(&'static str, Vec<u8>), (u16, String)>;
 
 fn header(k: &str, v: &str) -> Header {
     Header::from_bytes(k.as_bytes(), v.as_bytes()).expect("ASCII header")
@@ -375,18 +474,30 @@ fn header(k: &str, v: &str) -> Header {
 /// Serves `project` on 127.0.0.1:`port` (0: any free port), calling
 /// `ready` with the address once listening; handles requests until the
 /// process ends.
-pub fn serve(project: Project, port: u16, ready: impl FnOnce(&str)) -> Result<(), Error> {
+pub fn serve(
+    project: Project,
+    (port, cache_bytes): (u16, u64),
+    ready: impl FnOnce(&str, &Arc<Site>),
+) -> Result<(), Error> {
     let server = Server::http(("127.0.0.1", port))
         .map_err(|e| format!("cannot listen on 127.0.0.1:{port}: {e}"))?;
-    let addr = server
-        .server_addr()
-        .to_ip()
-        .map_or_else(|| "127.0.0.1".to_string(), |a| a.to_string());
-    ready(&format!("http://{addr}/"));
-    let site = Arc::new(Site::new(project));
+    let bound = server.server_addr().to_ip().map_or(port, |a| a.port());
+    let site = Arc::new(Site::new(project, bound, cache_bytes)?);
+    ready(&format!("http://127.0.0.1:{bound}/"), &site);
+    let open = Arc::new(AtomicUsize::new(0));
     for req in server.incoming_requests() {
-        let site = site.clone();
-        std::thread::spawn(move || site.handle(req));
+        if open.fetch_add(1, Ordering::SeqCst) >= MAX_CONNECTIONS {
+            open.fetch_sub(1, Ordering::SeqCst);
+            let busy =
+                Response::from_string("busy: too many requests at once").with_status_code(503);
+            let _ = req.respond(busy);
+            continue;
+        }
+        let (site, open) = (site.clone(), open.clone());
+        std::thread::spawn(move || {
+            site.handle(req);
+            open.fetch_sub(1, Ordering::SeqCst);
+        });
     }
     Ok(())
 }

@@ -1,0 +1,111 @@
+//! `vstf serve` against the requests a hostile page can make, sent as raw
+//! HTTP on loopback as they were tried: a foreign `Host` (DNS rebinding),
+//! a foreign `Origin`, no token, a cross-site form's `text/plain` body, a
+//! GET that would change something, paths instead of fixture names. Each
+//! with the control that the page's own request still works.
+
+use crate::browser::{pending_project, start_server};
+use std::io::{Read, Write};
+use std::net::TcpStream;
+use std::time::Duration;
+
+/// Sends `head` (request line and headers, without the blank line) and
+/// `body`; the status and the answer's body.
+fn raw(addr: &str, head: &str, body: &str) -> (u16, String) {
+    let mut s = TcpStream::connect(addr).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(120))).unwrap();
+    write!(
+        s,
+        "{head}\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
+        body.len()
+    )
+    .unwrap();
+    let mut bytes = Vec::new();
+    let _ = s.read_to_end(&mut bytes);
+    let answer = String::from_utf8_lossy(&bytes);
+    let status = answer
+        .split_whitespace()
+        .nth(1)
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(0);
+    let body = answer
+        .split_once("\r\n\r\n")
+        .map_or("", |(_, b)| b)
+        .to_string();
+    (status, body)
+}
+
+/// The token the served page carries.
+fn token_of(addr: &str) -> String {
+    let (status, page) = raw(addr, &format!("GET / HTTP/1.1\r\nHost: {addr}"), "");
+    assert_eq!(status, 200, "{page}");
+    let at = page.find("const TOKEN = '").expect("the page's token") + 15;
+    page[at..at + 64].to_string()
+}
+
+#[test]
+fn serve_answers_only_its_own_page() {
+    let (dir, golden, actual) = pending_project("serve-guard");
+    let (_server, page) = start_server(&dir);
+    let addr = page
+        .trim_start_matches("http://")
+        .trim_end_matches('/')
+        .to_string();
+    let token = token_of(&addr);
+    let approve = "POST /api/approve?fixture=flange&view=frame%20920 HTTP/1.1";
+    let before = std::fs::read(&golden).unwrap();
+    let attacks = [
+        (format!("{approve}\r\nHost: evil.example:80\r\nOrigin: http://evil.example\r\nContent-Type: text/plain"), "x=1", 403),
+        (format!("{approve}\r\nHost: {addr}\r\nOrigin: http://evil.example\r\nX-Vstf-Token: {token}\r\nContent-Type: application/json"), "{}", 403),
+        (format!("{approve}\r\nHost: {addr}\r\nContent-Type: application/json"), "{}", 403),
+        (format!("{approve}\r\nHost: {addr}\r\nX-Vstf-Token: {token}\r\nContent-Type: text/plain"), "x=1", 415),
+        (format!("GET /api/approve?fixture=flange&view=frame%20920&token={token} HTTP/1.1\r\nHost: {addr}"), "", 405),
+        (format!("GET /api/fixtures HTTP/1.1\r\nHost: evil.example:{}", addr.rsplit(':').next().unwrap()), "", 403),
+        ("GET / HTTP/1.1\r\nHost: rebound.example".to_string(), "", 403),
+    ];
+    for (head, body, want) in &attacks {
+        let (status, said) = raw(&addr, head, body);
+        assert_eq!(status, *want, "{head}: {said}");
+    }
+    assert_eq!(
+        std::fs::read(&golden).unwrap(),
+        before,
+        "an attack approved"
+    );
+    // Paths instead of names, in every spelling: 404, no content echoed.
+    std::fs::write(
+        dir.join("secret.json"),
+        r#"{"api_token": "TOPSECRET-STRING"}"#,
+    )
+    .unwrap();
+    let secret = dir.join("secret.json").display().to_string();
+    for name in [
+        secret.as_str(),
+        "/etc/passwd",
+        "../fixtures/flange",
+        "%2e%2e%2fsecret",
+        "..%2fsecret",
+        "fixtures/../secret",
+    ] {
+        let head = format!(
+            "GET /api/render?fixture={name}&view=view&token={token} HTTP/1.1\r\nHost: {addr}"
+        );
+        let (status, said) = raw(&addr, &head, "");
+        assert_eq!(status, 404, "{name}: {said}");
+        assert!(
+            !said.contains("TOPSECRET") && !said.contains("api_token"),
+            "{said}"
+        );
+    }
+    // Controls: the page's own render and approve.
+    let (status, _) = raw(&addr, &format!("GET /api/render?fixture=flange&view=frame%20920&token={token} HTTP/1.1\r\nHost: {addr}"), "");
+    assert_eq!(status, 200);
+    let own = format!("{approve}\r\nHost: {addr}\r\nOrigin: http://{addr}\r\nX-Vstf-Token: {token}\r\nContent-Type: application/json");
+    let (status, said) = raw(&addr, &own, "{}");
+    assert_eq!(status, 200, "{said}");
+    assert_eq!(
+        std::fs::read(&golden).unwrap(),
+        actual,
+        "the page's own approve"
+    );
+}
