@@ -179,6 +179,11 @@ impl Site {
         })
     }
 
+    /// The token the page carries, for a front end in the same process.
+    pub fn token(&self) -> &str {
+        &self.token
+    }
+
     /// The bytes of databases kept now.
     pub fn cached_bytes(&self) -> u64 {
         self.databases.lock().map_or(0, |c| c.used())

@@ -109,3 +109,56 @@ fn serve_answers_only_its_own_page() {
         "the page's own approve"
     );
 }
+
+/// 30 distinct speeds of the flange keep the database cache within its
+/// budget (three of its databases here), and 48 renders asked at once are
+/// answered, some with 503, none queued without bound.
+#[test]
+fn serve_memory_stays_within_its_budget() {
+    let (dir, _, _) = pending_project("serve-memory");
+    let project = vstf::Project::locate(Some(&dir)).unwrap();
+    let f = project.load("flange").unwrap();
+    let one = u64::try_from(f.database(false).unwrap().prism_count()).unwrap() * 300;
+    let budget = 3 * one;
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        vstf::serve::serve(project, (0, budget), |addr, site| {
+            tx.send((addr.to_string(), site.clone())).unwrap();
+        })
+    });
+    let (page, site) = rx.recv().unwrap();
+    let addr = page
+        .trim_start_matches("http://")
+        .trim_end_matches('/')
+        .to_string();
+    let token = site.token().to_string();
+    let render = |speed: f64| {
+        let head = format!(
+            "GET /api/render?fixture=flange&view=frame%20920&speed={speed}&token={token} HTTP/1.1\r\nHost: {addr}"
+        );
+        raw(&addr, &head, "").0
+    };
+    for k in 0..30 {
+        assert_eq!(render(0.5 + f64::from(k) / 100.0), 200);
+        assert!(
+            site.cached_bytes() <= budget,
+            "{} > {budget}",
+            site.cached_bytes()
+        );
+    }
+    let statuses: Vec<u16> = std::thread::scope(|s| {
+        let asks: Vec<_> = (0..24)
+            .map(|k| s.spawn(move || render(0.2 + f64::from(k) / 100.0)))
+            .collect();
+        asks.into_iter().map(|a| a.join().unwrap()).collect()
+    });
+    assert!(
+        statuses.iter().all(|c| *c == 200 || *c == 503),
+        "{statuses:?}"
+    );
+    assert!(
+        statuses.contains(&503),
+        "48 renders at once all ran: {statuses:?}"
+    );
+    assert!(site.cached_bytes() <= budget);
+}
