@@ -29,7 +29,7 @@ fn main() -> ExitCode {
             None => cli::bench::run(root, quick),
         },
         Command::List { views } => cli::list::run(root, views),
-        Command::Serve { port } => cli::serve::run(root, port),
+        Command::Serve { port, cache_mb } => cli::serve::run(root, port, cache_mb),
         Command::Init(args) => cli::init::run(args),
         Command::Fuzz(args) => cli::fuzz::run(root, args),
     };

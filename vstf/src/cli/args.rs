@@ -125,6 +125,10 @@ pub enum Command {
         /// The port (0: any free one; the address is printed).
         #[arg(long, default_value_t = 8117)]
         port: u16,
+        /// The memory kept for built scenes, MB; the least recently used
+        /// is dropped beyond it.
+        #[arg(long, default_value_t = 512)]
+        cache_mb: u64,
     },
     /// List the fixtures in fixtures/.
     List {
