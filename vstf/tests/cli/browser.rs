@@ -2,7 +2,9 @@
 //! chromedriver, spoken to in W3C WebDriver over plain HTTP): the page
 //! loads a view, moving the time slider changes the image, a click on a
 //! pixel shows its hit, approving a pending view writes its golden, and
-//! checking the fixture shows its rows beside the view measured.
+//! checking the fixture shows its rows beside the view measured; and a
+//! page of another origin that submits a cross-site form to the approve
+//! endpoint (the attack `vstf serve` once fell to) changes nothing.
 //!
 //! Without chromedriver and chromium the test says so loudly and skips;
 //! with `VSTF_REQUIRE_BROWSER` set (as `.ci/run` does once it has installed
@@ -246,6 +248,55 @@ fn start_browser(driver: &Path, browser: &Path) -> (Reaper, Driver) {
     (chromedriver, d)
 }
 
+/// A page on another local port (another origin) that submits, as soon as
+/// it loads, a `text/plain` form to `page`'s approve endpoint whose body
+/// reads as the JSON of an approval; its address.
+fn attacker(page: &str) -> String {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = listener.local_addr().unwrap();
+    let html = format!(
+        "<!doctype html><form id=f method=POST enctype=text/plain \
+         action='{page}api/approve?fixture=flange&view=frame%20920'>\
+         <input name='{{\"fixture\":\"flange\",\"view\":\"frame 920\",\"x\":\"' value='\"}}'>\
+         </form><script>document.getElementById('f').submit()</script>"
+    );
+    std::thread::spawn(move || {
+        for stream in listener.incoming().flatten() {
+            let mut stream = stream;
+            let mut head = [0u8; 4096];
+            let _ = stream.read(&mut head);
+            let _ = write!(
+                stream,
+                "HTTP/1.1 200 OK\r\nContent-Type: text/html\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{html}",
+                html.len()
+            );
+        }
+    });
+    format!("http://{addr}/")
+}
+
+/// The attacker's form, submitted in the browser, reaches the server and
+/// is refused; the golden is as it was.
+fn a_cross_site_form_does_not_approve(d: &Driver, page: &str, golden: &Path) {
+    let before = std::fs::read(golden).unwrap();
+    d.call("POST", "/url", Some(json!({"url": attacker(page)})));
+    let answer = d.wait_for(
+        "the form's answer",
+        "return location.href.includes('/api/approve') ? document.body.textContent : ''",
+        |v| v.as_str().is_some_and(|s| !s.is_empty()),
+    );
+    let answer = answer.as_str().unwrap();
+    assert!(
+        answer.contains("other origins") || answer.contains("token"),
+        "{answer}"
+    );
+    assert_eq!(
+        std::fs::read(golden).unwrap(),
+        before,
+        "a cross-site form changed the golden"
+    );
+}
+
 #[test]
 fn the_page_renders_debugs_and_approves_in_a_real_browser() {
     let (Some(driver), Some(browser)) = (
@@ -262,6 +313,8 @@ fn the_page_renders_debugs_and_approves_in_a_real_browser() {
     let (dir, golden, actual) = pending_project();
     let (server, page) = start_server(&dir);
     let (_chromedriver, d) = start_browser(&driver, &browser);
+    // Another origin's form, submitted while the view is pending.
+    a_cross_site_form_does_not_approve(&d, &page, &golden);
     // Load the pending view; its render arrives.
     d.call(
         "POST",
