@@ -487,3 +487,43 @@ fn memory_and_renders_are_bounded() {
     assert!(busy > 0 && ok >= 1, "{answers:?}");
     assert!(u.bytes <= u.budget + one, "{u:?}");
 }
+
+#[test]
+fn bodies_and_connections_are_bounded() {
+    let limits = Limits {
+        connections: 2,
+        timeout: Duration::from_secs(3),
+        ..Limits::default()
+    };
+    let s = start("bounds", limits);
+    let big = format!("{{\"fixture\": \"{}\"}}", "x".repeat(70 * 1024));
+    assert_eq!(s.post("/api/check", &big).0, 413);
+    let chunked = format!(
+        "POST /api/check HTTP/1.1\r\nHost: {}\r\nTransfer-Encoding: chunked\r\n\r\n0\r\n\r\n",
+        s.host()
+    );
+    assert_eq!(exchange(s.addr, chunked.as_bytes()).0, 501);
+    // Two idle connections take both places; a third is turned away at once.
+    let idle: Vec<TcpStream> = (0..2)
+        .map(|_| TcpStream::connect(s.addr).unwrap())
+        .collect();
+    std::thread::sleep(Duration::from_millis(300));
+    let started = Instant::now();
+    let mut third = TcpStream::connect(s.addr).unwrap();
+    third
+        .set_read_timeout(Some(Duration::from_secs(5)))
+        .unwrap();
+    let mut answer = Vec::new();
+    let _ = third.read_to_end(&mut answer);
+    assert_eq!(parse_answer(&answer).0, 503, "answered before asked");
+    assert!(started.elapsed() < Duration::from_secs(2));
+    drop(idle);
+    let start_again = Instant::now();
+    while s.send("GET", "/", &[], "").0 != 200 {
+        assert!(
+            start_again.elapsed() < Duration::from_secs(10),
+            "no place freed"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
