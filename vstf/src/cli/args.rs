@@ -125,8 +125,8 @@ pub enum Command {
         /// The port (0: any free one; the address is printed).
         #[arg(long, default_value_t = 8117)]
         port: u16,
-        /// Most memory the databases kept between requests may take, MiB
-        /// (least recently used dropped first).
+        /// The memory kept for built scenes, MB; the least recently used
+        /// is dropped beyond it.
         #[arg(long, default_value_t = 512)]
         cache_mb: u64,
     },

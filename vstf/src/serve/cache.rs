@@ -1,73 +1,122 @@
-//! The databases `serve` keeps between requests, within a byte budget:
-//! each entry is charged the memory estimate of its scene's database, and
-//! the least recently used entries go first. An entry larger than the whole
-//! budget is built and used, never kept.
+//! The databases built for the page, kept within a byte budget: each
+//! entry's size estimated from its prisms (as [`crate::Budget`] does), the
+//! least recently used evicted first, and an entry larger than the whole
+//! budget used once and not kept.
 
+use crate::budget::{BYTES_PER_KEYFRAMED_PRISM, BYTES_PER_TRANSLATED_PRISM};
+use crate::fixture::Fixture;
+use renderer::Database;
+use std::collections::HashMap;
 use std::sync::Arc;
 
-/// A cache of `V` by `K` within `budget` bytes.
-pub(super) struct Lru<K, V> {
-    budget: u64,
-    used: u64,
-    tick: u64,
-    entries: Vec<Entry<K, V>>,
+/// What a database is kept under: fixture, view, Lorentz setting and the
+/// speed factor's bits.
+pub(super) type Key = (String, String, bool, u64);
+
+/// A kept fixture (as sped up) and its database.
+pub(super) type Entry = Arc<(Fixture, Database)>;
+
+/// An entry's fixed cost besides its prisms: the fixture, the database's
+/// own structures and the hierarchies' roots, bytes.
+const BYTES_PER_ENTRY: u64 = 16 * 1024;
+
+/// The bytes a fixture's database is estimated to take.
+pub(super) fn estimate(f: &Fixture) -> u64 {
+    let p = crate::prisms(&f.scene);
+    p.translated
+        .saturating_mul(BYTES_PER_TRANSLATED_PRISM)
+        .saturating_add(p.keyframed.saturating_mul(BYTES_PER_KEYFRAMED_PRISM))
+        .saturating_add(BYTES_PER_ENTRY)
 }
 
-struct Entry<K, V> {
-    key: K,
-    value: Arc<V>,
+/// How full the cache is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CacheUsage {
+    /// The estimated bytes of the entries kept.
+    pub bytes: u64,
+    /// How many entries are kept.
+    pub entries: usize,
+    /// The budget, bytes.
+    pub budget: u64,
+    /// Entries evicted so far.
+    pub evicted: u64,
+}
+
+struct Kept<V> {
+    entry: V,
     bytes: u64,
-    last: u64,
+    used_at: u64,
 }
 
-impl<K: PartialEq, V> Lru<K, V> {
-    /// An empty cache of at most `budget` bytes.
-    pub(super) fn new(budget: u64) -> Self {
+/// A least-recently-used cache of databases within a byte budget.
+pub(super) struct Lru<V> {
+    kept: HashMap<Key, Kept<V>>,
+    clock: u64,
+    usage: CacheUsage,
+}
+
+impl<V: Clone> Lru<V> {
+    /// An empty cache of `budget` bytes.
+    pub(super) fn new(budget: u64) -> Lru<V> {
         Lru {
-            budget,
-            used: 0,
-            tick: 0,
-            entries: Vec::new(),
+            kept: HashMap::new(),
+            clock: 0,
+            usage: CacheUsage {
+                bytes: 0,
+                entries: 0,
+                budget,
+                evicted: 0,
+            },
         }
     }
 
-    /// The value kept for `key`, marked as just used.
-    pub(super) fn get(&mut self, key: &K) -> Option<Arc<V>> {
-        self.tick += 1;
-        let tick = self.tick;
-        self.entries.iter_mut().find(|e| e.key == *key).map(|e| {
-            e.last = tick;
-            e.value.clone()
-        })
+    /// The entry kept under `key`, now the most recently used.
+    pub(super) fn get(&mut self, key: &Key) -> Option<V> {
+        self.clock += 1;
+        let k = self.kept.get_mut(key)?;
+        k.used_at = self.clock;
+        Some(k.entry.clone())
     }
 
-    /// Keeps `value` (of `bytes`) for `key`, evicting the least recently
-    /// used entries to make room; kept only if it fits the budget alone.
-    pub(super) fn insert(&mut self, key: K, value: Arc<V>, bytes: u64) {
-        self.entries.retain(|e| e.key != key);
-        self.used = self.entries.iter().map(|e| e.bytes).sum();
-        if bytes > self.budget {
+    /// Keeps `entry` of `bytes` under `key`, evicting the least recently
+    /// used entries to make room; an entry over the budget is not kept.
+    pub(super) fn put(&mut self, key: Key, entry: V, bytes: u64) {
+        if bytes > self.usage.budget || self.kept.contains_key(&key) {
             return;
         }
-        while self.used + bytes > self.budget {
-            let Some(oldest) = (0..self.entries.len()).min_by_key(|&i| self.entries[i].last) else {
+        while self.usage.bytes + bytes > self.usage.budget {
+            let Some(oldest) = self
+                .kept
+                .iter()
+                .min_by_key(|(_, k)| k.used_at)
+                .map(|(key, _)| key.clone())
+            else {
                 break;
             };
-            self.used -= self.entries.swap_remove(oldest).bytes;
+            if let Some(k) = self.kept.remove(&oldest) {
+                self.usage.bytes -= k.bytes;
+                self.usage.evicted += 1;
+            }
         }
-        self.tick += 1;
-        self.used += bytes;
-        self.entries.push(Entry {
+        self.clock += 1;
+        self.usage.bytes += bytes;
+        self.kept.insert(
             key,
-            value,
-            bytes,
-            last: self.tick,
-        });
+            Kept {
+                entry,
+                bytes,
+                used_at: self.clock,
+            },
+        );
+        self.usage.entries = self.kept.len();
     }
 
-    /// The bytes charged to the entries kept.
-    pub(super) fn used(&self) -> u64 {
-        self.used
+    /// How full it is.
+    pub(super) fn usage(&self) -> CacheUsage {
+        CacheUsage {
+            entries: self.kept.len(),
+            ..self.usage
+        }
     }
 }
 
@@ -75,22 +124,26 @@ impl<K: PartialEq, V> Lru<K, V> {
 mod tests {
     use super::*;
 
+    fn key(i: u64) -> Key {
+        ("f".into(), "v".into(), true, i)
+    }
+
     #[test]
-    fn the_least_recently_used_goes_first_and_the_budget_holds() {
-        let mut c = Lru::new(100);
-        c.insert(1, Arc::new("a"), 40);
-        c.insert(2, Arc::new("b"), 40);
-        assert!(c.get(&1).is_some());
-        c.insert(3, Arc::new("c"), 40);
-        assert!(c.get(&2).is_none(), "the least recently used stays");
-        assert!(c.get(&1).is_some() && c.get(&3).is_some());
-        assert_eq!(c.used(), 80);
-        c.insert(4, Arc::new("huge"), 101);
-        assert!(c.get(&4).is_none(), "an entry over the budget is kept");
-        assert_eq!(c.used(), 80);
-        for k in 10..40 {
-            c.insert(k, Arc::new("x"), 30);
-            assert!(c.used() <= 100);
-        }
+    fn the_least_recently_used_go_first_and_the_too_large_are_not_kept() {
+        let mut c: Lru<u64> = Lru::new(100);
+        c.put(key(1), 1, 40);
+        c.put(key(2), 2, 40);
+        assert_eq!(c.get(&key(1)), Some(1));
+        c.put(key(3), 3, 40);
+        assert_eq!(
+            (c.get(&key(2)), c.get(&key(1)), c.get(&key(3))),
+            (None, Some(1), Some(3))
+        );
+        let u = c.usage();
+        assert_eq!((u.bytes, u.entries, u.evicted), (80, 2, 1));
+        c.put(key(4), 4, 101);
+        assert_eq!((c.get(&key(4)), c.usage().bytes), (None, 80));
+        c.put(key(5), 5, 100);
+        assert_eq!((c.usage().bytes, c.usage().entries), (100, 1));
     }
 }

@@ -20,7 +20,6 @@ mod golden;
 mod project;
 /// `vstf render` and `vstf list --views`.
 mod render;
-mod serve_guard;
 /// Sharded `animate` and `check` runs and `vstf merge`.
 mod shards;
 /// How a run ends when interrupted or when its reader goes away.
