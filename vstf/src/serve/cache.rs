@@ -84,6 +84,24 @@ impl<V: Clone> Lru<V> {
         if bytes > self.usage.budget || self.kept.contains_key(&key) {
             return;
         }
+        self.make_room(bytes);
+        self.clock += 1;
+        self.usage.bytes += bytes;
+        self.kept.insert(
+            key,
+            Kept {
+                entry,
+                bytes,
+                used_at: self.clock,
+            },
+        );
+        self.usage.entries = self.kept.len();
+    }
+
+    /// Evicts the least recently used entries until `bytes` more fit the
+    /// budget (all of them for an entry larger than the budget), so that
+    /// a database is built in memory the cache has already let go.
+    pub(super) fn make_room(&mut self, bytes: u64) {
         while self.usage.bytes + bytes > self.usage.budget {
             let Some(oldest) = self
                 .kept
@@ -98,16 +116,6 @@ impl<V: Clone> Lru<V> {
                 self.usage.evicted += 1;
             }
         }
-        self.clock += 1;
-        self.usage.bytes += bytes;
-        self.kept.insert(
-            key,
-            Kept {
-                entry,
-                bytes,
-                used_at: self.clock,
-            },
-        );
         self.usage.entries = self.kept.len();
     }
 
@@ -145,5 +153,10 @@ mod tests {
         assert_eq!((c.get(&key(4)), c.usage().bytes), (None, 80));
         c.put(key(5), 5, 100);
         assert_eq!((c.usage().bytes, c.usage().entries), (100, 1));
+        // Room made before a build: the kept entries go, oldest first.
+        c.make_room(60);
+        assert!(c.usage().bytes + 60 <= 100, "{:?}", c.usage());
+        c.make_room(1000);
+        assert_eq!(c.usage().bytes, 0);
     }
 }

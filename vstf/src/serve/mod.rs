@@ -126,6 +126,7 @@ impl Site {
             return Ok(e);
         }
         let bytes = cache::estimate(&fixture);
+        lock()?.make_room(bytes);
         let db = crate::run::database(&fixture, key.2, Traversal::Bvh)?;
         let e = Arc::new((fixture, db));
         lock()?.put(key, e.clone(), bytes);
