@@ -40,5 +40,5 @@ pub use findings::{CheckOutcome, FixtureReport, ViewReport};
 pub use named::NamedView;
 pub use probe::{Effort, VIEW_WIDTH};
 pub use row::{difference, Quantity, Reading, Row, Unit};
-pub use runner::{run, run_reporting, run_within};
+pub use runner::{check_loaded, run, run_reporting, run_within};
 pub use views::{golden_view, views_of, ViewEntry};
