@@ -7,6 +7,7 @@ use crate::errors::{to_py, usage};
 use crate::scene::Scene;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use renderer::{Database, Image, Model, Traversal};
 use std::str::FromStr;
 use vstf::fixture::{Fixture, ModelName, Overrides, View};
@@ -119,10 +120,45 @@ fn to_array<'py>(py: Python<'py>, image: &Image, linear: bool) -> PyResult<Bound
     }
 }
 
-/// Renders one view of `scene` into an array (see the package's `render`).
+/// One float output variable of a pixel.
+type Read = fn(&vstf::PixelAov) -> f64;
+
+/// The output variables of every pixel ([`vstf::aov`]) as a dict of
+/// arrays of shape (height, width), (height, width, 3) for the normal.
+fn aov_arrays<'py>(
+    py: Python<'py>,
+    aovs: &[vstf::PixelAov],
+    (width, height): (u32, u32),
+) -> PyResult<Bound<'py, PyDict>> {
+    let (h, w) = (height as usize, width as usize);
+    let out = PyDict::new(py);
+    let floats: [(&str, Read); 5] = [
+        ("event_t", |a| a.event_t),
+        ("proper_time", |a| a.proper_time),
+        ("doppler", |a| a.doppler),
+        ("searchlight", |a| a.searchlight),
+        ("distance", |a| a.distance),
+    ];
+    for (name, read) in floats {
+        let values: Vec<f64> = aovs.iter().map(read).collect();
+        out.set_item(name, PyArray1::from_vec(py, values).reshape([h, w])?)?;
+    }
+    let objects: Vec<i64> = aovs.iter().map(|a| a.object).collect();
+    out.set_item("object", PyArray1::from_vec(py, objects).reshape([h, w])?)?;
+    let normals: Vec<f64> = aovs.iter().flat_map(|a| a.normal.to_array()).collect();
+    out.set_item(
+        "normal",
+        PyArray1::from_vec(py, normals).reshape([h, w, 3])?,
+    )?;
+    Ok(out)
+}
+
+/// Renders one view of `scene` into an array (see the package's `render`);
+/// with `aovs`, a pair of the array and a dict of per-pixel arrays.
 #[pyfunction]
 #[pyo3(signature = (scene, *, view=None, t=None, model=None, width=None, height=None,
-                    spp=None, doppler=false, searchlight=false, linear=false, force=false))]
+                    spp=None, doppler=false, searchlight=false, linear=false, force=false,
+                    aovs=false))]
 #[allow(clippy::too_many_arguments)] // Python's keyword arguments, one per view setting.
 pub fn render<'py>(
     py: Python<'py>,
@@ -137,6 +173,7 @@ pub fn render<'py>(
     searchlight: bool,
     linear: bool,
     force: bool,
+    aovs: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let request = Request {
         view,
@@ -148,13 +185,22 @@ pub fn render<'py>(
         doppler,
         searchlight,
     };
-    let image = py
+    let (image, per_pixel) = py
         .detach(|| {
             let (fixture, view, db) = prepare(scene, &request, force, 1)?;
-            vstf::run::render_with(&db, &fixture, &view)
+            let image = vstf::run::render_with(&db, &fixture, &view)?;
+            let per_pixel = aovs.then(|| vstf::aovs(&fixture, &view, &db));
+            Ok::<_, vstf::Error>((image, per_pixel))
         })
         .map_err(to_py)?;
-    to_array(py, &image, linear)
+    let array = to_array(py, &image, linear)?;
+    match per_pixel {
+        None => Ok(array),
+        Some(a) => {
+            let dict = aov_arrays(py, &a, (image.width, image.height))?;
+            Ok((array, dict).into_pyobject(py)?.into_any())
+        }
+    }
 }
 
 /// Renders the view at each camera time in `times`, one database for all,

@@ -356,3 +356,61 @@ def test_ctrl_c_stops_an_animation_between_frames():
     assert child.returncode != 0
     assert "KeyboardInterrupt" in err
     assert "finished" not in out
+
+
+def test_aovs_agree_with_first_principles_on_a_fast_sphere():
+    """sphere-relativistic: a sphere of radius 1 (V_obj, contracted to an
+    ellipsoid of x semi-axis 1/gamma) moving at 0.9c along x, 10 l.units in
+    front of a camera at rest at the origin at t = 0, looking along -z
+    (vfov 30). For the ray through a pixel's centre, direction d, the event
+    seen is s*(d) at t = -s with the smallest s where the contracted sphere
+    is met; written here from those formulas, not from the renderer."""
+    s = vstf.load(FIXTURES / "sphere-relativistic.json")
+    w, h = 96, 72
+    image, aov = vstf.render(s, width=w, height=h, spp=1, aovs=True)
+    beta = 0.9
+    gamma = 1.0 / np.sqrt(1.0 - beta * beta)
+    tan_half = np.tan(np.radians(30.0) / 2.0)
+    hits = misses = 0
+    for px, py in [(48, 36), (44, 30), (52, 40), (40, 36), (56, 36), (48, 33), (5, 5), (90, 60)]:
+        u = ((px + 0.5) / w * 2.0 - 1.0) * tan_half * w / h
+        v = (1.0 - (py + 0.5) / h * 2.0) * tan_half
+        d = np.array([u, v, -1.0]) / np.sqrt(u * u + v * v + 1.0)
+        # Centre at lab time t = -s: (-81 + 0.9 (t + 100), 0, -10); the
+        # point s*d minus it, with x stretched by gamma, has length 1.
+        c0 = np.array([-81.0 + beta * 100.0, 0.0, -10.0])
+        a_vec = d + np.array([beta, 0.0, 0.0])  # d(point - centre)/ds
+        scale = np.array([gamma, 1.0, 1.0])
+        A, B = scale * a_vec, scale * (-c0)
+        qa, qb, qc = A @ A, 2.0 * A @ B, B @ B - 1.0
+        disc = qb * qb - 4 * qa * qc
+        if disc <= 0:
+            misses += 1
+            assert aov["object"][py, px] == -1 and np.isnan(aov["event_t"][py, px])
+            assert np.isnan(aov["normal"][py, px]).all()
+            continue
+        hits += 1
+        s_hit = (-qb - np.sqrt(disc)) / (2 * qa)
+        t_hit = -s_hit
+        assert aov["object"][py, px] == 0
+        assert aov["event_t"][py, px] == pytest.approx(t_hit, abs=1e-9)
+        assert aov["distance"][py, px] == pytest.approx(s_hit, abs=1e-9)
+        # The body's clocks are synchronised in its rest frame: the clock at
+        # the hit reads the rest-frame time since the start event (t = -100,
+        # x = -81), gamma (dt - beta dx).
+        dt, dx = t_hit + 100.0, s_hit * d[0] + 81.0
+        assert aov["proper_time"][py, px] == pytest.approx(gamma * (dt - beta * dx), abs=1e-9)
+        doppler = 1.0 / (gamma * (1.0 + beta * d[0]))
+        assert aov["doppler"][py, px] == pytest.approx(doppler, rel=1e-9)
+        assert aov["searchlight"][py, px] == pytest.approx(doppler**4, rel=1e-9)
+        offset = s_hit * d - np.array([-81.0 + beta * (t_hit + 100.0), 0.0, -10.0])
+        normal = offset * np.array([gamma * gamma, 1.0, 1.0])
+        normal /= np.linalg.norm(normal)
+        # Turned towards the camera in the lab: on the trailing side, seen
+        # by aberration, that is the inward normal (issue 30, item 2).
+        facing = normal if normal @ -d >= 0 else -normal
+        assert np.allclose(aov["normal"][py, px], facing, atol=1e-9)
+    assert hits >= 5 and misses >= 2
+    # The image and the AOVs agree on what is lit.
+    lit = image.sum(axis=2) > 0
+    assert np.array_equal(lit, aov["object"] >= 0)

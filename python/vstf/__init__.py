@@ -99,6 +99,7 @@ def render(
     searchlight: bool = False,
     linear: bool = False,
     force: bool = False,
+    aovs: bool = False,
 ):
     """One view of ``scene`` as a numpy array of shape (height, width, 3).
 
@@ -110,6 +111,14 @@ def render(
     searchlight effects. The array holds the PNG's 8-bit values (``uint8``,
     linear in radiance, as vstf writes its PNGs), or with ``linear`` the
     linear radiance (``float64``). The GIL is released while rendering.
+
+    With ``aovs``, returns ``(image, aovs)``: a dict of per-pixel arrays of
+    what the ray through each pixel's centre meets (NaN, or -1 for
+    ``object``, where it meets nothing): ``event_t`` (the hit event's lab
+    time: the retarded time), ``proper_time`` (the object's own time
+    there), ``doppler`` (nu_camera / nu_surface), ``searchlight`` (D^4),
+    ``object`` (index into ``scene.objects``), ``distance`` (lab distance
+    from the camera) and ``normal`` (height, width, 3).
     """
     return _vstf.render(
         scene,
@@ -123,6 +132,7 @@ def render(
         searchlight=searchlight,
         linear=linear,
         force=force,
+        aovs=aovs,
     )
 
 

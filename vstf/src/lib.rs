@@ -7,7 +7,9 @@
 //! slice-by-slice emulator sharing no code with the renderer) fixture by
 //! fixture ([`check`]), and the views with their approved images
 //! ([`golden`]); [`report`] presents the verdict. Beside that: [`debug`]
-//! logs the variables along a pixel's rays, [`animate`] renders frame
+//! logs the variables along a pixel's rays, [`aov`] reads per-pixel
+//! arrays (the hit's event, proper time, Doppler factor) from the same
+//! record, [`animate`] renders frame
 //! sequences, [`shard`] splits animations and check suites over a batch
 //! engine's array jobs, [`mod@bench`] measures speed, [`serve`] is the
 //! local viewer, and [`fuzz`] mutates fixtures through the whole path.
@@ -27,6 +29,7 @@ mod observer;
 mod output;
 
 pub mod animate;
+pub mod aov;
 pub mod bench;
 pub mod check;
 pub mod debug;
@@ -43,6 +46,7 @@ pub mod serve;
 pub mod shard;
 
 pub use aim::{out_of_view, resolve_camera_time, CameraTime};
+pub use aov::{aovs, PixelAov};
 pub use budget::{prisms, Budget, Prisms};
 pub use check::{Effort, FixtureReport, Row, Unit};
 pub use error::Error;
