@@ -2,7 +2,8 @@
 # The Python package's tests (python/tests): a virtual environment under
 # target/, the package built from this workspace by `pip install ./python`
 # (maturin from PyPI), and pytest against the repository's fixtures, with
-# the release `vstf` binary to compare arrays with its PNGs.
+# the release `vstf` binary to compare arrays with its PNGs; the example
+# notebooks (examples/) are run by nbclient as part of it.
 #
 # Without python3 (or its venv module) the tests are skipped, saying so;
 # with VSTF_REQUIRE_PYTHON=1 (as .ci/run sets) that is a failure.
@@ -24,7 +25,8 @@ echo "== the vstf executable the tests compare with"
 cargo build --release --locked -p vstf
 echo "== pip install ./python (into $venv)"
 "$venv/bin/python" -m pip install -q --upgrade pip
-"$venv/bin/python" -m pip install -q "maturin>=1.9,<2" "pytest>=7" numpy
+"$venv/bin/python" -m pip install -q "maturin>=1.9,<2" "pytest>=7" numpy \
+  nbclient nbformat ipykernel matplotlib tqdm
 "$venv/bin/python" -m pip install -q ./python
 echo "== pytest python/tests"
 VSTF_BIN="$PWD/target/release/vstf" "$venv/bin/pytest" -q python/tests
