@@ -48,13 +48,13 @@ try:
     render = f"/api/render?fixture=big&view=view&token={token}&speed="
     for k in range(30):
         assert get(render + str(0.5 + k / 100))[0] == 200
-    print(f"30 distinct speeds: peak {peak_mb():.0f} MB (cache budget {cache_mb} MiB)")
+    print(f"30 distinct speeds: peak {peak_mb():.0f} MiB (cache budget {cache_mb} MiB)")
     answers = []
     threads = [threading.Thread(target=lambda k=k: answers.append(get(render + str(0.2 + k / 1000))[0]))
                for k in range(50)]
     [t.start() for t in threads]
     [t.join() for t in threads]
     counts = {c: answers.count(c) for c in sorted(set(answers))}
-    print(f"50 renders at once: {counts}, peak {peak_mb():.0f} MB")
+    print(f"50 renders at once: {counts}, peak {peak_mb():.0f} MiB")
 finally:
     server.kill()
