@@ -1,9 +1,7 @@
 //! What the page's requests ask for: the query string decoded, a frame
 //! (view, camera time, model, speed) read from it, and the fixture sped up.
 
-use crate::fixture::Fixture;
-use glam::DVec3;
-use renderer::{Model, Motion};
+use renderer::Model;
 use std::collections::HashMap;
 
 /// What a render request asks for: a declared view, at a camera time and
@@ -87,36 +85,6 @@ impl Frame {
             speed: number("speed")?.unwrap_or(1.0),
         })
     }
-}
-
-/// The one uniformly moving object of a fixture, if it has exactly one.
-pub fn single_mover(f: &Fixture) -> Option<usize> {
-    let movers: Vec<usize> = f
-        .scene
-        .objects
-        .iter()
-        .enumerate()
-        .filter(|(_, o)| o.motion.velocity().is_some_and(|v| v != DVec3::ZERO))
-        .map(|(i, _)| i)
-        .collect();
-    (movers.len() == 1).then(|| movers[0])
-}
-
-/// The fixture with its single moving object's velocity scaled by `k`
-/// (its start event kept).
-pub(super) fn with_speed(f: &Fixture, k: f64) -> Result<Fixture, String> {
-    if k == 1.0 {
-        return Ok(f.clone());
-    }
-    let i =
-        single_mover(f).ok_or("the speed slider needs a fixture with exactly one moving object")?;
-    let mut f = f.clone();
-    match &mut f.scene.objects[i].motion {
-        Motion::Extrusion { extrusion, .. } => extrusion.x *= k,
-        Motion::Velocity { velocity, .. } => *velocity *= k,
-        _ => return Err("only uniform motion can be sped up".into()),
-    }
-    Ok(f)
 }
 
 #[cfg(test)]

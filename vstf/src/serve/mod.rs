@@ -25,16 +25,17 @@ mod routes;
 #[cfg(test)]
 mod tests;
 
+pub use crate::fixture::single_mover;
 pub use cache::CacheUsage;
-pub use frame::single_mover;
 
 use crate::error::Error;
+use crate::fixture::with_speed;
 use crate::fixture::{Fixture, Overrides, View};
 use crate::golden::{slug, Store};
 use crate::project::Project;
 use crate::Budget;
 use cache::{Entry, Lru};
-use frame::{with_speed, Frame};
+use frame::Frame;
 use guard::Guard;
 use http::Slots;
 use renderer::Traversal;
