@@ -1,7 +1,8 @@
 //! Measuring an image: sub-pixel edges along scanlines ([`scan`]), mapped
 //! back through an independent model of the camera ([`pinhole`]) to
 //! positions on known planes or to directions, fitted along the edge
-//! ([`fit`]); and colours turned back into chromaticities ([`colorimetry`]).
+//! ([`fit`]), or as directions fitted by a circle on the sky ([`sky`]); and
+//! colours turned back into chromaticities ([`colorimetry`]).
 //!
 //! Nothing here calls the ray tracer: a measurement that shared its
 //! camera or colour code would cancel that code's errors instead of
@@ -12,7 +13,9 @@ pub mod colorimetry;
 pub mod fit;
 pub mod pinhole;
 pub mod scan;
+pub mod sky;
 
 pub use fit::PolyFit;
 pub use pinhole::{azimuth, elevation, Kinematics, Pinhole, Plane};
 pub use scan::{color, edge, Scan};
+pub use sky::SkyCircle;

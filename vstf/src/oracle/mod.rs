@@ -2,7 +2,7 @@
 //! points are seen on the camera's past light cone ([`seen`]), the
 //! kinematics of special relativity and of Galilean addition
 //! ([`kinematics`]), the quadratic solver both rest on ([`quadratic`]),
-//! extremes over a body's outline ([`extremes`]), the point of an edge
+//! extremes over a body's outline or a closed curve ([`extremes`]), the point of an edge
 //! seen at a given place ([`crossing`]), and light reflected by a moving
 //! mirror ([`mirror`]).
 //!
@@ -17,7 +17,7 @@ pub mod quadratic;
 pub mod seen;
 
 pub use crossing::first_root;
-pub use extremes::extremes_on_polygon;
+pub use extremes::{extremes_on_loop, extremes_on_polygon};
 pub use kinematics::{
     aberrate_galilean, aberrate_lorentz, contract, doppler_factor, gamma, gamma_of_squared,
     to_frame_of,
