@@ -3,7 +3,9 @@
 # target/, the package built from this workspace by `pip install ./python`
 # (maturin from PyPI), and pytest against the repository's fixtures, with
 # the release `vstf` binary to compare arrays with its PNGs; the example
-# notebooks (examples/) are run by nbclient as part of it.
+# notebooks (examples/) are run by nbclient as part of it, and the widget
+# is driven in JupyterLab in chromium (skipped without chromium unless
+# VSTF_REQUIRE_BROWSER=1, as .ci/run sets when it installed it).
 #
 # Without python3 (or its venv module) the tests are skipped, saying so;
 # with VSTF_REQUIRE_PYTHON=1 (as .ci/run sets) that is a failure.
@@ -26,7 +28,7 @@ cargo build --release --locked -p vstf
 echo "== pip install ./python (into $venv)"
 "$venv/bin/python" -m pip install -q --upgrade pip
 "$venv/bin/python" -m pip install -q "maturin>=1.9,<2" "pytest>=7" numpy \
-  nbclient nbformat ipykernel matplotlib tqdm
+  nbclient nbformat ipykernel matplotlib tqdm anywidget jupyterlab selenium
 "$venv/bin/python" -m pip install -q ./python
 echo "== pytest python/tests"
 VSTF_BIN="$PWD/target/release/vstf" "$venv/bin/pytest" -q python/tests

@@ -114,6 +114,50 @@ impl Scene {
         })
     }
 
+    /// The camera's lab time as the fixture gives it.
+    #[getter]
+    fn camera_t(&self) -> f64 {
+        self.fixture.spec.camera.t
+    }
+
+    /// The distance from the camera to the point it looks at (the light
+    /// time across the scene), or `None` when it gives no `look_at`.
+    #[getter]
+    fn look_distance(&self) -> Option<f64> {
+        let c = &self.fixture.spec.camera;
+        c.look_at.map(|p| p.distance(c.position))
+    }
+
+    /// The speed (fraction of c) of the scene's one uniformly moving object,
+    /// or `None` when it has none or several.
+    #[getter]
+    fn mover_speed(&self) -> Option<f64> {
+        let i = vstf::fixture::single_mover(&self.fixture)?;
+        Some(self.fixture.scene.objects[i].motion.velocity()?.length())
+    }
+
+    /// The scene with its one moving object at `speed` (a fraction of c,
+    /// below 1), its start event kept: what the viewers' speed sliders
+    /// render.
+    fn with_speed(&self, speed: f64) -> PyResult<Scene> {
+        let now = self.mover_speed().ok_or_else(|| {
+            usage("with_speed needs a scene with exactly one uniformly moving object")
+        })?;
+        if !(0.0..1.0).contains(&speed) {
+            return Err(usage(format!(
+                "speed={speed}: give a fraction of c, at least 0 and below 1"
+            )));
+        }
+        if now == 0.0 {
+            return Err(usage(
+                "the moving object is at rest; its speed cannot be scaled",
+            ));
+        }
+        vstf::fixture::with_speed(&self.fixture, speed / now)
+            .map(|fixture| Scene { fixture })
+            .map_err(usage)
+    }
+
     /// The fixture's name (its file's stem).
     #[getter]
     fn name(&self) -> String {

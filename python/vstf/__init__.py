@@ -52,6 +52,7 @@ __all__ = [
     "CheckResult",
     "Row",
     "Golden",
+    "Viewer",
     "VstfError",
     "FixtureError",
     "NoProjectError",
@@ -278,6 +279,16 @@ def check(scene: Union[Scene, PathLike], *, quick: bool = False, goldens: bool =
     if not isinstance(scene, Scene):
         scene = load(scene)
     return CheckResult.from_json(_vstf.check(scene, quick=quick, goldens=goldens))
+
+
+def __getattr__(name):
+    """``vstf.Viewer``, the notebook widget, imported on first use (it needs
+    anywidget, which the rest of the package does not)."""
+    if name == "Viewer":
+        from .widget import Viewer
+
+        return Viewer
+    raise AttributeError(f"module 'vstf' has no attribute {name!r}")
 
 
 def debug(scene: Scene, pixel: Sequence[int], *, candidates: bool = False, **view) -> dict:
