@@ -414,3 +414,33 @@ def test_aovs_agree_with_first_principles_on_a_fast_sphere():
     # The image and the AOVs agree on what is lit.
     lit = image.sum(axis=2) > 0
     assert np.array_equal(lit, aov["object"] >= 0)
+
+
+def test_a_scene_built_from_typed_parts_is_its_dict():
+    from vstf.build import Camera, Image, Light, Material, Object, View, Worldline, build, fixture, quad
+
+    parts = dict(
+        camera=Camera(position=(0, 0, 0), t=10.0, look_at=(0, 0, -1), vfov_deg=30.0),
+        objects=[
+            Object("face", quad((-0.5, -0.5, 0), (1, 0, 0), (0, 1, 0)), kind="V_obj",
+                   worldline=Worldline(start=(-100, -90, 0, -10), velocity=(0.9, 0, 0), proper_lifetime=200),
+                   material=Material(color=(0.9, 0.3, 0.2)))
+        ],
+        light=Light(position=(0, 20, 20), ambient=0.5),
+        image=Image(width=48, height=32),
+        views=[View("now")],
+    )
+    built = build(**parts, file="face.json")
+    as_dict = fixture(**parts)
+    assert as_dict["objects"][0]["worldline"] == {"start": [-100, -90, 0, -10], "velocity": [0.9, 0, 0],
+                                                  "proper_lifetime": 200}
+    assert "position" not in as_dict["objects"][0]
+    assert built.views == ["now"] and built.objects == ["face"]
+    image = vstf.render(built)
+    assert np.array_equal(image, vstf.render(vstf.scene(as_dict)))
+    assert image.any()
+    # A mistake in a part is named at its JSON path, as in a file.
+    parts["objects"][0].worldline.velocity = (1.5, 0, 0)
+    with pytest.raises(vstf.FixtureError) as e:
+        build(**parts, file="face.json")
+    assert e.value.path.startswith("objects[0]")
