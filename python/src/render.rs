@@ -10,6 +10,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use renderer::{Database, Image, Model, Traversal};
 use std::str::FromStr;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
 use vstf::fixture::{Fixture, ModelName, Overrides, View};
 use vstf::{Budget, CameraTime};
 
@@ -153,6 +155,40 @@ fn aov_arrays<'py>(
     Ok(out)
 }
 
+/// Runs `work` (which watches its stop flag) on a thread of its own while
+/// the calling thread, the GIL released, looks for Ctrl-C every 20 ms; on
+/// one it sets the flag, waits for the work to stop (within a row of
+/// pixels) and raises `KeyboardInterrupt`.
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&AtomicBool) -> Result<T, vstf::Error> + Send,
+) -> PyResult<T> {
+    let stop = AtomicBool::new(false);
+    let mut interrupt: Option<PyErr> = None;
+    let outcome = py.detach(|| {
+        std::thread::scope(|s| {
+            let worker = s.spawn(|| work(&stop));
+            while !worker.is_finished() {
+                std::thread::sleep(Duration::from_millis(20));
+                if interrupt.is_none() {
+                    if let Err(e) = Python::attach(|py| py.check_signals()) {
+                        interrupt = Some(e);
+                        stop.store(true, Ordering::Relaxed);
+                    }
+                }
+            }
+            worker.join()
+        })
+    });
+    if let Some(e) = interrupt {
+        return Err(e);
+    }
+    match outcome {
+        Ok(result) => result.map_err(to_py),
+        Err(panic) => std::panic::resume_unwind(panic),
+    }
+}
+
 /// Renders one view of `scene` into an array (see the package's `render`);
 /// with `aovs`, a pair of the array and a dict of per-pixel arrays.
 #[pyfunction]
@@ -185,14 +221,12 @@ pub fn render<'py>(
         doppler,
         searchlight,
     };
-    let (image, per_pixel) = py
-        .detach(|| {
-            let (fixture, view, db) = prepare(scene, &request, force, 1)?;
-            let image = vstf::run::render_with(&db, &fixture, &view)?;
-            let per_pixel = aovs.then(|| vstf::aovs(&fixture, &view, &db));
-            Ok::<_, vstf::Error>((image, per_pixel))
-        })
-        .map_err(to_py)?;
+    let (image, per_pixel) = interruptible(py, |stop| {
+        let (fixture, view, db) = prepare(scene, &request, force, 1)?;
+        let image = vstf::run::render_until(&db, &fixture, &view, stop)?;
+        let per_pixel = aovs.then(|| vstf::aovs(&fixture, &view, &db));
+        Ok((image, per_pixel))
+    })?;
     let array = to_array(py, &image, linear)?;
     match per_pixel {
         None => Ok(array),
@@ -244,14 +278,11 @@ pub fn animate<'py>(
     let mut frames = Vec::with_capacity(times.len());
     for (i, &t) in times.iter().enumerate() {
         request.t = Some(TimeArg::At(t));
-        let image = py
-            .detach(|| {
-                let (_, view) = request.resolve(&fixture)?;
-                debug_assert_eq!(view.model, first.model);
-                vstf::run::render_with(&db, &fixture, &view)
-            })
-            .map_err(to_py)?;
-        py.check_signals()?;
+        let image = interruptible(py, |stop| {
+            let (_, view) = request.resolve(&fixture)?;
+            debug_assert_eq!(view.model, first.model);
+            vstf::run::render_until(&db, &fixture, &view, stop)
+        })?;
         frames.push(to_array(py, &image, linear)?);
         if let Some(callback) = &progress {
             callback.call1((i + 1, times.len()))?;

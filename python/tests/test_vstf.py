@@ -444,3 +444,30 @@ def test_a_scene_built_from_typed_parts_is_its_dict():
     with pytest.raises(vstf.FixtureError) as e:
         build(**parts, file="face.json")
     assert e.value.path.startswith("objects[0]")
+
+
+def test_ctrl_c_stops_a_long_single_render():
+    # A frame 256 times the size of a timed small one: far longer than the
+    # few seconds the interrupt is given.
+    s = vstf.load(FIXTURES / "flange.json")
+    started = time.monotonic()
+    vstf.render(s, width=160, height=120, spp=64, force=True)
+    estimate = 256 * (time.monotonic() - started)
+    code = (
+        "import vstf\n"
+        f"s = vstf.load({str(FIXTURES / 'flange.json')!r})\n"
+        "print('rendering', flush=True)\n"
+        "vstf.render(s, width=2560, height=1920, spp=64, force=True)\n"
+        "print('finished', flush=True)\n"
+    )
+    child = subprocess.Popen(
+        [sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    assert child.stdout.readline().strip() == "rendering"
+    time.sleep(1.0)
+    child.send_signal(signal.SIGINT)
+    interrupted = time.monotonic()
+    out, err = child.communicate(timeout=60)
+    stopped_in = time.monotonic() - interrupted
+    assert "KeyboardInterrupt" in err and "finished" not in out
+    assert stopped_in < min(5.0, estimate / 4), (stopped_in, estimate)

@@ -94,7 +94,9 @@ pub use color::{
 };
 pub use database::{Database, Packing, Traversal};
 pub use geometry::{Barycentric, Hit, PrimitiveId, Tetrahedron};
-pub use render::{pixel, pixel_traced, render, shader, Frame, Image, RenderSettings};
+pub use render::{
+    pixel, pixel_traced, render, render_stoppable, shader, Frame, Image, RenderSettings,
+};
 pub use rng::SplitMix64;
 pub use scene::{
     Blink, Hyperbolic, HyperbolicField, Keyframe, Light, Material, Mesh, MeshError, Motion,

@@ -15,6 +15,7 @@ use crate::shading::{Effects, Shader};
 use crate::trace::{NoTrace, Step, Trace};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Per-image settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -99,6 +100,31 @@ pub fn render(
     model: Model,
     settings: &RenderSettings,
 ) -> Image {
+    let frame = Frame {
+        camera,
+        camera_t,
+        model,
+        settings,
+    };
+    let never = AtomicBool::new(false);
+    render_stoppable(db, scene, &frame, &never).unwrap_or_else(|| unreachable!("never stopped"))
+}
+
+/// [`render`], giving up (`None`) once `stop` is set: each pair of rows
+/// checks it before it starts, so a front end can interrupt a long frame
+/// within a row's time. An image it returns is [`render`]'s to the bit.
+pub fn render_stoppable(
+    db: &Database,
+    scene: &Scene,
+    frame: &Frame,
+    stop: &AtomicBool,
+) -> Option<Image> {
+    let Frame {
+        camera,
+        camera_t,
+        model,
+        settings,
+    } = *frame;
     let shader = shader(db, scene, model, settings);
     let camera = &Camera {
         kinematics: Kinematics::of(model),
@@ -118,6 +144,9 @@ pub fn render(
         .par_chunks_mut(2 * w as usize)
         .enumerate()
         .for_each(|(pair, rows)| {
+            if stop.load(Ordering::Relaxed) {
+                return;
+            }
             let y0 = 2 * pair as u32;
             for x0 in (0..w).step_by(2) {
                 let mut block = [(0, 0); PACKET];
@@ -134,11 +163,11 @@ pub fn render(
                 }
             }
         });
-    Image {
+    (!stop.load(Ordering::Relaxed)).then_some(Image {
         width: w,
         height: h,
         pixels,
-    }
+    })
 }
 
 /// What every pixel of one frame is rendered with: the camera at its lab

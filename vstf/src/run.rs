@@ -4,6 +4,7 @@
 use crate::error::Error;
 use crate::fixture::{Fixture, Overrides, View};
 use renderer::{Database, Image, Traversal};
+use std::sync::atomic::AtomicBool;
 
 /// A fixture's database for one Lorentz setting.
 pub fn database(fixture: &Fixture, lorentz: bool, traversal: Traversal) -> Result<Database, Error> {
@@ -29,14 +30,28 @@ pub fn render(fixture: &Fixture, view: &View, traversal: Traversal) -> Result<Im
 /// setting). A pixel that is not a finite colour fails the render: a NaN or
 /// an infinity would be written as black without a word.
 pub fn render_with(db: &Database, fixture: &Fixture, view: &View) -> Result<Image, Error> {
-    let image = renderer::render(
-        db,
-        &fixture.scene,
-        &view.camera,
-        view.camera_t,
-        view.model,
-        &view.settings,
-    );
+    render_until(db, fixture, view, &AtomicBool::new(false))
+}
+
+/// [`render_with`], stopped with [`Error::Interrupted`] once `stop` is set
+/// (a front end's Ctrl-C), within a row's time.
+pub fn render_until(
+    db: &Database,
+    fixture: &Fixture,
+    view: &View,
+    stop: &AtomicBool,
+) -> Result<Image, Error> {
+    let frame = renderer::Frame {
+        camera: &view.camera,
+        camera_t: view.camera_t,
+        model: view.model,
+        settings: &view.settings,
+    };
+    let image = renderer::render_stoppable(db, &fixture.scene, &frame, stop).ok_or_else(|| {
+        Error::Interrupted {
+            message: format!("{}: the render was interrupted", fixture.file.display()),
+        }
+    })?;
     match image.pixels.iter().position(|p| !p.is_finite()) {
         None => Ok(image),
         Some(i) => Err(Error::NonFinite {
