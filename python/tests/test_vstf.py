@@ -471,3 +471,16 @@ def test_ctrl_c_stops_a_long_single_render():
     stopped_in = time.monotonic() - interrupted
     assert "KeyboardInterrupt" in err and "finished" not in out
     assert stopped_in < min(5.0, estimate / 4), (stopped_in, estimate)
+
+
+def test_a_non_array_where_an_array_belongs_names_the_field():
+    bad = flange_dict()
+    bad["camera"]["position"] = "above the stage"
+    with pytest.raises(vstf.FixtureError) as e:
+        vstf.scene(bad, file="mine.json")
+    assert e.value.path == "camera.position"
+    bad = flange_dict()
+    bad["objects"][0]["mesh"]["cuboid"]["min"] = [1.0, 2.0]
+    with pytest.raises(vstf.FixtureError) as e:
+        vstf.scene(bad, file="mine.json")
+    assert e.value.path == "objects[0].mesh.cuboid.min"
