@@ -28,7 +28,7 @@ cargo build --release --locked -p vstf
 echo "== pip install ./python (into $venv)"
 "$venv/bin/python" -m pip install -q --upgrade pip
 "$venv/bin/python" -m pip install -q "maturin>=1.9,<2" "pytest>=7" numpy \
-  nbclient nbformat ipykernel matplotlib tqdm anywidget jupyterlab selenium
+  nbclient nbformat ipykernel matplotlib pandas tqdm anywidget jupyterlab selenium
 "$venv/bin/python" -m pip install -q ./python
 echo "== pytest python/tests"
 VSTF_BIN="$PWD/target/release/vstf" "$venv/bin/pytest" -q python/tests

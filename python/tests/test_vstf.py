@@ -484,3 +484,32 @@ def test_a_non_array_where_an_array_belongs_names_the_field():
     with pytest.raises(vstf.FixtureError) as e:
         vstf.scene(bad, file="mine.json")
     assert e.value.path == "objects[0].mesh.cuboid.min"
+
+
+def test_typed_checks_are_measured_and_the_result_tabulates_and_plots():
+    from vstf.build import Camera, Check, Image, Light, Material, Object, View, Worldline, analytic_sphere, build
+
+    ball = Object("ball", analytic_sphere(1.0), kind="V_obj",
+                  worldline=Worldline(start=(-100, -81, 0, -10), extrusion=(200, 180, 0, 0)),
+                  material=Material(color=(0.3, 0.8, 0.9)))
+    scene = build(
+        Camera(position=(0, 0, 0), t=0.0, look_at=(0, 0, -1), vfov_deg=30.0), [ball],
+        light=Light(position=(0, 20, 20), color=(0, 0, 0), ambient=1.0), image=Image(width=320, height=240, spp=4),
+        views=[View("view")],
+        checks=[Check("radius", "outline", {"view": "view", "object": "ball", "read": "radius"}),
+                Check("rms", "outline", {"view": "view", "object": "ball", "read": "rms"})],
+        background=(0, 0, 0), file="ball.json",
+    )
+    result = vstf.check(scene, quick=True)
+    assert [r.quantity for r in result.rows] == ["radius", "rms"] and result.passed
+    pd = pytest.importorskip("pandas")
+    table = result.to_pandas()
+    assert list(table["quantity"]) == ["radius", "rms"] and table["passed"].all()
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    ax = result.plot()
+    assert [t.get_text() for t in ax.get_yticklabels()] == ["ball: radius", "ball: rms"]
+    # A kind that does not exist is named at its path.
+    with pytest.raises(vstf.FixtureError) as e:
+        build(Camera(position=(0, 0, 0)), [ball], checks=[Check("x", "outlines", {})], file="ball.json")
+    assert e.value.path.startswith("checks[0]")

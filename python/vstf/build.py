@@ -105,6 +105,25 @@ class View:
 
 
 @dataclass
+class Check:
+    """A declared check: its name, its kind (``"edge"``, ``"outline"``,
+    ``"doppler"``, ... as docs/checks.md lists them) with that kind's
+    fields, and the paper's printed figure where it gives one (a separate
+    column, never the expectation)."""
+
+    name: str
+    kind: str
+    fields: Dict[str, Any] = field(default_factory=dict)
+    paper: Optional[float] = None
+
+    def to_dict(self) -> Dict[str, Any]:
+        out = {"name": self.name, "measure": {self.kind: _plain(self.fields)}}
+        if self.paper is not None:
+            out["paper"] = self.paper
+        return out
+
+
+@dataclass
 class Image:
     """Image size, samples per pixel and the colour effects of motion."""
 
@@ -153,7 +172,7 @@ def fixture(
     image: Optional[Image] = None,
     model: str = "relativistic",
     views: Sequence[View] = (),
-    checks: Sequence[Dict[str, Any]] = (),
+    checks: Sequence[Any] = (),
     description: str = "",
     background: Optional[Vec3] = None,
 ) -> Dict[str, Any]:
@@ -166,7 +185,7 @@ def fixture(
         "image": _plain(image or Image()),
         "objects": [_plain(o) for o in objects],
         "views": [_plain(v) for v in views],
-        "checks": [_plain(c) for c in checks],
+        "checks": [c.to_dict() if isinstance(c, Check) else _plain(c) for c in checks],
     }
     if background is not None:
         out["background"] = list(background)
