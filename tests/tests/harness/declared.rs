@@ -61,7 +61,7 @@ fn bad_edge_declarations_name_the_file_and_json_path() {
         ),
         (
             Box::new(|v| v["checks"][0]["measure"]["edge"]["vertices"] = serde_json::json!([0, 9])),
-            "checks[0].measure.edge.vertices[1]: the mesh has 4 vertices",
+            "checks[0].measure.edge.vertices[1]: no vertex 9: the mesh has 4 vertices, counted from 0 (an OBJ file's faces count from 1",
         ),
         (
             Box::new(|v| v["checks"][0]["measure"]["edge"]["at"] = serde_json::json!({"row": 240})),
@@ -219,6 +219,35 @@ fn a_cube_rendered_a_hundredth_elsewhere_fails_its_edge_rows() {
             assert!(r.pass, "{r:?}");
         }
     }
+}
+
+/// A misspelt object, view or earlier check is refused with the nearest
+/// name as a hint; a name near none (the control) gets no hint.
+#[test]
+fn misspelt_names_in_checks_get_a_did_you_mean() {
+    assert_refused(vec![
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["object"] = "frnt face".into()),
+            "checks[0].measure.edge.object: no object named \"frnt face\"; did you mean \"front face\"? (objects: front face, trailing face)",
+        ),
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["view"] = "t=10".into()),
+            "checks[0].measure.edge.view: no view named \"t=10\" in views; did you mean \"t = 10\"?",
+        ),
+        (
+            Box::new(|v| {
+                v["checks"][4]["measure"]["difference"][1] =
+                    "front face, left edge at row 12 (px)".into()
+            }),
+            "no earlier check named \"front face, left edge at row 12 (px)\"; did you mean \"front face, left edge at row 120 (px)\"?",
+        ),
+    ]);
+    let e = parse(&cube_with(|v| {
+        v["checks"][0]["measure"]["edge"]["object"] = "nope".into()
+    }))
+    .err()
+    .unwrap();
+    assert!(!e.contains("did you mean"), "{e}");
 }
 
 /// An edge the view does not show (the cube has long left the picture) is
