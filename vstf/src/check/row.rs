@@ -2,6 +2,7 @@
 //! first-principles value it is held against and the paper's printed
 //! figure, judged into a row of the check table.
 
+use crate::fixture::checks::Dimension;
 use serde::{Deserialize, Serialize};
 
 /// A value read off the images, with its 3-sigma uncertainty.
@@ -62,6 +63,20 @@ impl Unit {
 }
 
 impl Unit {
+    /// The unit a declared check's row of dimension `d` is given in.
+    pub fn of(d: Dimension) -> Unit {
+        match d {
+            Dimension::Length => Unit::LUnits,
+            Dimension::Pixels => Unit::Pixels,
+            Dimension::Angle => Unit::Degrees,
+            Dimension::Ratio => Unit::Ratio,
+            Dimension::Factor => Unit::Factor,
+            Dimension::Time => Unit::TUnits,
+            Dimension::Speed => Unit::LUnitsPerTUnit,
+            Dimension::PixelSpeed => Unit::PixelsPerTUnit,
+        }
+    }
+
     /// Every unit.
     pub const ALL: [Unit; 9] = [
         Unit::LUnits,

@@ -29,7 +29,7 @@ use crate::check::row::{difference, Quantity, Reading, Unit};
 use crate::check::views::with_view_effects;
 use crate::error::Error;
 use crate::fixture::checks::{
-    dimensions, CheckSpec, Dimension, DopplerSpec, MeasureSpec, ToleranceSpec, ViewSpec,
+    dimensions, CheckSpec, DopplerSpec, MeasureSpec, ToleranceSpec, ViewSpec,
 };
 use crate::fixture::Fixture;
 use crate::observer::{fixture_model, Observer};
@@ -82,7 +82,7 @@ pub fn evaluate(
         quantities: Vec::new(),
     };
     let mut named_views = Vec::new();
-    let units = dimensions(&spec.checks).into_iter().map(unit_of);
+    let units = dimensions(&spec.checks).into_iter().map(Unit::of);
     for ((i, c), unit) in spec.checks.iter().enumerate().zip(units) {
         let failed =
             |message: String| Quantity::failed(&c.name, unit, format!("checks[{i}]: {message}"));
@@ -133,20 +133,6 @@ pub fn evaluate(
     }
     outcome.views.extend(named_views);
     Ok(outcome)
-}
-
-/// The unit a row of `d` is given in.
-fn unit_of(d: Dimension) -> Unit {
-    match d {
-        Dimension::Length => Unit::LUnits,
-        Dimension::Pixels => Unit::Pixels,
-        Dimension::Angle => Unit::Degrees,
-        Dimension::Ratio => Unit::Ratio,
-        Dimension::Factor => Unit::Factor,
-        Dimension::Time => Unit::TUnits,
-        Dimension::Speed => Unit::LUnitsPerTUnit,
-        Dimension::PixelSpeed => Unit::PixelsPerTUnit,
-    }
 }
 
 /// The views each declared check (not a named kind) is measured in: its
