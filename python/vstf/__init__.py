@@ -195,16 +195,18 @@ def _progress(progress, total):
 class Row:
     """One checked quantity: measured from the images, expected from first
     principles, the paper's printed figure where it gives one, and the
-    tolerance derived from the measurement."""
+    tolerance derived from the measurement. A check that could not be
+    measured is a failing row with no numbers (``None``) and its ``error``."""
 
     fixture: str
     quantity: str
-    measured: float
-    expected: float
+    measured: Optional[float]
+    expected: Optional[float]
     paper: Optional[float]
-    tolerance: float
+    tolerance: Optional[float]
     unit: str
     passed: bool
+    error: Optional[str] = None
 
 
 @dataclass(frozen=True)
@@ -258,8 +260,10 @@ class CheckResult:
         if ax is None:
             _, ax = plt.subplots(figsize=(8, 0.3 * len(self.rows) + 1))
         names = [f"{r.fixture}: {r.quantity}" for r in self.rows]
-        offsets = [r.measured - r.expected for r in self.rows]
-        ax.errorbar(offsets, range(len(self.rows)), xerr=[r.tolerance for r in self.rows], fmt="o")
+        nan = float("nan")
+        offsets = [nan if r.error else r.measured - r.expected for r in self.rows]
+        tolerances = [nan if r.error else r.tolerance for r in self.rows]
+        ax.errorbar(offsets, range(len(self.rows)), xerr=tolerances, fmt="o")
         ax.axvline(0.0, color="grey", linewidth=0.8)
         ax.set_yticks(range(len(self.rows)))
         ax.set_yticklabels(names)
@@ -273,8 +277,9 @@ def check(scene: Union[Scene, PathLike], *, quick: bool = False, goldens: bool =
     project's ``fixtures/`` and ``goldens``, compares its views with their
     golden images there (writing pending images for ``vstf approve``).
 
-    A check that cannot be measured raises :class:`CheckError`; checks that
-    measure and fail are rows with ``passed`` False.
+    A check that cannot be measured is a row with ``passed`` False and its
+    ``error``, as are checks that measure and fail; the other checks are
+    still measured.
     """
     if not isinstance(scene, Scene):
         scene = load(scene)

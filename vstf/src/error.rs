@@ -43,7 +43,9 @@ pub enum Error {
         message: String,
     },
     /// A check that cannot be measured on its fixture (this is not a check
-    /// that measured and failed: see [`Error::Failed`]).
+    /// that measured and failed: see [`Error::Failed`]). The declared checks
+    /// give such a check as its failing row instead ([`crate::check::Row`]'s
+    /// `error`); the variant stays for front ends that match it.
     Check {
         /// The fixture's file.
         file: PathBuf,

@@ -27,6 +27,7 @@ mod emulator;
 mod label;
 mod observer;
 mod output;
+mod spelling;
 
 pub mod animate;
 pub mod aov;

@@ -12,6 +12,7 @@ use crate::budget::Budget;
 use crate::error::Error;
 use crate::fixture::Fixture;
 use crate::golden::Store;
+use crate::spelling::closest;
 use std::path::{Path, PathBuf};
 
 /// The file that marks a project's root.
@@ -156,35 +157,6 @@ impl Project {
     }
 }
 
-/// The known name nearest to `name` by edit distance, if it is near (at
-/// most a third of its length away, rounded up).
-fn closest<'k>(name: &str, known: &'k [String]) -> Option<&'k String> {
-    known
-        .iter()
-        .map(|k| (edit_distance(name, k), k))
-        .filter(|(d, _)| *d > 0 && *d <= name.chars().count().div_ceil(3))
-        .min_by_key(|(d, _)| *d)
-        .map(|(_, k)| k)
-}
-
-/// The Levenshtein distance between two strings, in characters.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let above = row[j + 1];
-            row[j + 1] = (above + 1)
-                .min(row[j] + 1)
-                .min(diagonal + usize::from(ca != *cb));
-            diagonal = above;
-        }
-    }
-    row[b.len()]
-}
-
 /// Whether `dir` is a project's root.
 fn is_root(dir: &Path) -> bool {
     dir.join(MARKER).is_file() || dir.join("fixtures").is_dir()
@@ -252,14 +224,5 @@ mod tests {
             Err(Error::NoProject { .. })
         ));
         std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[test]
-    fn a_near_miss_is_suggested_and_a_far_one_is_not() {
-        let known: Vec<String> = ["flange", "stage", "teaser"].map(String::from).to_vec();
-        assert_eq!(closest("flang", &known).map(String::as_str), Some("flange"));
-        assert_eq!(closest("stgae", &known).map(String::as_str), Some("stage"));
-        assert_eq!(closest("sphere", &known), None);
-        assert_eq!(edit_distance("kitten", "sitting"), 3);
     }
 }

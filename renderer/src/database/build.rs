@@ -44,11 +44,15 @@ fn straight(obj: &SceneObject, lorentz: bool) -> Result<(Worldline, Boost), Faul
         Motion::Keyframes(_) | Motion::Hyperbolic(_) => unreachable!("resolved into keyframes"),
     };
     let bad = |f: F, k: K| Err(Fault::new(f, k));
+    let given = match obj.motion {
+        Motion::Velocity { .. } => F::Velocity,
+        _ => F::Extrusion,
+    };
     if !v.is_finite() {
-        return bad(F::Motion, K::VelocityNotFinite);
+        return bad(given, K::VelocityNotFinite);
     }
     if obj.kind == ObjectKind::VObj && v.length() >= 1.0 {
-        return bad(F::Motion, K::VObjTooFast { speed: v.length() });
+        return bad(given, K::VObjTooFast { speed: v.length() });
     }
     let boost = match (obj.kind, lorentz) {
         (ObjectKind::VObj, true) => Boost::new(v).expect("checked above"),

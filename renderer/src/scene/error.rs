@@ -29,6 +29,8 @@ pub enum SceneField {
     Start,
     /// The lab 4-vector of a straight temporal extrusion.
     Extrusion,
+    /// The velocity of motion given by velocity.
+    Velocity,
     /// The proper lifetime of motion given by velocity.
     ProperLifetime,
     /// The keyframe list as a whole.

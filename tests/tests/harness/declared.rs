@@ -1,11 +1,11 @@
 //! Declared checks (docs/checks.md): declarations that refer to what the
 //! fixture does not have are refused at load with the file and JSON path;
-//! an edge the view does not show is an error, never a pass; a scene
+//! an edge the view does not show is a failing row with its reason, never a
+//! pass, and fails alone; a scene
 //! rendered elsewhere than its declaration says fails its rows.
 
 use std::path::Path;
 use vstf::check::{self, Effort};
-use vstf::error::Error;
 use vstf::fixture::Fixture;
 use workspace_tests::{declared_rows as rows, fixture_with as repo_fixture_with};
 
@@ -61,7 +61,7 @@ fn bad_edge_declarations_name_the_file_and_json_path() {
         ),
         (
             Box::new(|v| v["checks"][0]["measure"]["edge"]["vertices"] = serde_json::json!([0, 9])),
-            "checks[0].measure.edge.vertices[1]: the mesh has 4 vertices",
+            "checks[0].measure.edge.vertices[1]: no vertex 9: the mesh has 4 vertices, counted from 0 (an OBJ file's faces count from 1",
         ),
         (
             Box::new(|v| v["checks"][0]["measure"]["edge"]["at"] = serde_json::json!({"row": 240})),
@@ -221,10 +221,39 @@ fn a_cube_rendered_a_hundredth_elsewhere_fails_its_edge_rows() {
     }
 }
 
-/// An edge the view does not show (the cube has long left the picture) is
-/// an error naming the check, not a pass.
+/// A misspelt object, view or earlier check is refused with the nearest
+/// name as a hint; a name near none (the control) gets no hint.
 #[test]
-fn an_edge_out_of_view_is_an_error_not_a_pass() {
+fn misspelt_names_in_checks_get_a_did_you_mean() {
+    assert_refused(vec![
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["object"] = "frnt face".into()),
+            "checks[0].measure.edge.object: no object named \"frnt face\"; did you mean \"front face\"? (objects: front face, trailing face)",
+        ),
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["view"] = "t=10".into()),
+            "checks[0].measure.edge.view: no view named \"t=10\" in views; did you mean \"t = 10\"?",
+        ),
+        (
+            Box::new(|v| {
+                v["checks"][4]["measure"]["difference"][1] =
+                    "front face, left edge at row 12 (px)".into()
+            }),
+            "no earlier check named \"front face, left edge at row 12 (px)\"; did you mean \"front face, left edge at row 120 (px)\"?",
+        ),
+    ]);
+    let e = parse(&cube_with(|v| {
+        v["checks"][0]["measure"]["edge"]["object"] = "nope".into()
+    }))
+    .err()
+    .unwrap();
+    assert!(!e.contains("did you mean"), "{e}");
+}
+
+/// An edge the view does not show (the cube has long left the picture) is
+/// a failing row with the reason, naming the check, never a pass.
+#[test]
+fn an_edge_out_of_view_is_a_failing_row_not_a_pass() {
     for check in [0, 8] {
         let late = parse(&cube_with(|v| {
             v["views"][0]["t"] = 60.0.into();
@@ -232,15 +261,64 @@ fn an_edge_out_of_view_is_an_error_not_a_pass() {
             v["checks"] = serde_json::json!([keep]);
         }))
         .unwrap();
-        let e = match check::run_fixture(&late, &Effort::QUICK) {
-            Ok(f) => panic!("an unseen edge gave rows: {:?}", f.quantities),
-            Err(e) => e,
-        };
-        assert!(
-            matches!(&e, Error::Check { file, index: 0, .. } if file.ends_with("fixtures/cube.json")),
-            "{e}"
-        );
+        let found = check::run_fixture(&late, &Effort::QUICK).unwrap_or_else(|e| panic!("{e}"));
+        let row = found.quantities[0].clone().judge("cube");
+        assert!(!row.pass, "an unseen edge passed: {row:?}");
+        let error = row.error.as_deref().unwrap_or_default();
+        assert!(error.starts_with("checks[0]: "), "{row:?}");
     }
+}
+
+/// The cube's left and right edges and the width between them, the right
+/// edge measured in `view`.
+fn good_and_bad(view: &'static str) -> Fixture {
+    parse(&cube_with(|v| {
+        v["views"]
+            .as_array_mut()
+            .unwrap()
+            .push(serde_json::json!({"name": "late", "t": 60.0}));
+        v["checks"][1]["measure"]["edge"]["view"] = view.into();
+        let keep = [0, 1, 4].map(|i| v["checks"][i].clone());
+        v["checks"] = serde_json::json!(keep);
+    }))
+    .unwrap()
+}
+
+/// One check that cannot be measured fails alone: the check before it is
+/// measured and passes, it fails with its reason, and the difference that
+/// uses it fails naming it. The control: measured in a view that shows the
+/// cube, all three pass with no error.
+#[test]
+fn a_check_that_cannot_be_measured_fails_alone() {
+    let f = good_and_bad("late");
+    let r = rows(&f, &f);
+    let table = vstf::report::table(&r);
+    assert!(r[0].pass && r[0].error.is_none(), "{table}");
+    assert!(!r[1].pass, "{table}");
+    let error = r[1].error.as_deref().unwrap_or_default();
+    assert!(
+        error.starts_with("checks[1]: ") && error.contains("not visible in view \"late\""),
+        "{table}"
+    );
+    assert!(table.contains(&format!("  error: {error}")), "{table}");
+    let error = r[2].error.as_deref().unwrap_or_default();
+    assert!(!r[2].pass, "{table}");
+    assert!(
+        error.starts_with("checks[2]: depends on \"front face, right edge at row 120 (px)\""),
+        "{table}"
+    );
+    let json: serde_json::Value = serde_json::from_str(&vstf::report::json(&r)).unwrap();
+    assert!(json[0].get("error").is_none(), "{json}");
+    assert_eq!(json[1]["measured"], serde_json::Value::Null, "{json}");
+    let back: Vec<vstf::Row> = serde_json::from_value(json).unwrap();
+    assert_eq!(back[1].error, r[1].error);
+    let control = good_and_bad("t = 10");
+    let r = rows(&control, &control);
+    assert!(
+        r.iter().all(|r| r.pass && r.error.is_none()),
+        "{}",
+        vstf::report::table(&r)
+    );
 }
 
 /// A declaration may tighten a tolerance, and loosen it only with a reason;
@@ -379,7 +457,7 @@ fn a_moving_camera_is_followed_to_each_view_time() {
 }
 
 /// The fitted circle of a sphere that is not Lorentz-contracted is not
-/// read: an error naming the check, not a row.
+/// read: a failing row with the reason, naming the check.
 #[test]
 fn a_decoupled_spheres_circle_is_not_read() {
     let f = repo_fixture_with("sphere-classical", |v| {
@@ -387,13 +465,14 @@ fn a_decoupled_spheres_circle_is_not_read() {
             {"view": "view", "object": "sphere", "read": "radius"}}});
         v["checks"].as_array_mut().unwrap().push(radius);
     });
-    let e = match check::run_fixture(&f, &Effort::QUICK) {
-        Ok(found) => panic!("read a circle: {:?}", found.quantities),
-        Err(e) => e,
-    };
+    let r = rows(&f, &f);
+    let radius = r.iter().find(|r| r.quantity == "radius").unwrap();
+    assert!(!radius.pass, "{radius:?}");
     assert!(
-        matches!(&e, Error::Check { index: 2, check, message, .. }
-            if check == "radius" && message.contains("not Lorentz-contracted")),
-        "{e}"
+        radius
+            .error
+            .as_deref()
+            .is_some_and(|e| e.starts_with("checks[2]: ") && e.contains("not Lorentz-contracted")),
+        "{radius:?}"
     );
 }

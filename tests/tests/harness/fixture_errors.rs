@@ -41,6 +41,35 @@ fn the_unmodified_fixture_loads() {
     Fixture::parse(&flange_with(|_| {}), Path::new("fixtures/flange.json")).unwrap();
 }
 
+/// A misspelt field or variant gets the nearest expected name as a hint;
+/// a field near none of them (the control, `fov` above) gets none.
+#[test]
+fn misspelt_fields_get_a_did_you_mean() {
+    let e = error_of(&flange_with(|v| {
+        let i = flange_index(v);
+        let w = v["objects"][i]["worldline"].as_object_mut().unwrap();
+        let extrusion = w.remove("extrusion").unwrap();
+        w.insert("extrusoin".into(), extrusion);
+    }));
+    assert!(
+        e.contains("unknown field `extrusoin`, expected one of")
+            && e.ends_with("; did you mean \"extrusion\"?"),
+        "{e}"
+    );
+    let e = error_of(&flange_with(|v| {
+        v["camera"]["look_att"] = serde_json::json!([0, 0, 0])
+    }));
+    assert!(e.ends_with("; did you mean \"look_at\"?"), "{e}");
+    let e =
+        error_of(&flange_with(
+            |v| {
+                v["objects"][0]["mesh"] =
+                    serde_json::json!({"cubiod": {"min": [0, 0, 0], "max": [1, 1, 1]}})
+            },
+        ));
+    assert!(e.ends_with("; did you mean \"cuboid\"?"), "{e}");
+}
+
 #[test]
 fn nan_and_out_of_range_numbers_name_the_field() {
     let text = flange_with(|_| {}).replacen("\"t\": 940.0", "\"t\": NaN", 1);
@@ -73,6 +102,7 @@ fn zero_duration_and_absurd_resolution_and_unknown_fields_are_refused() {
         e.contains("camera.fov: unknown field `fov`, expected one of"),
         "{e}"
     );
+    assert!(!e.contains("did you mean"), "{e}");
     let e = error_of(&flange_with(|v| {
         v["objects"][1]["material"]["color"] = "red".into()
     }));

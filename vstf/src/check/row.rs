@@ -2,6 +2,7 @@
 //! first-principles value it is held against and the paper's printed
 //! figure, judged into a row of the check table.
 
+use crate::fixture::checks::Dimension;
 use serde::{Deserialize, Serialize};
 
 /// A value read off the images, with its 3-sigma uncertainty.
@@ -62,6 +63,20 @@ impl Unit {
 }
 
 impl Unit {
+    /// The unit a declared check's row of dimension `d` is given in.
+    pub fn of(d: Dimension) -> Unit {
+        match d {
+            Dimension::Length => Unit::LUnits,
+            Dimension::Pixels => Unit::Pixels,
+            Dimension::Angle => Unit::Degrees,
+            Dimension::Ratio => Unit::Ratio,
+            Dimension::Factor => Unit::Factor,
+            Dimension::Time => Unit::TUnits,
+            Dimension::Speed => Unit::LUnitsPerTUnit,
+            Dimension::PixelSpeed => Unit::PixelsPerTUnit,
+        }
+    }
+
     /// Every unit.
     pub const ALL: [Unit; 9] = [
         Unit::LUnits,
@@ -112,9 +127,28 @@ pub struct Quantity {
     pub paper: Option<f64>,
     /// The unit of all three.
     pub unit: Unit,
+    /// Why the quantity could not be measured, if it could not: its row
+    /// fails with this message and no numbers.
+    pub error: Option<String>,
 }
 
 impl Quantity {
+    /// The quantity `name` (in `unit`, when its kind has one) that could not
+    /// be measured, for the reason `message`.
+    pub fn failed(name: &str, unit: Unit, message: String) -> Quantity {
+        Quantity {
+            name: name.into(),
+            measured: Reading {
+                value: f64::NAN,
+                tolerance: f64::NAN,
+            },
+            expected: f64::NAN,
+            paper: None,
+            unit,
+            error: Some(message),
+        }
+    }
+
     /// The quantity judged for `fixture`: it passes when the measurement and
     /// its tolerance are finite and the measurement lies within the
     /// tolerance of the expectation.
@@ -128,14 +162,18 @@ impl Quantity {
             paper: self.paper,
             tolerance,
             unit: self.unit,
-            pass: value.is_finite()
+            pass: self.error.is_none()
+                && value.is_finite()
                 && tolerance.is_finite()
                 && (value - self.expected).abs() <= tolerance,
+            error: self.error,
         }
     }
 }
 
-/// One checked quantity, as the table and the JSON rows show it.
+/// One checked quantity, as the table and the JSON rows show it. A row
+/// that could not be measured has no numbers (NaN here, `null` in JSON),
+/// fails, and carries its `error`; the key is absent from other rows.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct Row {
     /// The fixture checked.
@@ -143,17 +181,28 @@ pub struct Row {
     /// What was measured.
     pub quantity: String,
     /// The value read off the images.
+    #[serde(deserialize_with = "number_or_null")]
     pub measured: f64,
     /// The first-principles value.
+    #[serde(deserialize_with = "number_or_null")]
     pub expected: f64,
     /// The paper's printed figure, where it gives one.
     pub paper: Option<f64>,
     /// How far the measurement may lie from the expectation (3 sigma).
+    #[serde(deserialize_with = "number_or_null")]
     pub tolerance: f64,
     /// The unit of the values.
     pub unit: Unit,
     /// Whether the measurement lies within the tolerance.
     pub pass: bool,
+    /// Why the quantity could not be measured, if it could not.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// A number, or NaN where JSON has `null` (as serde_json writes a NaN).
+fn number_or_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
 }
 
 impl Row {

@@ -209,7 +209,8 @@ fn row_anchor(fixture: &str, quantity: &str) -> String {
     format!("{}-row-{}", slug(fixture), slug(quantity))
 }
 
-/// A table of `fixture`'s `rows`, failing first, each row anchored.
+/// A table of `fixture`'s `rows`, failing first, each row anchored, a row
+/// that could not be measured followed by why.
 fn rows_table(h: &mut String, fixture: &str, rows: &[&Row]) {
     if rows.is_empty() {
         return;
@@ -219,20 +220,34 @@ fn rows_table(h: &mut String, fixture: &str, rows: &[&Row]) {
     rows.sort_by_key(|x| x.pass);
     for x in rows {
         let res = if x.pass { "pass" } else { "FAIL" };
+        let num = |v: f64| {
+            if x.error.is_some() {
+                "-".into()
+            } else {
+                num(v)
+            }
+        };
         let paper = x.paper.map_or("-".into(), |p| {
             format!("{}{}", num(p), if x.paper_disagrees() { " *" } else { "" })
         });
         let _ = write!(
             h,
-            "<tr class={res} id=\"{}\"><td>{}<td>{}<td>{}<td>{}<td>±{}<td>{}<td>{res}</tr>",
+            "<tr class={res} id=\"{}\"><td>{}<td>{}<td>{}<td>{}<td>{}<td>{}<td>{res}</tr>",
             row_anchor(fixture, &x.quantity),
             esc(&x.quantity),
             num(x.measured),
             num(x.expected),
             paper,
-            num(x.tolerance),
+            if x.error.is_some() {
+                "-".into()
+            } else {
+                format!("±{}", num(x.tolerance))
+            },
             esc(x.unit.as_str())
         );
+        if let Some(e) = &x.error {
+            let _ = write!(h, "<tr class=FAIL><td colspan=7>{}</tr>", esc(e));
+        }
     }
     h.push_str("</table>");
 }

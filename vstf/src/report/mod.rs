@@ -12,7 +12,8 @@ use numbers::num;
 use crate::check::Row;
 use std::fmt::Write as _;
 
-/// The measurement table, one line per row.
+/// The measurement table, one line per row, and below a row that could
+/// not be measured, why.
 pub fn table(rows: &[Row]) -> String {
     let headers = [
         "fixture",
@@ -27,6 +28,20 @@ pub fn table(rows: &[Row]) -> String {
     let cells: Vec<[String; 8]> = rows
         .iter()
         .map(|r| {
+            let num = |x: f64| {
+                if r.error.is_some() {
+                    "-".into()
+                } else {
+                    num(x)
+                }
+            };
+            let plus_minus = |x: f64| {
+                if r.error.is_some() {
+                    "-".into()
+                } else {
+                    format!("±{}", num(x))
+                }
+            };
             [
                 r.fixture.clone(),
                 r.quantity.clone(),
@@ -39,7 +54,7 @@ pub fn table(rows: &[Row]) -> String {
                         num(p)
                     }
                 }),
-                format!("±{}", num(r.tolerance)),
+                plus_minus(r.tolerance),
                 r.unit.to_string(),
                 if r.pass { "pass".into() } else { "FAIL".into() },
             ]
@@ -61,8 +76,11 @@ pub fn table(rows: &[Row]) -> String {
         let _ = writeln!(out, "{}", parts.join("  ").trim_end());
     };
     line(&mut out, &headers.map(String::from));
-    for c in &cells {
+    for (c, r) in cells.iter().zip(rows) {
         line(&mut out, c);
+        if let Some(e) = &r.error {
+            let _ = writeln!(out, "  error: {e}");
+        }
     }
     let (pass, fail) = (
         rows.iter().filter(|r| r.pass).count(),
@@ -81,7 +99,8 @@ pub const SUMMARY_WIDTH: usize = 100;
 /// The measurement table in at most [`SUMMARY_WIDTH`] columns: a line per
 /// fixture, then its rows indented (quantity, measured, expected,
 /// tolerance with unit, result), long quantity names shortened with an
-/// ellipsis. The full table ([`table`], with the paper's figures) is what
+/// ellipsis, and below a row that could not be measured, why (shortened
+/// too). The full table ([`table`], with the paper's figures) is what
 /// `vstf check --verbose`, the JSON and the report give.
 pub fn summary_table(rows: &[Row]) -> String {
     const NUMBER: usize = 10;
@@ -96,7 +115,17 @@ pub fn summary_table(rows: &[Row]) -> String {
             fixture = Some(&r.fixture);
         }
         let name = shortened(&r.quantity, quantity);
-        let tolerance = format!("±{}", short_num(r.tolerance));
+        let short_num = |x: f64| {
+            if r.error.is_some() {
+                "-".into()
+            } else {
+                short_num(x)
+            }
+        };
+        let tolerance = match r.error {
+            Some(_) => "-".into(),
+            None => format!("±{}", short_num(r.tolerance)),
+        };
         let line = format!(
             "  {name:quantity$}  {:>NUMBER$}  {:>NUMBER$}  {tolerance:>w$} {:UNIT$} {}",
             short_num(r.measured),
@@ -106,6 +135,9 @@ pub fn summary_table(rows: &[Row]) -> String {
             w = NUMBER + 1
         );
         let _ = writeln!(out, "{}", line.trim_end());
+        if let Some(e) = &r.error {
+            let _ = writeln!(out, "    error: {}", shortened(e, SUMMARY_WIDTH - 11));
+        }
     }
     let (pass, fail) = (
         rows.iter().filter(|r| r.pass).count(),
@@ -141,7 +173,8 @@ fn shortened(s: &str, width: usize) -> String {
 }
 
 /// The rows as a JSON array of objects with keys fixture, quantity,
-/// measured, expected, paper, tolerance, unit, pass.
+/// measured, expected, paper, tolerance, unit, pass, and `error` on a row
+/// that could not be measured (its numbers `null`).
 pub fn json(rows: &[Row]) -> String {
     serde_json::to_string_pretty(rows).expect("rows serialise")
 }
@@ -219,6 +252,7 @@ mod tests {
             tolerance: 1.5e-12,
             unit: Unit::LUnitsPerTUnit,
             pass: false,
+            error: None,
         };
         let text = summary_table(std::slice::from_ref(&row));
         for line in text.lines() {

@@ -1,5 +1,6 @@
-//! `vstf check`: the table, the JSON rows and golden lines it writes, and a
-//! tampered golden caught in a copy of this repository.
+//! `vstf check`: the table, the JSON rows and golden lines it writes, a
+//! check that cannot be measured failing alone, and a tampered golden
+//! caught in a copy of this repository.
 
 use crate::support::{repo_root, tamper, vstf, RunExt, Scratch};
 
@@ -140,4 +141,70 @@ fn a_tampered_golden_in_a_copy_of_the_repository_is_caught() {
         .args(["check", "flange", "--quick"])
         .run()
         .succeeds();
+}
+
+/// In a project from `vstf init`, the example cube with one edge moved to a
+/// view the cube has left: that row fails with its reason in the table and
+/// the JSON, the row before it is measured and passes, and `vstf check`
+/// exits 1 with every golden image passing. The control: the example as
+/// `init` writes it passes.
+#[test]
+fn a_check_that_cannot_be_measured_fails_its_row_and_the_run() {
+    let dir = Scratch::new("local-error");
+    let project = dir.join("p");
+    vstf()
+        .current_dir(&dir)
+        .args(["init", "p"])
+        .run()
+        .succeeds();
+    let run = |args: &[&str]| {
+        vstf()
+            .current_dir(&project)
+            .env_remove("CI")
+            .args(args)
+            .run()
+    };
+    let file = project.join("fixtures/moving-cube.json");
+    let mut cube: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    cube["checks"] = serde_json::json!([cube["checks"][0], cube["checks"][1]]);
+    std::fs::write(&file, cube.to_string()).unwrap();
+    run(&["check", "moving-cube", "--quick"]).fails();
+    run(&["approve", "--all"]).succeeds();
+    run(&["check", "moving-cube", "--quick"])
+        .succeeds()
+        .stdout_has("check: 2 passed, 0 failed");
+    cube["views"]
+        .as_array_mut()
+        .unwrap()
+        .push(serde_json::json!({"name": "late", "t": 60.0}));
+    cube["checks"][1]["measure"]["edge"]["view"] = "late".into();
+    std::fs::write(&file, cube.to_string()).unwrap();
+    run(&["check", "moving-cube", "--quick"]).fails();
+    run(&["approve", "--all"]).succeeds();
+    let json = dir.join("rows.json");
+    let failed = run(&[
+        "check",
+        "moving-cube",
+        "--quick",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(failed.code(), Some(1), "{failed}");
+    failed
+        .stdout_has("check: 1 passed, 1 failed")
+        .stdout_has("    error: checks[1]: the edge is not visible in view \"late\"")
+        .stdout_has("golden: 3 passed, 0 failed");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let rows = &report["rows"];
+    assert_eq!(rows[0]["pass"], true, "{report}");
+    assert!(rows[0].get("error").is_none(), "{report}");
+    assert_eq!(rows[1]["pass"], false, "{report}");
+    assert!(
+        rows[1]["error"]
+            .as_str()
+            .is_some_and(|e| e.starts_with("checks[1]: ")),
+        "{report}"
+    );
 }

@@ -15,10 +15,52 @@ fn a_v_obj_at_or_above_light_speed_is_refused_by_name() {
         }));
         assert!(e.starts_with("fixtures/bad.json: objects["), "{e}");
         assert!(
-            e.contains("worldline") && e.contains("\"flange\"") && e.contains("slower than light"),
+            e.contains("worldline.extrusion: ")
+                && e.contains("\"flange\"")
+                && e.contains("slower than light")
+                && !e.contains("fractions of light speed"),
             "{e}"
         );
     }
+}
+
+/// A velocity in m/s is refused at `worldline.velocity`, with the reminder
+/// that velocities are fractions of c; one just over c (the control) gets
+/// the field but no reminder.
+#[test]
+fn a_velocity_in_metres_per_second_names_the_field_and_the_unit() {
+    let moving = |speed: f64| {
+        error_of(&flange_with(|v| {
+            let i = flange_index(v);
+            v["objects"][i]["worldline"] = serde_json::json!({
+                "start": [0.0, -8.0, 0.0, 0.0],
+                "velocity": [speed, 0.0, 0.0],
+                "proper_lifetime": 50.0
+            });
+        }))
+    };
+    let e = moving(270_000_000.0);
+    assert!(
+        e.contains("].worldline.velocity: ") && e.contains("moves at 270000000.000000c"),
+        "{e}"
+    );
+    assert!(
+        e.contains("velocities are fractions of light speed (c = 1), not m/s"),
+        "{e}"
+    );
+    let e = moving(1.2);
+    assert!(
+        e.contains("].worldline.velocity: ") && e.contains("slower than light"),
+        "{e}"
+    );
+    assert!(!e.contains("fractions of light speed"), "{e}");
+    let e = error_of(&flange_with(|v| {
+        v["camera"]["velocity"] = serde_json::json!([0.0, 0.0, -3.0e5])
+    }));
+    assert!(
+        e.contains("camera.velocity: ") && e.contains("fractions of light speed"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -10,7 +10,8 @@
 //! factors and blink periods are measured once per view and object
 //! (`outline.rs`, `doppler.rs`, `period.rs`) and read by
 //! every check of them. Differences, ratios and velocities combine earlier
-//! rows, their uncertainties in quadrature. Named kinds ([`crate::check::named`])
+//! rows, their uncertainties in quadrature. A check that cannot be
+//! measured fails alone, as its row. Named kinds ([`crate::check::named`])
 //! give the rows of the paper's scenes.
 
 mod edge;
@@ -27,7 +28,9 @@ use crate::check::probe::Effort;
 use crate::check::row::{difference, Quantity, Reading, Unit};
 use crate::check::views::with_view_effects;
 use crate::error::Error;
-use crate::fixture::checks::{CheckSpec, DopplerSpec, MeasureSpec, ToleranceSpec, ViewSpec};
+use crate::fixture::checks::{
+    dimensions, CheckSpec, DopplerSpec, MeasureSpec, ToleranceSpec, ViewSpec,
+};
 use crate::fixture::Fixture;
 use crate::observer::{fixture_model, Observer};
 use doppler::Panel;
@@ -44,14 +47,20 @@ struct EarlierRow {
     camera_t: Option<f64>,
 }
 
-/// The declared checks of `f`, rendered from `f` and expected from `f`.
+/// The declared checks of `f`, rendered from `f` and expected from `f`. A
+/// check that cannot be measured gives its failing row with the reason
+/// (see [`evaluate`]).
 pub fn run(f: &Fixture, effort: &Effort) -> Result<CheckOutcome, Error> {
     evaluate(f, f, effort)
 }
 
 /// The declared checks of `described`, measured on renders of `rendered`
 /// (the same scene, or a deliberately altered copy of it) and expected from
-/// `described`'s scene data.
+/// `described`'s scene data. A check that cannot be measured (an object
+/// out of view, too few edge points, ...) becomes a failing row whose
+/// error names it (`checks[i]: ...`), and so does every later combination
+/// of it; the other rows are measured as usual. Only a failure to render
+/// the report's views is an error.
 pub fn evaluate(
     rendered: &Fixture,
     described: &Fixture,
@@ -63,6 +72,7 @@ pub fn evaluate(
         described,
         effort,
         done: Vec::new(),
+        failed: Vec::new(),
         marks: vec![Vec::new(); spec.views.len()],
         outlines: Vec::new(),
         panels: Vec::new(),
@@ -72,15 +82,18 @@ pub fn evaluate(
         quantities: Vec::new(),
     };
     let mut named_views = Vec::new();
-    for (i, c) in spec.checks.iter().enumerate() {
-        let fail = |message: String| Error::Check {
-            file: described.file.clone(),
-            index: i,
-            check: c.name.clone(),
-            message,
-        };
+    let units = dimensions(&spec.checks).into_iter().map(Unit::of);
+    for ((i, c), unit) in spec.checks.iter().enumerate().zip(units) {
+        let failed =
+            |message: String| Quantity::failed(&c.name, unit, format!("checks[{i}]: {message}"));
         if let MeasureSpec::Named(n) = &c.measure {
-            let found = crate::check::named::run(rendered, n, effort).map_err(fail)?;
+            let found = match crate::check::named::run(rendered, n, effort) {
+                Ok(found) => found,
+                Err(message) => {
+                    outcome.quantities.push(failed(message));
+                    continue;
+                }
+            };
             let rows: Vec<String> = found.quantities.iter().map(|q| q.name.clone()).collect();
             named_views.extend(found.views.into_iter().map(|mut v| {
                 if v.measured.is_empty() {
@@ -91,15 +104,23 @@ pub fn evaluate(
             outcome.quantities.extend(found.quantities);
             continue;
         }
-        let done = run.check(c).map_err(fail)?;
-        outcome.quantities.push(Quantity {
-            name: c.name.clone(),
-            measured: adjusted(done.measured, c.tolerance.as_ref()),
-            expected: done.expected,
-            paper: c.paper,
-            unit: done.unit,
-        });
-        run.done.push(done);
+        match run.check(c) {
+            Ok(done) => {
+                outcome.quantities.push(Quantity {
+                    name: c.name.clone(),
+                    measured: adjusted(done.measured, c.tolerance.as_ref()),
+                    expected: done.expected,
+                    paper: c.paper,
+                    unit: done.unit,
+                    error: None,
+                });
+                run.done.push(done);
+            }
+            Err(message) => {
+                outcome.quantities.push(failed(message));
+                run.failed.push(c.name.clone());
+            }
+        }
     }
     outcome.views = run.full_views().map_err(Error::Other)?;
     let measured = measured_in(&spec.checks);
@@ -155,6 +176,8 @@ struct Evaluation<'a> {
     described: &'a Fixture,
     effort: &'a Effort,
     done: Vec<EarlierRow>,
+    /// The checks that could not be measured, by name.
+    failed: Vec<String>,
     /// Each view's marks: a direction and the row it belongs to.
     marks: Vec<Vec<(DVec3, String)>>,
     outlines: Vec<(usize, String, Outline)>,
@@ -189,6 +212,9 @@ impl<'a> Evaluation<'a> {
     }
 
     fn earlier(&self, name: &str) -> Result<&EarlierRow, String> {
+        if self.failed.iter().any(|f| f == name) {
+            return Err(format!("depends on {name:?}, which could not be measured"));
+        }
         self.done
             .iter()
             .find(|d| d.name == name)

@@ -263,6 +263,7 @@ pub(super) fn run(f: &Fixture, effort: &Effort) -> Result<CheckOutcome, String> 
             expected,
             paper: None,
             unit: Unit::Degrees,
+            error: None,
         }));
         let rows: Vec<String> = quantities[first..].iter().map(|q| q.name.clone()).collect();
         for (setup, label, marks) in [

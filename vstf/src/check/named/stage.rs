@@ -81,6 +81,7 @@ pub(super) fn run(f: &Fixture, bars: &Bars, effort: &Effort) -> Result<CheckOutc
             expected: (ax0 + ax1) / 2.0,
             paper: Some(0.0),
             unit: Unit::LUnits,
+            error: None,
         },
         Quantity {
             name: "z axis bar width".into(),
@@ -88,6 +89,7 @@ pub(super) fn run(f: &Fixture, bars: &Bars, effort: &Effort) -> Result<CheckOutc
             expected: ax1 - ax0,
             paper: Some(1.0 / 20.0),
             unit: Unit::LUnits,
+            error: None,
         },
         Quantity {
             name: "bar x = 1 right edge (x)".into(),
@@ -95,6 +97,7 @@ pub(super) fn run(f: &Fixture, bars: &Bars, effort: &Effort) -> Result<CheckOutc
             expected: one_x,
             paper: None,
             unit: Unit::LUnits,
+            error: None,
         },
         Quantity {
             name: "bar x = 2 right edge (x)".into(),
@@ -102,6 +105,7 @@ pub(super) fn run(f: &Fixture, bars: &Bars, effort: &Effort) -> Result<CheckOutc
             expected: two_x,
             paper: None,
             unit: Unit::LUnits,
+            error: None,
         },
         Quantity {
             name: "grid spacing (bar 1 to bar 2)".into(),
@@ -109,6 +113,7 @@ pub(super) fn run(f: &Fixture, bars: &Bars, effort: &Effort) -> Result<CheckOutc
             expected: two_x - one_x,
             paper: Some(1.0),
             unit: Unit::LUnits,
+            error: None,
         },
     ];
     let cam = setup.camera_x();

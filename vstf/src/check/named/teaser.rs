@@ -127,6 +127,7 @@ pub(super) fn run(f: &Fixture, effort: &Effort) -> Result<CheckOutcome, String> 
                 expected,
                 paper: None,
                 unit: Unit::LUnits,
+                error: None,
             }));
         }
         let mut view = setup.full_view(band, &marks)?;

@@ -184,6 +184,7 @@ fn quantities(
         expected,
         paper,
         unit: Unit::LUnits,
+        error: None,
     };
     vec![
         length(
@@ -253,6 +254,7 @@ fn contraction(setup: &Observer, m: &UniformMotion, lead: &Reading, trail: &Read
         expected: lab_width / WIDTH,
         paper: m.contracted.then_some(0.5),
         unit: Unit::Ratio,
+        error: None,
     }
 }
 

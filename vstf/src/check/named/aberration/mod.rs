@@ -143,6 +143,7 @@ impl ViewTable {
             expected,
             paper,
             unit: derived.unit(),
+            error: None,
         });
     }
 
