@@ -514,3 +514,28 @@ def test_typed_checks_are_measured_and_the_result_tabulates_and_plots():
     with pytest.raises(vstf.FixtureError) as e:
         build(Camera(position=(0, 0, 0)), [ball], checks=[Check("x", "outlines", {})], file="ball.json")
     assert e.value.path.startswith("checks[0]")
+
+
+def test_a_check_that_cannot_be_measured_is_a_failing_row_beside_the_others():
+    from vstf.build import Camera, Check, Image, Light, Material, Object, View, Worldline, analytic_sphere, build
+
+    ball = Object("ball", analytic_sphere(1.0), kind="V_obj",
+                  worldline=Worldline(start=(-100, -81, 0, -10), extrusion=(200, 180, 0, 0)),
+                  material=Material(color=(0.3, 0.8, 0.9)))
+    away = Object("away", analytic_sphere(1.0), position=(0, 0, 50))  # behind the camera
+    scene = build(
+        Camera(position=(0, 0, 0), t=0.0, look_at=(0, 0, -1), vfov_deg=30.0), [ball, away],
+        light=Light(position=(0, 20, 20), color=(0, 0, 0), ambient=1.0), image=Image(width=320, height=240, spp=4),
+        views=[View("view")],
+        checks=[Check("radius", "outline", {"view": "view", "object": "ball", "read": "radius"}),
+                Check("away radius", "outline", {"view": "view", "object": "away", "read": "radius"})],
+        background=(0, 0, 0), file="two.json",
+    )
+    result = vstf.check(scene, quick=True)
+    good, bad = result.rows
+    assert good.passed and good.error is None and good.measured is not None
+    assert not bad.passed and "checks[1]" in bad.error and bad.measured is None
+    assert not result.passed
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    result.plot()
