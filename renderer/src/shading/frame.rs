@@ -53,6 +53,21 @@ impl SurfaceFrame {
         Some(SurfaceFrame::Lorentz { boost, normal })
     }
 
+    /// The same frame with the normal turned to the other side (exactly
+    /// the frame of the negated lab normal: the boost is linear).
+    pub(super) fn flipped(self) -> SurfaceFrame {
+        match self {
+            SurfaceFrame::Lorentz { boost, normal } => SurfaceFrame::Lorentz {
+                boost,
+                normal: -normal,
+            },
+            SurfaceFrame::Galilean { velocity, normal } => SurfaceFrame::Galilean {
+                velocity,
+                normal: -normal,
+            },
+        }
+    }
+
     /// The facing unit normal in the surface's frame.
     pub(super) fn normal(&self) -> DVec3 {
         match self {
