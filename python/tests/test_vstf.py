@@ -407,10 +407,11 @@ def test_aovs_agree_with_first_principles_on_a_fast_sphere():
         offset = s_hit * d - np.array([-81.0 + beta * (t_hit + 100.0), 0.0, -10.0])
         normal = offset * np.array([gamma * gamma, 1.0, 1.0])
         normal /= np.linalg.norm(normal)
-        # Turned towards the camera in the lab: on the trailing side, seen
-        # by aberration, that is the inward normal (issue 30, item 2).
-        facing = normal if normal @ -d >= 0 else -normal
-        assert np.allclose(aov["normal"][py, px], facing, atol=1e-9)
+        # Turned to the side the sphere's own frame shows (issue 30, item 2):
+        # the light seen leaves the first point met outwards in that frame,
+        # so the outward normal, also on the trailing side seen by
+        # aberration (where the lab would see the inside: normal @ -d < 0).
+        assert np.allclose(aov["normal"][py, px], normal, atol=1e-9)
     assert hits >= 5 and misses >= 2
     # The image and the AOVs agree on what is lit.
     lit = image.sum(axis=2) > 0

@@ -145,9 +145,10 @@ pub enum Step {
         /// Lab time of the object's start (its first stretch's), from which
         /// its own time counts.
         start_t: f64,
-        /// Lab-frame unit normal of the triangle, and the same turned towards the ray's origin.
+        /// Lab-frame unit normal of the triangle, and the same turned to the side seen.
         normal: DVec3,
-        /// The normal turned towards the ray's origin.
+        /// The normal turned to the side the ray's origin sees: in the
+        /// surface's frame when it moves (`Shader::facing_normal`).
         facing_normal: DVec3,
     },
     /// The current ray met nothing.

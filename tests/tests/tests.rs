@@ -36,5 +36,6 @@ mod harness {
     mod mirrors;
     mod spinning;
     mod surface_frame;
+    mod two_sided;
     mod vstf_check;
 }

@@ -14,8 +14,9 @@
 //! - `object`: the object's index in the scene (-1 where nothing is hit);
 //! - `distance`: lab distance from the camera at the camera time to the
 //!   hit event;
-//! - `normal`: the surface's lab-frame unit normal, turned towards the
-//!   camera.
+//! - `normal`: the surface's lab-frame unit normal, turned to the side the
+//!   camera sees (the side the surface's own frame shows it, as shading
+//!   uses it; docs/physics.md, "Which side a moving surface shows").
 //!
 //! Where the ray meets nothing every float is NaN.
 
@@ -39,7 +40,7 @@ pub struct PixelAov {
     pub object: i64,
     /// Lab distance from the camera to the hit event.
     pub distance: f64,
-    /// Lab unit normal towards the camera.
+    /// Lab unit normal, turned to the side the camera sees.
     pub normal: DVec3,
 }
 

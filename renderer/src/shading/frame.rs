@@ -53,6 +53,21 @@ impl SurfaceFrame {
         Some(SurfaceFrame::Lorentz { boost, normal })
     }
 
+    /// The same frame with the normal turned to the other side (exactly
+    /// the frame of the negated lab normal: the boost is linear).
+    pub(super) fn flipped(self) -> SurfaceFrame {
+        match self {
+            SurfaceFrame::Lorentz { boost, normal } => SurfaceFrame::Lorentz {
+                boost,
+                normal: -normal,
+            },
+            SurfaceFrame::Galilean { velocity, normal } => SurfaceFrame::Galilean {
+                velocity,
+                normal: -normal,
+            },
+        }
+    }
+
     /// The facing unit normal in the surface's frame.
     pub(super) fn normal(&self) -> DVec3 {
         match self {
@@ -101,5 +116,42 @@ mod tests {
         let l = gal.towards(DVec3::Y);
         assert_abs_diff_eq!(l.dot(n), 1.0 / (1.0 + b * b).sqrt(), epsilon = 1e-12);
         assert!(SurfaceFrame::of(n, DVec3::ZERO, true).is_none());
+    }
+
+    /// The side a moving surface shows: light leaving along lab k leaves
+    /// it on the side n' . k' > 0 in its frame, which is the sign of
+    /// n . (k - u) in both kinematics (docs/physics.md, "Which side a
+    /// moving surface shows"), and not the lab's sign of n . k when the
+    /// surface outruns the light along its normal. The flipped frame is
+    /// the frame of the negated normal, to the bit.
+    #[test]
+    fn the_side_shown_is_the_sign_of_n_dot_k_minus_u() {
+        let n = DVec3::X;
+        let ks = [
+            DVec3::new(0.287, 0.0, 0.958),
+            DVec3::new(0.95, 0.3, 0.0),
+            DVec3::new(-0.6, 0.0, 0.8),
+            DVec3::new(0.5, -0.5, 0.707),
+        ];
+        for u in [DVec3::new(0.9, 0.0, 0.0), DVec3::new(0.6, 0.3, -0.5)] {
+            for lorentz in [true, false] {
+                let f = SurfaceFrame::of(n, u, lorentz).unwrap();
+                for k in ks.map(|k| k.normalize()) {
+                    let side = f.normal().dot(f.propagation(k));
+                    let expected = n.dot(k - u);
+                    assert!(
+                        side * expected > 0.0,
+                        "{k} {u} {lorentz}: {side} vs {expected}"
+                    );
+                }
+                let back = SurfaceFrame::of(-n, u, lorentz).unwrap();
+                assert_eq!(back.normal(), f.flipped().normal());
+            }
+        }
+        // The fixture's case: the lab sees +x, the face's frame -x.
+        let k = DVec3::new(3.0, 0.0, 10.0).normalize();
+        let f = SurfaceFrame::of(n, DVec3::new(0.9, 0.0, 0.0), true).unwrap();
+        assert!(n.dot(k) > 0.0);
+        assert_abs_diff_eq!(f.propagation(k).x, -0.826, epsilon = 1e-3);
     }
 }

@@ -89,11 +89,45 @@ impl Shader<'_> {
         doppler::to_frame(velocity, gamma, k)
     }
 
+    /// The side of the surface hit that the ray's origin sees: its unit
+    /// lab normal turned to that side, and the surface's frame (`None` at
+    /// rest, under instantaneous light, or without a rest frame) with the
+    /// normal turned the same way. The side is the one the light towards
+    /// the origin leaves in the surface's own frame, where the local term
+    /// is formed: n' . v' >= 0, v' the direction towards the viewer there
+    /// (docs/physics.md, "Which side a moving surface shows"). A moving
+    /// surface can show the side the lab would call hidden (n . v < 0);
+    /// without a frame the side is the lab's, bit for bit.
+    pub(super) fn facing(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        velocity: DVec3,
+    ) -> (DVec3, Option<SurfaceFrame>) {
+        let surface = self.db.surface(hit);
+        let n = surface.normal;
+        let frame = match self.light_speed {
+            LightSpeed::Finite => {
+                let contracted = self.db.objects()[surface.object as usize].contracted;
+                SurfaceFrame::of(n, velocity, contracted)
+            }
+            LightSpeed::Infinite => None,
+        };
+        let hidden = match &frame {
+            Some(f) => f.normal().dot(f.propagation(-ray.direction.x.normalize())) < 0.0,
+            None => n.dot(ray.direction.x) > 0.0,
+        };
+        if hidden {
+            (-n, frame.map(SurfaceFrame::flipped))
+        } else {
+            (n, frame)
+        }
+    }
+
     pub(super) fn lit<T: Trace>(&self, ray: &Ray, hit: &Hit, trace: &mut T) -> Lit {
         let surface = self.db.surface(hit);
         let object = &self.db.objects()[surface.object as usize];
         let m = &object.material;
-        let n = self.facing_normal(ray, hit);
         let view = -ray.direction.x;
         let to_light = self.light.position - hit.event.x;
         // A light on the surface point lights nothing; a non-finite
@@ -104,10 +138,7 @@ impl Shader<'_> {
             DVec3::NAN
         };
         let (velocity, gamma) = self.db.surface_motion(hit);
-        let frame = match self.light_speed {
-            LightSpeed::Finite => SurfaceFrame::of(n, velocity, object.contracted),
-            LightSpeed::Infinite => None,
-        };
+        let (n, frame) = self.facing(ray, hit, velocity);
         let surface_frame =
             frame.map(|f| [f.normal(), f.towards(l), f.propagation(view.normalize())]);
         let [n_s, l_s, view_s] = surface_frame.unwrap_or([n, l, view]);

@@ -143,14 +143,12 @@ impl Shader<'_> {
         }
     }
 
-    /// The unit normal of the hit surface, turned to face the ray's origin.
+    /// The unit lab normal of the hit surface, turned to the side the ray's
+    /// origin sees: the side the light towards it leaves in the surface's
+    /// own frame (for a moving surface under light cones, not always the
+    /// side facing the origin in the lab; see `Shader::facing`).
     pub fn facing_normal(&self, ray: &Ray, hit: &Hit) -> DVec3 {
-        let n = self.db.surface(hit).normal;
-        if n.dot(ray.direction.x) > 0.0 {
-            -n
-        } else {
-            n
-        }
+        self.facing(ray, hit, self.db.surface_motion(hit).0).0
     }
 
     /// The mirror ray leaving `hit`, and nu_surface / nu_lab for the light

@@ -12,7 +12,9 @@
 //! direction at the emission event (relativistically for a V_obj under the
 //! Lorentz transform, else by Galilean addition; not at all with infinitely
 //! fast light), and n' the mesh's rest-frame normal turned towards the
-//! viewer there; 0 where the lamp is behind the surface.
+//! viewer there (the side the light towards the camera leaves in the
+//! surface's frame, which a fast surface can show even where the lab would
+//! call it hidden); 0 where the lamp is behind the surface.
 
 use crate::check::path::BodyPath;
 use crate::check::probe::Probe;
@@ -76,12 +78,12 @@ pub(super) fn measure(
         (LightSpeed::Finite, true) => aberrate_lorentz(d, u),
         (LightSpeed::Finite, false) => aberrate_galilean(d, u),
     };
+    // The viewer is no source: the light towards it leaves the surface, so
+    // its direction there is that light's propagation in the surface's
+    // frame, the reverse of where light arriving from -to_camera comes from.
+    let towards_viewer = -into_frame(-to_camera);
     let n = rest_normal(&obj.shape, l.point).ok_or("the point is on no triangle")?;
-    let n = if n.dot(into_frame(to_camera)) < 0.0 {
-        -n
-    } else {
-        n
-    };
+    let n = if n.dot(towards_viewer) < 0.0 { -n } else { n };
     let expected = n.dot(into_frame(to_lamp)).max(0.0);
 
     let mut plain = measuring.fixture.clone();
