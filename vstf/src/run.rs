@@ -120,3 +120,50 @@ fn debug_flags(view: &View) -> String {
         }
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use renderer::Traversal;
+    use std::path::Path;
+
+    /// `fixtures/lit-plate.json` (a matte plate under a lamp, black
+    /// background), small and without its views and checks, with `edit`
+    /// applied to its JSON.
+    fn lit_plate(edit: impl FnOnce(&mut serde_json::Value)) -> Fixture {
+        let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/lit-plate.json");
+        let mut v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        v["image"]["width"] = 48.into();
+        v["image"]["height"] = 36.into();
+        let o = v.as_object_mut().unwrap();
+        o.remove("views");
+        o.remove("checks");
+        edit(&mut v);
+        Fixture::parse(&v.to_string(), &file).unwrap()
+    }
+
+    fn pixels(f: &Fixture) -> Vec<glam::DVec3> {
+        let view = view(f, &Overrides::default()).unwrap();
+        render(f, &view, Traversal::Bvh).unwrap().pixels
+    }
+
+    /// Without `light` a fixture renders as with a black lamp and ambient 1:
+    /// each surface shows its own colour, so the plate is not black.
+    #[test]
+    fn a_fixture_without_light_renders_its_colours_flat() {
+        let unlit = lit_plate(|v| {
+            v.as_object_mut().unwrap().remove("light");
+        });
+        let black_lamp = lit_plate(|v| {
+            v["light"] =
+                serde_json::json!({ "position": [0, 0, 0], "color": [0, 0, 0], "ambient": 1 });
+        });
+        let lit = lit_plate(|_| {});
+        let seen = pixels(&unlit);
+        assert_eq!(seen, pixels(&black_lamp));
+        assert_ne!(seen, pixels(&lit));
+        assert!(seen.iter().any(|p| p.max_element() > 0.0));
+        assert!(seen.iter().all(|p| p.is_finite()));
+    }
+}
