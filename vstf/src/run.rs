@@ -166,4 +166,29 @@ mod tests {
         assert!(seen.iter().any(|p| p.max_element() > 0.0));
         assert!(seen.iter().all(|p| p.is_finite()));
     }
+
+    /// `unlit` is its long form exactly, lit or not, in RGB and with the
+    /// Doppler shift: the same pixels, bit for bit.
+    #[test]
+    fn an_unlit_material_renders_as_its_long_form() {
+        let with = |material: serde_json::Value, doppler: bool| {
+            lit_plate(|v| {
+                v["objects"][0]["material"] = material;
+                v["image"]["doppler"] = doppler.into();
+            })
+        };
+        for doppler in [false, true] {
+            let short = pixels(&with(
+                serde_json::json!({ "unlit": [0.9, 0.5, 0.1] }),
+                doppler,
+            ));
+            let long = serde_json::json!({
+                "color": [0, 0, 0], "diffuse": 0, "emission": { "rgb": [0.9, 0.5, 0.1] }
+            });
+            assert_eq!(short, pixels(&with(long, doppler)));
+            let lit = serde_json::json!({ "color": [0.9, 0.5, 0.1] });
+            assert_ne!(short, pixels(&with(lit, doppler)));
+            assert!(short.iter().any(|p| p.max_element() > 0.0));
+        }
+    }
 }

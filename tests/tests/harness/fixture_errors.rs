@@ -187,6 +187,61 @@ fn keeping_only_some_objects_names_a_missing_one() {
     );
 }
 
+/// `unlit` is a whole material: with a colour field besides, the fixture
+/// is refused at that field; alone it loads.
+#[test]
+fn unlit_with_another_colour_field_is_refused_at_that_field() {
+    let e = error_of(&flange_with(|v| {
+        let i = flange_index(v);
+        v["objects"][i]["material"]["unlit"] = serde_json::json!([1, 0.5, 0]);
+    }));
+    assert!(
+        e.contains("objects[5].material.color: `unlit` is a whole material"),
+        "{e}"
+    );
+    let e = error_of(&flange_with(|v| {
+        let i = flange_index(v);
+        v["objects"][i]["material"] = serde_json::json!({"unlit": [1, 0.5, 0], "specular": 0.3});
+    }));
+    assert!(
+        e.contains("objects[5].material.specular: `unlit` is a whole material"),
+        "{e}"
+    );
+    Fixture::parse(
+        &flange_with(|v| {
+            let i = flange_index(v);
+            v["objects"][i]["material"] = serde_json::json!({"unlit": [1, 0.5, 0]});
+        }),
+        Path::new("fixtures/flange.json"),
+    )
+    .unwrap();
+}
+
+/// A fixture may leave out `light`, but not a material's `color` unless it
+/// gives `unlit`.
+#[test]
+fn light_may_be_omitted_and_color_only_for_unlit() {
+    Fixture::parse(
+        &flange_with(|v| {
+            v.as_object_mut().unwrap().remove("light");
+        }),
+        Path::new("fixtures/flange.json"),
+    )
+    .unwrap();
+    let e = error_of(&flange_with(|v| {
+        v["objects"][0]["material"]
+            .as_object_mut()
+            .unwrap()
+            .remove("color");
+    }));
+    assert!(
+        e.contains(
+            "objects[0].material: missing field `color`: give `color` [r, g, b], or `unlit`"
+        ),
+        "{e}"
+    );
+}
+
 #[test]
 fn out_of_range_materials_lights_and_grouped_spheres_are_refused_at_their_field() {
     let e = error_of(&flange_with(|v| {
