@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The memory of `vstf serve` under the requests of issue 27, as a page on
+"""The memory of `vstf serve` under the requests a page on
 any site could send them: 30 renders at distinct speeds, then 50 at once,
 of a 259,588-prism scene (the repository's sphere-relativistic fixture with
 its sphere tessellated at 511 segments). Prints the server's peak resident

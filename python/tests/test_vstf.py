@@ -407,7 +407,7 @@ def test_aovs_agree_with_first_principles_on_a_fast_sphere():
         offset = s_hit * d - np.array([-81.0 + beta * (t_hit + 100.0), 0.0, -10.0])
         normal = offset * np.array([gamma * gamma, 1.0, 1.0])
         normal /= np.linalg.norm(normal)
-        # Turned to the side the sphere's own frame shows (issue 30, item 2):
+        # Turned to the side the sphere's own frame shows:
         # the light seen leaves the first point met outwards in that frame,
         # so the outward normal, also on the trailing side seen by
         # aberration (where the lab would see the inside: normal @ -d < 0).
