@@ -1,7 +1,8 @@
 //! Which side a moving two-sided face shows (docs/physics.md, "Which side
 //! a moving surface shows"): a face flying at 0.9c along its normal is
-//! seen, by aberration, from the side the lab would call hidden, and is shaded as that side (the side its own frame
-//! shows), lit by a lamp behind it; the lab's side would leave it unlit.
+//! seen, by aberration, from the side the lab would call hidden, and is
+//! shaded as that side (the side its own frame shows), lit by a lamp
+//! behind it; the lab's side would leave it unlit.
 
 use glam::DVec3;
 use renderer::{Model, Step, Traversal};
