@@ -119,23 +119,12 @@ pub fn render_stoppable(
     frame: &Frame,
     stop: &AtomicBool,
 ) -> Option<Image> {
-    let Frame {
-        camera,
-        camera_t,
-        model,
-        settings,
-    } = *frame;
-    let shader = shader(db, scene, model, settings);
+    let shader = shader(db, scene, frame.model, frame.settings);
     let camera = &Camera {
-        kinematics: Kinematics::of(model),
-        ..*camera
+        kinematics: Kinematics::of(frame.model),
+        ..*frame.camera
     };
-    let frame = Frame {
-        camera,
-        camera_t,
-        model,
-        settings,
-    };
+    let frame = Frame { camera, ..*frame };
     let (w, h) = (camera.width, camera.height);
     let mut pixels = vec![DVec3::ZERO; w as usize * h as usize];
     // Two rows at a time, in blocks of 2 x 2 pixels (one packet).
