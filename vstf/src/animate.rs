@@ -2,6 +2,7 @@
 //! 4D database is built once and never touched between frames.
 
 use crate::fixture::{Fixture, View};
+use crate::output::video::{self, VideoFormat};
 use crate::output::{write_atomic, write_png};
 use crate::shard::Shard;
 use image::RgbImage;
@@ -52,20 +53,50 @@ pub enum Output {
     Gif(PathBuf),
     /// An animated PNG.
     Apng(PathBuf),
+    /// A video, encoded by ffmpeg.
+    Video(PathBuf, VideoFormat),
 }
 
+/// What an animation's `--out` may name.
+pub const ANIMATION_OUTPUTS: &str =
+    "a folder (PNG frames), FILE.gif, FILE.png (APNG), FILE.mp4 or FILE.webm";
+
 impl Output {
-    /// A `.gif` or `.png`/`.apng` file, else a folder of PNG frames.
-    pub fn from_path(p: &Path) -> Output {
-        match p
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .as_deref()
-        {
-            Some("gif") => Output::Gif(p.into()),
-            Some("png") | Some("apng") => Output::Apng(p.into()),
-            _ => Output::Sequence(p.into()),
+    /// A `.gif`, `.png`/`.apng`, `.mp4` or `.webm` file, else a folder of
+    /// PNG frames; a path ending in the extension of another kind of file
+    /// (`.jpg`, `.mov`, ...) is refused, never made a folder.
+    pub fn from_path(p: &Path) -> Result<Output, String> {
+        let ext = crate::output::extension(p);
+        match ext.as_deref() {
+            Some("gif") => Ok(Output::Gif(p.into())),
+            Some("png") | Some("apng") => Ok(Output::Apng(p.into())),
+            Some(e) => match VideoFormat::of_extension(e) {
+                Some(v) => Ok(Output::Video(p.into(), v)),
+                None if crate::output::names_a_file(p) => Err(format!(
+                    "--out {}: an animation is written as {ANIMATION_OUTPUTS}, not .{e}",
+                    p.display()
+                )),
+                None => Ok(Output::Sequence(p.into())),
+            },
+            None => Ok(Output::Sequence(p.into())),
+        }
+    }
+
+    /// Refuses, before any frame is rendered, an output that could not be
+    /// written at the end: a folder (or FIFO, device) where the file goes;
+    /// for a video, no ffmpeg on PATH, unless `encode` is false (a shard's
+    /// frames need ffmpeg only when `vstf merge` encodes them).
+    pub fn preflight(&self, encode: bool) -> Result<(), String> {
+        match self {
+            Output::Sequence(_) => Ok(()),
+            Output::Gif(f) | Output::Apng(f) => Ok(crate::output::writable_file(f)?),
+            Output::Video(f, _) => {
+                crate::output::writable_file(f)?;
+                if encode {
+                    video::find_ffmpeg()?;
+                }
+                Ok(())
+            }
         }
     }
 
@@ -76,7 +107,7 @@ impl Output {
     pub fn frames_dir(&self) -> PathBuf {
         match self {
             Output::Sequence(d) => d.clone(),
-            Output::Gif(f) | Output::Apng(f) => {
+            Output::Gif(f) | Output::Apng(f) | Output::Video(f, _) => {
                 let mut name = f.file_name().map(|n| n.to_os_string()).unwrap_or_default();
                 name.push(".frames");
                 f.with_file_name(name)
@@ -189,12 +220,15 @@ pub fn render_frames(
     mut done: impl FnMut(usize),
 ) -> Result<usize, String> {
     let dir = out.frames_dir();
-    std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let wanted = manifest(f, view, times, opts.label);
     let mpath = manifest_path(&dir, opts.shard);
+    // A resumed run checks before making anything, so that a refusal
+    // leaves no folder behind.
     if opts.resume {
         can_resume(&dir, &mpath, &wanted)?;
-    } else {
+    }
+    std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    if !opts.resume {
         remove_old_frames(&dir, opts.shard)?;
     }
     write_atomic(&mpath, wanted.as_bytes())
@@ -297,6 +331,10 @@ pub fn merge(found: Vec<crate::shard::Found>, out: &Output, fps: u32) -> Result<
         }
         Output::Gif(file) => (file, encode_gif(&frames()?, fps)?),
         Output::Apng(file) => (file, encode_apng(&frames()?, fps)?),
+        Output::Video(file, format) => {
+            video::encode_files(&files, fps, file, *format)?;
+            return Ok(n);
+        }
     };
     write_atomic(file, &bytes).map_err(|e| format!("cannot write {}: {e}", file.display()))?;
     Ok(n)
@@ -319,11 +357,19 @@ fn load_frames(dir: &Path, n: usize) -> Result<Vec<RgbImage>, String> {
         .collect()
 }
 
-/// Assembles the finished frames into the GIF or APNG file (atomically),
-/// then removes the frames folder. A sequence needs nothing more.
+/// Assembles the finished frames into the GIF, APNG or video file
+/// (atomically), then removes the frames folder; a video that ffmpeg could
+/// not encode leaves neither the file nor the frames. A sequence needs
+/// nothing more.
 pub fn finish(out: &Output, n: usize, fps: u32) -> Result<(), String> {
     let (file, bytes) = match out {
         Output::Sequence(_) => return Ok(()),
+        Output::Video(file, format) => {
+            let dir = out.frames_dir();
+            let encoded = video::encode(&dir, n, fps, file, *format);
+            remove_frames_dir(&dir)?;
+            return encoded;
+        }
         Output::Gif(file) => (file, encode_gif(&load_frames(&out.frames_dir(), n)?, fps)?),
         Output::Apng(file) => (file, encode_apng(&load_frames(&out.frames_dir(), n)?, fps)?),
     };
@@ -415,18 +461,23 @@ mod tests {
 
     #[test]
     fn outputs_by_extension() {
+        let of = |p: &str| Output::from_path(Path::new(p));
+        assert_eq!(of("a.gif"), Ok(Output::Gif("a.gif".into())));
+        assert_eq!(of("a.PNG"), Ok(Output::Apng("a.PNG".into())));
+        assert_eq!(of("frames"), Ok(Output::Sequence("frames".into())));
+        assert_eq!(of("run.v2"), Ok(Output::Sequence("run.v2".into())));
         assert_eq!(
-            Output::from_path(Path::new("a.gif")),
-            Output::Gif("a.gif".into())
+            of("a.MP4"),
+            Ok(Output::Video("a.MP4".into(), VideoFormat::Mp4))
         );
         assert_eq!(
-            Output::from_path(Path::new("a.PNG")),
-            Output::Apng("a.PNG".into())
+            of("a.webm"),
+            Ok(Output::Video("a.webm".into(), VideoFormat::Webm))
         );
-        assert_eq!(
-            Output::from_path(Path::new("frames")),
-            Output::Sequence("frames".into())
-        );
+        for file in ["a.jpg", "a.exr", "a.mov", "a.mkv"] {
+            let e = of(file).unwrap_err();
+            assert!(e.contains(file) && e.contains("FILE.mp4"), "{e}");
+        }
         assert_eq!(
             Output::Gif("x/a.gif".into()).frames_dir(),
             PathBuf::from("x/a.gif.frames")

@@ -54,5 +54,8 @@ pub use error::Error;
 pub use fixture::{FieldError, Fixture, FixtureError, Overrides, View};
 pub use golden::{Comparison, Fuzzy, Store};
 pub use label::{draw_label, label_scale};
-pub use output::{rgb8, write_atomic, write_png};
+pub use output::{
+    rgb8, video, writable_file, write_8bit, write_atomic, write_exr, write_jpeg, write_png,
+    ExrMeta, StillFormat, AOV_CHANNELS, JPEG_QUALITY, STILL_EXTENSIONS,
+};
 pub use project::Project;

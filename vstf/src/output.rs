@@ -12,6 +12,47 @@ use crate::error::Error;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+mod exr_file;
+mod still;
+pub mod video;
+
+pub use exr_file::{write_exr, ExrMeta, AOV_CHANNELS};
+pub use still::{write_8bit, write_jpeg, StillFormat, JPEG_QUALITY, STILL_EXTENSIONS};
+
+/// Extensions of files that vstf does not write but that name a file, not
+/// a folder: an `--out` ending in one is refused rather than made a folder
+/// of frames.
+const FILE_EXTENSIONS: &[&str] = &[
+    "jpg", "jpeg", "exr", "tif", "tiff", "bmp", "webp", "avif", "heic", "heif", "tga", "ppm",
+    "pgm", "pnm", "hdr", "svg", "pdf", "mov", "mkv", "avi", "m4v", "ogv", "ogg", "mpg", "mpeg",
+    "wmv", "flv", "3gp", "h264", "hevc", "y4m", "mjpeg", "json", "txt", "html", "zip", "tar", "gz",
+];
+
+/// The lower-case extension of `path`'s file name, if it has one.
+pub(crate) fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
+
+/// Whether `path` ends in the extension of a kind of file (one vstf writes
+/// or not): such a path must never become a folder.
+pub(crate) fn names_a_file(path: &Path) -> bool {
+    extension(path).is_some_and(|e| {
+        FILE_EXTENSIONS.contains(&e.as_str())
+            || matches!(e.as_str(), "png" | "apng" | "gif" | "mp4" | "webm")
+    })
+}
+
+/// Refuses now, before any work, an output that could not be written at
+/// the end: something at `path` that is not a regular file (a folder, a
+/// FIFO, a device).
+pub fn writable_file(path: &Path) -> Result<(), String> {
+    regular_target(path)
+        .map(drop)
+        .map_err(|e| format!("--out {}: {e}", path.display()))
+}
+
 /// The marker in every temporary file's name.
 pub(crate) const TEMP_MARK: &str = ".vstf-tmp-";
 

@@ -34,6 +34,11 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), Error> {
         ));
     }
     let times = vstf::animate::frame_times(frames.0, frames.1, step)?;
+    // What cannot be written (a folder where the file goes, a video
+    // without ffmpeg) is refused before anything is rendered or made; a
+    // shard's frames need ffmpeg only when merged.
+    let output = vstf::animate::Output::from_path(&out)?;
+    output.preflight(shard == vstf::shard::Shard::WHOLE)?;
     let budget = vstf::Budget::forced(view.force);
     let fixture = vstf::project::load_fixture(root, &fixture, &budget)?;
     // A declared view gives the model, size and samples; the times are the frames'.
@@ -60,7 +65,6 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), Error> {
         view.settings.spp,
         times.len(),
     )?;
-    let output = vstf::animate::Output::from_path(&out);
     let stop = stop_on_ctrl_c()?;
     let started = Instant::now();
     let db = vstf::run::database(&fixture, view.model.lorentz, Traversal::Bvh)?;

@@ -78,7 +78,9 @@ pub struct ViewArgs {
 
 #[derive(Subcommand)]
 pub enum Command {
-    /// Render one view of a fixture to a PNG.
+    /// Render one view of a fixture to a PNG, JPEG or OpenEXR file (with
+    /// --aovs: the EXR also holds each pixel's event time, proper time,
+    /// Doppler and searchlight factors, object, distance and normal).
     Render(RenderArgs),
     /// Render every fixture (or the named ones), measure the images and check
     /// them against first-principles physics; exits non-zero if a row fails.
@@ -153,9 +155,19 @@ pub enum Command {
 pub struct RenderArgs {
     /// A fixture JSON file, or the name of one in fixtures/.
     pub fixture: String,
-    /// Output PNG.
+    /// The image file, by its extension: .png or .jpg/.jpeg (8 bits a
+    /// channel, the linear values as the golden PNGs hold them), or .exr
+    /// (OpenEXR: the linear radiance as float32 R, G, B).
     #[arg(long)]
     pub out: PathBuf,
+    /// With an .exr output: also write per-pixel layers, float32, read from
+    /// the ray through each pixel's centre: event_t (lab time of the event
+    /// seen, the retarded time), proper_time (the object's own time there),
+    /// doppler (nu_camera / nu_surface), searchlight (D^4), object (index in
+    /// the fixture's objects), distance (from the camera at the camera time)
+    /// and normal.X/Y/Z. Where nothing is hit: object -1, the others NaN.
+    #[arg(long, conflicts_with = "models")]
+    pub aovs: bool,
     /// `all`: the three models side by side, labelled, each at its own
     /// camera time (infinite at the time the others' light left the
     /// looked-at point).
@@ -306,10 +318,13 @@ pub struct AnimateArgs {
     /// Camera time between frames, t.units.
     #[arg(long, default_value_t = 1.0)]
     pub step: f64,
-    /// A folder (PNG sequence), FILE.gif (animated GIF) or FILE.png (APNG).
+    /// A folder (PNG sequence), FILE.gif (animated GIF), FILE.png (APNG),
+    /// or FILE.mp4 (H.264) / FILE.webm (VP9) encoded by ffmpeg from PATH
+    /// (frames rendered into FILE.frames/ beside it, removed once encoded).
+    /// Other file extensions (.jpg, .mov, ...) are refused.
     #[arg(long)]
     pub out: PathBuf,
-    /// Frames per second of the GIF or APNG.
+    /// Frames per second of the GIF, APNG or video.
     #[arg(long, default_value_t = 10)]
     pub fps: u32,
     /// Keep the frames an interrupted run of the same animation wrote whole
@@ -336,11 +351,12 @@ pub struct MergeArgs {
     /// found in them or, for checks, in their check-I-of-N subfolders).
     #[arg(required = true)]
     pub dirs: Vec<PathBuf>,
-    /// The assembled animation: a folder (PNG sequence), FILE.gif or
-    /// FILE.png (APNG). Needed for animations.
+    /// The assembled animation: a folder (PNG sequence), FILE.gif,
+    /// FILE.png (APNG), FILE.mp4 or FILE.webm (by ffmpeg from PATH).
+    /// Needed for animations.
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Frames per second of the GIF or APNG.
+    /// Frames per second of the GIF, APNG or video.
     #[arg(long, default_value_t = 10)]
     pub fps: u32,
     /// For checks: also write the merged rows and golden results as JSON

@@ -19,10 +19,14 @@ pub fn run(args: MergeArgs) -> Result<(), Error> {
         .ok_or("no shard manifests (shard-I-of-N.json) in the folders given")?;
     match kind.as_str() {
         "animation" => {
-            let out = args
-                .out
-                .ok_or("merging an animation needs --out (a folder, FILE.gif or FILE.png)")?;
-            let output = vstf::animate::Output::from_path(&out);
+            let out = args.out.ok_or_else(|| {
+                format!(
+                    "merging an animation needs --out: {}",
+                    vstf::animate::ANIMATION_OUTPUTS
+                )
+            })?;
+            let output = vstf::animate::Output::from_path(&out)?;
+            output.preflight(true)?;
             let shards = found.first().map_or(0, |f| f.manifest.shard.count);
             let n = vstf::animate::merge(found, &output, args.fps)?;
             eprintln!(

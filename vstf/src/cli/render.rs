@@ -1,4 +1,5 @@
-//! `vstf render`: one view of a fixture to a PNG.
+//! `vstf render`: one view of a fixture to a PNG, a JPEG or an OpenEXR
+//! file (with the per-pixel output variables as further channels).
 
 use super::args::{ModelArg, RenderArgs, ViewArgs};
 use super::view::prepare;
@@ -6,6 +7,7 @@ use renderer::LightSpeed;
 use std::path::Path;
 use std::time::Instant;
 use vstf::error::Error;
+use vstf::StillFormat;
 
 /// Renders the view and reports what was rendered and how long it took.
 pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), Error> {
@@ -15,24 +17,35 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), Error> {
         models,
         view,
         brute_force,
+        aovs,
     } = args;
-    let png = out
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if !png {
+    let format = StillFormat::of(&out)?;
+    if aovs && format != StillFormat::Exr {
         return Err(Error::usage(format!(
-            "--out {}: vstf writes PNG images; name the file .png",
+            "--aovs: the output variables are layers of an OpenEXR file; name --out {} .exr",
             out.display()
         )));
     }
+    vstf::writable_file(&out)?;
     if models.is_some() {
-        return Ok(all_models(root, &fixture, &view, brute_force, &out)?);
+        if format == StillFormat::Exr {
+            return Err(Error::usage(format!(
+                "--out {}: --models all writes a labelled sheet of three 8-bit images                  (.png or .jpg); an EXR holds one view (render each --model into its own)",
+                out.display()
+            )));
+        }
+        return all_models(root, &fixture, &view, brute_force, (&out, format));
     }
     let started = Instant::now();
     let (fixture, view, db) = prepare(root, &fixture, &view, brute_force, true)?;
     let image = vstf::run::render_with(&db, &fixture, &view)?;
-    vstf::write_png(&out, &vstf::rgb8(&image))?;
+    write(
+        &out,
+        format,
+        &image,
+        aovs.then(|| vstf::aovs(&fixture, &view, &db)).as_deref(),
+        (&fixture, &view),
+    )?;
     for warning in vstf::out_of_view(&fixture, &view) {
         eprintln!("warning: {warning}");
     }
@@ -56,6 +69,26 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), Error> {
     Ok(())
 }
 
+/// Writes the image in `format`; an EXR with the output variables `aovs`
+/// when given, and the view's camera time and model in its header.
+fn write(
+    out: &Path,
+    format: StillFormat,
+    image: &renderer::Image,
+    aovs: Option<&[vstf::PixelAov]>,
+    (fixture, view): (&vstf::Fixture, &vstf::View),
+) -> Result<(), Error> {
+    if format != StillFormat::Exr {
+        return vstf::write_8bit(out, format, &vstf::rgb8(image));
+    }
+    let meta = vstf::ExrMeta {
+        fixture: fixture.name.clone(),
+        model: view.model.to_string(),
+        camera_t: view.camera_t,
+    };
+    vstf::write_exr(out, image, aovs, &meta)
+}
+
 /// The three models side by side, each panel labelled with its model and
 /// camera time: classical and relativistic at the camera time asked for
 /// (or the fixture's), infinite at that time less the light time from the
@@ -66,8 +99,8 @@ fn all_models(
     name: &str,
     args: &ViewArgs,
     brute_force: bool,
-    out: &Path,
-) -> Result<(), String> {
+    (out, format): (&Path, StillFormat),
+) -> Result<(), Error> {
     let started = Instant::now();
     let (fixture, base, _) = prepare(root, name, args, brute_force, false)?;
     let camera = &fixture.spec.camera;
@@ -100,7 +133,7 @@ fn all_models(
     for (k, p) in panels.iter().enumerate() {
         image::imageops::replace(&mut sheet, p, i64::from(k as u32 * (w + gap)), 0);
     }
-    vstf::write_png(out, &sheet)?;
+    vstf::write_8bit(out, format, &sheet)?;
     eprintln!(
         "rendered {} in the three models ({}x{} each) in {:.2} s -> {}",
         fixture.name,

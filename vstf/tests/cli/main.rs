@@ -16,6 +16,8 @@ mod check;
 mod debug;
 /// `vstf approve`, `reject` and `review`: golden images one view at a time.
 mod golden;
+/// `render --out` EXR (with its layers) and JPEG, `animate --out` videos.
+mod outputs;
 /// Projects: none, one from `vstf init`, a fixture given as a file.
 mod project;
 /// `vstf render` and `vstf list --views`.
