@@ -437,10 +437,11 @@ fn video_failures_leave_nothing_behind() {
     let out = dir.join("out");
     std::fs::create_dir(&out).unwrap();
     let bin = failing_ffmpeg(&dir);
-    animate(&out.join("x.mp4"), &[])
+    let run = animate(&out.join("x.mp4"), &[])
         .env("PATH", "/nonexistent")
-        .run()
-        .fails_with("ffmpeg is not on PATH");
+        .run();
+    run.fails_with("ffmpeg is not on PATH");
+    assert_eq!(run.code(), Some(2));
     assert!(names(&out).is_empty(), "{:?}", names(&out));
     animate(&out.join("x.webm"), &[])
         .env("PATH", &bin)
