@@ -15,9 +15,12 @@
 //! the pixel's ray meets nothing, `object` is -1 and every other output
 //! variable is NaN; the radiance there is the background's.
 //!
-//! The header carries the camera time as a double (`vstfCameraT`), the
-//! light-speed model and the fixture's name, so that lab times stored as
-//! f32 can be read relative to it.
+//! The header carries the camera time as a double (`vstfCameraT`, the one
+//! custom attribute: the `exr` crate writes custom attributes in a hash
+//! map's order, which would change the file's bytes from run to run if there
+//! were more), so that lab times stored as f32 can be read relative to it,
+//! and in its standard `comments` the fixture's name, the light-speed model
+//! and the camera time; `software` is `vstf`.
 
 use crate::aov::PixelAov;
 use crate::error::Error;
@@ -93,19 +96,15 @@ fn encode(
         }
     }
     let mut attributes = LayerAttributes::default();
-    let other = &mut attributes.other;
-    other.insert(
+    attributes.other.insert(
         Text::from("vstfCameraT"),
         AttributeValue::F64(meta.camera_t),
     );
-    other.insert(
-        Text::from("vstfModel"),
-        AttributeValue::Text(latin1(&meta.model)),
-    );
-    other.insert(
-        Text::from("vstfFixture"),
-        AttributeValue::Text(latin1(&meta.fixture)),
-    );
+    attributes.software_name = Some(Text::from("vstf"));
+    attributes.comments = Some(latin1(&format!(
+        "fixture {}, {} model, camera time {}",
+        meta.fixture, meta.model, meta.camera_t
+    )));
     let layer = Layer::new(
         (w, h),
         attributes,
@@ -191,8 +190,15 @@ mod tests {
             Some(&AttributeValue::F64(1e9 + 0.125))
         );
         assert_eq!(
-            other.get(&Text::from("vstfFixture")),
-            Some(&AttributeValue::Text(Text::from("ball ?")))
+            other.len(),
+            1,
+            "one custom attribute: a hash map's order is not fixed"
+        );
+        assert_eq!(
+            layer.attributes.comments,
+            Some(Text::from(
+                "fixture ball ?, relativistic model, camera time 1000000000.125"
+            ))
         );
         assert_eq!(layer.channel_data.list.len(), 12);
         // Without the output variables: the radiance only.
