@@ -30,7 +30,8 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), Error> {
     if models.is_some() {
         if format == StillFormat::Exr {
             return Err(Error::usage(format!(
-                "--out {}: --models all writes a labelled sheet of three 8-bit images                  (.png or .jpg); an EXR holds one view (render each --model into its own)",
+                "--out {}: --models all writes a labelled sheet of three 8-bit images \
+                 (.png or .jpg); an EXR holds one view (render each --model into its own)",
                 out.display()
             )));
         }
