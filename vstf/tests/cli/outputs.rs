@@ -101,7 +101,8 @@ impl Oiio {
 
 /// The relative rounding of a value stored as f32 (half its unit in the
 /// last place), the tolerance of every comparison with the oracle below
-/// beside 1e-9 for the f64 solves on both sides.
+/// beside 1e-9 absolute: the f64 solves on both sides, and oiiotool's nine
+/// printed decimals (5e-10).
 const F32_ROUNDING: f64 = 1.0 / (1u64 << 24) as f64;
 
 /// What the sphere of `sphere-relativistic` shows through the centre of
