@@ -31,6 +31,7 @@ mod harness {
     mod debug;
     mod declared;
     mod emulator;
+    mod face_materials;
     mod fixture_errors;
     mod independent_models;
     mod mirrors;

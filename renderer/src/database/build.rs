@@ -22,6 +22,22 @@ fn mesh_of(obj: &SceneObject) -> &Mesh {
     }
 }
 
+/// Whether every triangle of `mesh` names one of the object's `count`
+/// materials.
+fn material_indices(mesh: &Mesh, count: usize) -> Result<(), Fault> {
+    match mesh.materials.iter().position(|&k| k as usize >= count) {
+        Some(triangle) => Err(Fault::new(
+            F::Shape,
+            K::MaterialIndex {
+                triangle,
+                index: mesh.materials[triangle],
+                materials: count,
+            },
+        )),
+        None => Ok(()),
+    }
+}
+
 /// The database under construction.
 #[derive(Default)]
 struct Builder {
@@ -119,6 +135,7 @@ impl Builder {
             let shape = Mesh {
                 vertices: f.vertices.clone(),
                 triangles: mesh.triangles.clone(),
+                materials: Vec::new(),
             };
             shape
                 .validate()
@@ -229,9 +246,11 @@ impl Builder {
                 return Err(Fault::new(F::Shape, K::SphereRadius(*r)));
             }
             Shape::Sphere { .. } => {}
-            Shape::Mesh(mesh) => mesh
-                .validate()
-                .map_err(|e| Fault::new(F::Shape, K::Mesh(e)))?,
+            Shape::Mesh(mesh) => {
+                mesh.validate()
+                    .map_err(|e| Fault::new(F::Shape, K::Mesh(e)))?;
+                material_indices(mesh, obj.face_materials.len() + 1)?;
+            }
         }
         let mesh = mesh_of(obj);
         let contracted = lorentz && obj.kind == ObjectKind::VObj;
@@ -269,6 +288,8 @@ fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
             name: obj.name.clone(),
             kind: obj.kind,
             material: obj.material.clone(),
+            face_materials: obj.face_materials.clone(),
+            triangle_materials: mesh_of(obj).materials.clone(),
             contracted: lorentz && obj.kind == ObjectKind::VObj,
             stretches,
         });

@@ -31,8 +31,13 @@ pub struct ObjectRecord {
     pub name: String,
     /// Whether it was given as an H_obj or a V_obj.
     pub kind: ObjectKind,
-    /// Its surface appearance.
+    /// Its surface appearance: material 0.
     pub material: Material,
+    /// Its materials 1, 2, ... ([`crate::SceneObject::face_materials`]).
+    pub face_materials: Vec<Material>,
+    /// The material index of each triangle of its mesh; empty when all are
+    /// of material 0 ([`crate::Mesh::materials`]).
+    pub triangle_materials: Vec<u32>,
     /// Whether it was inserted Lorentz-transformed (a V_obj with the
     /// transform on): its points' clocks run at the gamma of their speed.
     pub contracted: bool,
@@ -42,6 +47,15 @@ pub struct ObjectRecord {
 }
 
 impl ObjectRecord {
+    /// The material of triangle `triangle` of the object's mesh (of the
+    /// object, for an analytic sphere).
+    pub fn material_of(&self, triangle: u32) -> &Material {
+        match self.triangle_materials.get(triangle as usize) {
+            Some(&k) if k > 0 => &self.face_materials[k as usize - 1],
+            _ => &self.material,
+        }
+    }
+
     /// The stretch of the path at lab time `t` (the first or last outside
     /// the lifetime).
     pub fn stretch_at(&self, t: f64) -> &Stretch {
@@ -108,6 +122,7 @@ mod tests {
             shape: Shape::Mesh(mesh),
             motion,
             material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
+            face_materials: Vec::new(),
         }
     }
 
