@@ -35,6 +35,7 @@ mod harness {
     mod fixture_errors;
     mod independent_models;
     mod mirrors;
+    mod shared_worldline;
     mod spinning;
     mod surface_frame;
     mod two_sided;
