@@ -180,7 +180,6 @@ fn obj_usemtl_with_mtl_colours_renders_as_json_faces() {
 #[test]
 fn misused_face_materials_are_named_at_their_field() {
     let dir = scratch("errors");
-    let fixtures = dir.join("fixtures");
     let e = load(
         &dir,
         serde_json::json!({"mesh": cube(), "materials": {"red": {"unlit": [1, 0, 0]}}, "faces": {"redd": [0]}}),
@@ -228,6 +227,13 @@ fn misused_face_materials_are_named_at_their_field() {
     let e = load(&dir, serde_json::json!({"mesh": cube(), "materials": {"red": {"unlit": [1, 0, -1]}}, "faces": {"red": [0]}}))
         .unwrap_err();
     assert!(e.contains("objects[0].materials.red.unlit"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn misused_obj_materials_are_named_at_the_mesh_path() {
+    let dir = scratch("obj-errors");
+    let fixtures = dir.join("fixtures");
     // usemtl of a name neither the .mtl nor the fixture has.
     std::fs::write(fixtures.join("one.mtl"), "newmtl red\nKd 1 0 0\n").unwrap();
     std::fs::write(

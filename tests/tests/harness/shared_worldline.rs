@@ -17,25 +17,25 @@ const HIDDEN: [f64; 3] = [1.0, 0.0, 1.0];
 
 /// The six faces of a unit cube about the reference point as quads
 /// (corner, u, v), with the colour of each: -x, +x, -y, +y, -z, +z.
-fn faces() -> [([f64; 3], [f64; 3], [f64; 3], [f64; 3]); 6] {
+fn faces() -> [[[f64; 3]; 4]; 6] {
     let h = 0.5;
     [
-        ([-h, -h, -h], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], HIDDEN),
-        (
+        [[-h, -h, -h], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], HIDDEN],
+        [
             [h, -h, -h],
             [0.0, 1.0, 0.0],
             [0.0, 0.0, 1.0],
             [0.1, 0.2, 1.0],
-        ),
-        ([-h, -h, -h], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], HIDDEN),
-        ([-h, h, -h], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], HIDDEN),
-        ([-h, -h, -h], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0], HIDDEN),
-        (
+        ],
+        [[-h, -h, -h], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], HIDDEN],
+        [[-h, h, -h], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], HIDDEN],
+        [[-h, -h, -h], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0], HIDDEN],
+        [
             [-h, -h, h],
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
             [0.1, 0.9, 0.1],
-        ),
+        ],
     ]
 }
 
@@ -66,7 +66,7 @@ fn six_quads(tolerance: f64, stagger: f64) -> Fixture {
     let objects = faces()
         .iter()
         .enumerate()
-        .map(|(k, (corner, u, v, colour))| {
+        .map(|(k, [corner, u, v, colour])| {
             serde_json::json!({"name": format!("face {k}"), "kind": "V_obj",
                 "mesh": {"quad": {"corner": corner, "u": u, "v": v}},
                 "material": {"unlit": colour},
@@ -79,7 +79,7 @@ fn six_quads(tolerance: f64, stagger: f64) -> Fixture {
 /// One cuboid, its faces coloured by per-face materials.
 fn one_cube(tolerance: f64) -> Fixture {
     let (mut materials, mut assigned) = (serde_json::Map::new(), serde_json::Map::new());
-    for (k, (_, _, _, colour)) in faces().iter().enumerate() {
+    for (k, [_, _, _, colour]) in faces().iter().enumerate() {
         let name = format!("face {k}");
         materials.insert(name.clone(), serde_json::json!({"unlit": colour}));
         assigned.insert(name, serde_json::json!([2 * k, 2 * k + 1]));
