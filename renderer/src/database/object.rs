@@ -169,4 +169,50 @@ mod tests {
             }
         }
     }
+
+    /// Each triangle takes the material its index names (0: the object's
+    /// own), and an index naming no material, or a list not one per
+    /// triangle, is refused at insertion.
+    #[test]
+    fn triangles_take_the_material_they_name() {
+        let motion = Motion::at_rest(DVec3::ZERO, -1.0, 1.0);
+        let mut mesh = Mesh::cuboid(DVec3::splat(-1.0), DVec3::ONE);
+        mesh.materials = vec![0, 0, 1, 1, 2, 2, 0, 0, 0, 0, 0, 0];
+        let mut o = object("cube", ObjectKind::HObj, mesh, motion);
+        o.face_materials = vec![Material::matte(DVec3::X), Material::matte(DVec3::Y)];
+        let db = Database::build(&scene(vec![o.clone()]), false).unwrap();
+        let r = &db.objects()[0];
+        let colours: Vec<DVec3> = (0..12).map(|t| r.material_of(t).color).collect();
+        assert_eq!(colours[0], DVec3::new(0.8, 0.5, 0.2));
+        assert_eq!(
+            (colours[2], colours[3], colours[5]),
+            (DVec3::X, DVec3::X, DVec3::Y)
+        );
+        o.face_materials.pop();
+        let Err(e) = Database::build(&scene(vec![o.clone()]), false) else {
+            panic!("an index naming no material was accepted")
+        };
+        assert_eq!(
+            e.kind,
+            crate::SceneErrorKind::MaterialIndex {
+                triangle: 4,
+                index: 2,
+                materials: 2
+            }
+        );
+        let Shape::Mesh(m) = &mut o.shape else {
+            unreachable!()
+        };
+        m.materials.pop();
+        let Err(e) = Database::build(&scene(vec![o]), false) else {
+            panic!("11 indices for 12 triangles were accepted")
+        };
+        assert!(matches!(
+            e.kind,
+            crate::SceneErrorKind::Mesh(crate::MeshError::MaterialCount {
+                materials: 11,
+                triangles: 12
+            })
+        ));
+    }
 }
