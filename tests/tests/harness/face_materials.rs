@@ -147,6 +147,14 @@ fn obj_usemtl_with_mtl_colours_renders_as_json_faces() {
         px == image(&from_json),
         "the OBJ's faces are coloured otherwise"
     );
+    // A byte-order mark before its first statement changes nothing.
+    std::fs::write(fixtures.join("bom.obj"), format!("\u{feff}{obj}")).unwrap();
+    let bom = load(
+        &dir,
+        serde_json::json!({"mesh": {"obj": {"path": "bom.obj"}}}),
+    )
+    .unwrap();
+    assert_eq!(bom.scene.objects, from_obj.scene.objects);
     assert!(count(&px, COLOURS[1].1) > 100);
     // The fixture's `materials` take precedence over the .mtl's Kd.
     let over = load(
