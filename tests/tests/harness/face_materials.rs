@@ -313,3 +313,33 @@ fn misused_obj_materials_are_named_at_the_mesh_path() {
     std::fs::remove_dir_all(&dir).ok();
     std::fs::remove_dir_all(&outside).ok();
 }
+
+/// A check that reads one material refuses an object of several, at its
+/// `object` field; the same check on a plain object gets past that field
+/// (the control: refused only for not blinking).
+#[test]
+fn checks_reading_a_material_refuse_per_face_materials() {
+    let dir = scratch("checks");
+    let with_check = |object: serde_json::Value| {
+        let mut v: serde_json::Value = serde_json::from_str(&text(object)).unwrap();
+        v["views"] = serde_json::json!([{"name": "v"}]);
+        v["checks"] = serde_json::json!([{"name": "p", "measure": {"period":
+            {"view": "v", "object": "cube", "from": 0.0, "to": 1.0, "step": 0.1}}}]);
+        Fixture::parse(&v.to_string(), &dir.join("fixtures/cube.json"))
+            .unwrap_err()
+            .to_string()
+    };
+    let e = with_check(
+        serde_json::json!({"mesh": cube(), "materials": json_materials(), "faces": json_faces()}),
+    );
+    assert!(
+        e.contains("checks[0].measure.period.object: \"cube\" has per-face materials"),
+        "{e}"
+    );
+    let e = with_check(serde_json::json!({"mesh": cube()}));
+    assert!(
+        e.contains("checks[0].measure.period.object") && e.contains("does not blink"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
