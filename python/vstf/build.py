@@ -84,7 +84,8 @@ class Object:
     """An object: its name, its mesh (one of the mesh helpers below), its
     kind (``"H_obj"`` lab-frame sizes, or ``"V_obj"`` rest-frame sizes,
     Lorentz-contracted), its worldline (or a fixed ``position``), its
-    material."""
+    material, and optionally further named ``materials`` with the triangles
+    of each (``faces``: name -> triangle indices from 0)."""
 
     name: str
     mesh: Dict[str, Any]
@@ -92,6 +93,8 @@ class Object:
     worldline: Optional[Worldline] = None
     position: Optional[Vec3] = None
     material: Material = field(default_factory=Material)
+    materials: Optional[Dict[str, Material]] = None
+    faces: Optional[Dict[str, List[int]]] = None
 
 
 @dataclass
@@ -157,6 +160,20 @@ def analytic_sphere(radius: float) -> Dict[str, Any]:
 def obj(path: str) -> Dict[str, Any]:
     """A Wavefront OBJ file, relative to the scene's file."""
     return {"obj": {"path": str(path)}}
+
+
+def ply(path: str) -> Dict[str, Any]:
+    """A Stanford PLY file (ASCII or binary), relative to the scene's file."""
+    return {"ply": {"path": str(path)}}
+
+
+def mesh_file(path: str, format: Optional[str] = None) -> Dict[str, Any]:
+    """A mesh file in ``format`` (``"obj"`` or ``"ply"``), or else the one
+    its extension names, relative to the scene's file."""
+    spec: Dict[str, Any] = {"path": str(path)}
+    if format is not None:
+        spec["format"] = format
+    return {"file": spec}
 
 
 def triangles(vertices: Sequence[Vec3], indices: Sequence[Sequence[int]]) -> Dict[str, Any]:

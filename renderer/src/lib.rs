@@ -51,6 +51,7 @@
 //!         extrusion: FourVector::new(40.0, DVec3::new(20.0, 0.0, 0.0)),
 //!     },
 //!     material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
+//!     face_materials: Vec::new(),
 //! };
 //! let scene = Scene {
 //!     objects: vec![cube],

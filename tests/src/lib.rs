@@ -74,6 +74,7 @@ pub fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> Scene
         shape: Shape::Mesh(mesh),
         motion,
         material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
+        face_materials: Vec::new(),
     }
 }
 

@@ -31,9 +31,11 @@ mod harness {
     mod debug;
     mod declared;
     mod emulator;
+    mod face_materials;
     mod fixture_errors;
     mod independent_models;
     mod mirrors;
+    mod shared_worldline;
     mod spinning;
     mod surface_frame;
     mod two_sided;

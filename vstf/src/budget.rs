@@ -133,28 +133,64 @@ pub struct Prisms {
 /// interval, h = sqrt(8 tolerance A_min) long, A_min = 1/a less how far a
 /// V_obj reaches behind its reference point; docs/physics.md).
 pub fn prisms(scene: &Scene) -> Prisms {
-    scene.objects.iter().fold(Prisms::default(), |p, o| {
-        let n = object_prisms(o);
-        match o.motion {
-            Motion::Extrusion { .. } | Motion::Velocity { .. } => Prisms {
-                translated: p.translated.saturating_add(n),
-                ..p
-            },
-            Motion::Keyframes(_) | Motion::Hyperbolic(_) => Prisms {
-                keyframed: p.keyframed.saturating_add(n),
-                ..p
-            },
-        }
-    })
+    let own: Vec<u64> = scene.objects.iter().map(stretches).collect();
+    scene
+        .objects
+        .iter()
+        .enumerate()
+        .fold(Prisms::default(), |p, (i, o)| {
+            let n = triangles(o).saturating_mul(shared(scene, &own, i).max(1));
+            match o.motion {
+                Motion::Extrusion { .. } | Motion::Velocity { .. } => Prisms {
+                    translated: p.translated.saturating_add(n),
+                    ..p
+                },
+                Motion::Keyframes(_) | Motion::Hyperbolic(_) => Prisms {
+                    keyframed: p.keyframed.saturating_add(n),
+                    ..p
+                },
+            }
+        })
 }
 
-/// One object's prisms: its triangles times its path's stretches.
-fn object_prisms(o: &renderer::SceneObject) -> u64 {
-    let triangles = match &o.shape {
+/// Object `i`'s stretches: its own (`own[i]`), or for hyperbolic motion the
+/// most of any object on the same worldline, since the renderer cuts them
+/// all at the finest's times.
+fn shared(scene: &Scene, own: &[u64], i: usize) -> u64 {
+    let Motion::Hyperbolic(h) = &scene.objects[i].motion else {
+        return own[i];
+    };
+    let same = |o: &renderer::SceneObject| match &o.motion {
+        Motion::Hyperbolic(g) => {
+            renderer::Hyperbolic {
+                tolerance: g.tolerance,
+                ..*h
+            } == *g
+        }
+        _ => false,
+    };
+    scene
+        .objects
+        .iter()
+        .zip(own)
+        .filter(|(o, _)| same(o))
+        .map(|(_, n)| *n)
+        .max()
+        .unwrap_or(own[i])
+}
+
+/// An object's triangles (none for an analytic sphere).
+fn triangles(o: &renderer::SceneObject) -> u64 {
+    match &o.shape {
         Shape::Mesh(m) => m.triangles.len() as u64,
         Shape::Sphere { .. } => 0,
-    };
-    let stretches = match &o.motion {
+    }
+}
+
+/// One object's stretches: one for uniform motion, one per keyframe
+/// interval, and for hyperbolic motion its own cut's intervals.
+fn stretches(o: &renderer::SceneObject) -> u64 {
+    match &o.motion {
         Motion::Keyframes(k) => k.len().saturating_sub(1) as u64,
         Motion::Hyperbolic(h) => {
             // The smallest A = 1/a + xi over the vertices: a V_obj may
@@ -177,8 +213,7 @@ fn object_prisms(o: &renderer::SceneObject) -> u64 {
             }
         }
         Motion::Extrusion { .. } | Motion::Velocity { .. } => 1,
-    };
-    triangles.saturating_mul(stretches.max(1))
+    }
 }
 
 /// A byte count as a person reads it.

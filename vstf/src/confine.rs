@@ -10,7 +10,7 @@
 
 use crate::error::Error;
 use crate::output::TEMP_MARK;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The files vstf writes into a view's pending folder.
 pub(crate) const PENDING_FILES: [&str; 4] = ["actual.png", "expected.png", "diff.png", "names"];
@@ -77,6 +77,42 @@ pub(crate) fn clear_pending(root: &Path, dir: &Path) -> Result<(), Error> {
     }
     let _ = std::fs::remove_dir(dir);
     Ok(())
+}
+
+/// The folder a fixture's own files (meshes) must lie in: the project the
+/// fixture lies in (the nearest folder above it with `vstf.toml` or
+/// `fixtures/`), or else the fixture's own folder.
+pub(crate) fn fixture_root(fixture: &Path) -> Result<PathBuf, String> {
+    let folder = fixture.parent().filter(|p| !p.as_os_str().is_empty());
+    let folder = folder.unwrap_or(Path::new("."));
+    let folder = folder.canonicalize().map_err(|e| {
+        format!(
+            "cannot resolve the fixture's folder {}: {e}",
+            folder.display()
+        )
+    })?;
+    Ok(crate::project::Project::discover(&folder)
+        .map(|p| p.root().to_path_buf())
+        .unwrap_or(folder))
+}
+
+/// `file` resolved through every link, if it lies inside `root`; a file
+/// outside it (by `..`, an absolute path or a link) is refused, naming both.
+pub(crate) fn inside(root: &Path, file: &Path) -> Result<PathBuf, String> {
+    let resolved = file
+        .canonicalize()
+        .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+    if resolved.starts_with(root) {
+        Ok(resolved)
+    } else {
+        Err(format!(
+            "{} (resolved to {}) is outside {}: a fixture reads files only inside its project \
+             (or its own folder when it has none)",
+            file.display(),
+            resolved.display(),
+            root.display()
+        ))
+    }
 }
 
 #[cfg(test)]

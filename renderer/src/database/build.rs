@@ -22,6 +22,22 @@ fn mesh_of(obj: &SceneObject) -> &Mesh {
     }
 }
 
+/// Whether every triangle of `mesh` names one of the object's `count`
+/// materials.
+fn material_indices(mesh: &Mesh, count: usize) -> Result<(), Fault> {
+    match mesh.materials.iter().position(|&k| k as usize >= count) {
+        Some(triangle) => Err(Fault::new(
+            F::Shape,
+            K::MaterialIndex {
+                triangle,
+                index: mesh.materials[triangle],
+                materials: count,
+            },
+        )),
+        None => Ok(()),
+    }
+}
+
 /// The database under construction.
 #[derive(Default)]
 struct Builder {
@@ -119,6 +135,7 @@ impl Builder {
             let shape = Mesh {
                 vertices: f.vertices.clone(),
                 triangles: mesh.triangles.clone(),
+                materials: Vec::new(),
             };
             shape
                 .validate()
@@ -217,27 +234,35 @@ impl Builder {
         })
     }
 
-    /// Inserts object `i`, returning its path as stretches.
+    /// Inserts object `i`, returning its path as stretches; hyperbolic
+    /// motion is cut into at least `shared` intervals (its worldline's
+    /// finest cut, [`shared_cuts`]).
     fn insert(
         &mut self,
         i: usize,
         obj: &SceneObject,
         lorentz: bool,
+        shared: Option<usize>,
     ) -> Result<Vec<Stretch>, Fault> {
         match &obj.shape {
             Shape::Sphere { radius: r } if !(*r > 0.0 && r.is_finite()) => {
                 return Err(Fault::new(F::Shape, K::SphereRadius(*r)));
             }
             Shape::Sphere { .. } => {}
-            Shape::Mesh(mesh) => mesh
-                .validate()
-                .map_err(|e| Fault::new(F::Shape, K::Mesh(e)))?,
+            Shape::Mesh(mesh) => {
+                mesh.validate()
+                    .map_err(|e| Fault::new(F::Shape, K::Mesh(e)))?;
+                material_indices(mesh, obj.face_materials.len() + 1)?;
+            }
         }
         let mesh = mesh_of(obj);
         let contracted = lorentz && obj.kind == ObjectKind::VObj;
         let poses = match &obj.motion {
             Motion::Keyframes(k) => Some(geometry::resolve(k, mesh, contracted)?),
-            Motion::Hyperbolic(h) => Some(h.poses(mesh, contracted)?),
+            Motion::Hyperbolic(h) => {
+                let own = h.intervals(mesh, contracted)?;
+                Some(h.poses_in(mesh, contracted, own.max(shared.unwrap_or(0)))?)
+            }
             _ => None,
         };
         match poses {
@@ -248,6 +273,43 @@ impl Builder {
             None => Ok(vec![self.uniform(i, obj, lorentz)?]),
         }
     }
+}
+
+/// For each object in hyperbolic motion, the most intervals any object on
+/// the same worldline, moving the same way (Born-rigid or not), needs: all
+/// of them are cut at the same lab times, so that where their meshes meet
+/// (a cube of six faces as six objects) the shared vertices, on the same
+/// hyperbolae, are interpolated between the same events and the edges stay
+/// closed. An object whose own cut fails is left to report its error.
+fn shared_cuts(scene: &Scene, lorentz: bool) -> Vec<Option<usize>> {
+    let motion = |obj: &SceneObject| match &obj.motion {
+        Motion::Hyperbolic(h) => Some((*h, lorentz && obj.kind == ObjectKind::VObj)),
+        _ => None,
+    };
+    let own: Vec<Option<usize>> = scene
+        .objects
+        .iter()
+        .map(|obj| {
+            let (h, born_rigid) = motion(obj)?;
+            h.intervals(mesh_of(obj), born_rigid).ok()
+        })
+        .collect();
+    scene
+        .objects
+        .iter()
+        .map(|obj| {
+            let (h, born_rigid) = motion(obj)?;
+            scene
+                .objects
+                .iter()
+                .zip(&own)
+                .filter(|(other, _)| {
+                    motion(other).is_some_and(|(g, b)| b == born_rigid && h.same_worldline(&g))
+                })
+                .filter_map(|(_, n)| *n)
+                .max()
+        })
+        .collect()
 }
 
 /// Every object inserted, before the acceleration structure is built.
@@ -261,14 +323,19 @@ struct Inserted {
 fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
     let mut b = Builder::default();
     let mut records = Vec::new();
+    let cuts = shared_cuts(scene, lorentz);
     for (i, obj) in scene.objects.iter().enumerate() {
         let first = b.keyframed.prisms.len();
-        let stretches = b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
+        let stretches = b
+            .insert(i, obj, lorentz, cuts[i])
+            .map_err(|f| f.of(i, &obj.name))?;
         prepare(&mut b.keyframed, first).map_err(|f| f.of(i, &obj.name))?;
         records.push(ObjectRecord {
             name: obj.name.clone(),
             kind: obj.kind,
             material: obj.material.clone(),
+            face_materials: obj.face_materials.clone(),
+            triangle_materials: mesh_of(obj).materials.clone(),
             contracted: lorentz && obj.kind == ObjectKind::VObj,
             stretches,
         });
@@ -389,12 +456,14 @@ impl Database {
     /// the acceleration structure and holding one object's prisms at a
     /// time. `lorentz` only matters for V_obj objects.
     pub fn validate(scene: &Scene, lorentz: bool) -> Result<(), SceneError> {
+        let cuts = shared_cuts(scene, lorentz);
         for (i, obj) in scene.objects.iter().enumerate() {
             let mut b = Builder {
                 checking: true,
                 ..Builder::default()
             };
-            b.insert(i, obj, lorentz).map_err(|f| f.of(i, &obj.name))?;
+            b.insert(i, obj, lorentz, cuts[i])
+                .map_err(|f| f.of(i, &obj.name))?;
             let kf = &b.keyframed;
             for (p, corners) in kf.corners.iter().enumerate() {
                 if (0..3).any(|k| PreparedTet::new(&piece(corners, k)).is_none()) {

@@ -31,8 +31,13 @@ pub struct ObjectRecord {
     pub name: String,
     /// Whether it was given as an H_obj or a V_obj.
     pub kind: ObjectKind,
-    /// Its surface appearance.
+    /// Its surface appearance: material 0.
     pub material: Material,
+    /// Its materials 1, 2, ... ([`crate::SceneObject::face_materials`]).
+    pub face_materials: Vec<Material>,
+    /// The material index of each triangle of its mesh; empty when all are
+    /// of material 0 ([`crate::Mesh::materials`]).
+    pub triangle_materials: Vec<u32>,
     /// Whether it was inserted Lorentz-transformed (a V_obj with the
     /// transform on): its points' clocks run at the gamma of their speed.
     pub contracted: bool,
@@ -42,6 +47,15 @@ pub struct ObjectRecord {
 }
 
 impl ObjectRecord {
+    /// The material of triangle `triangle` of the object's mesh (of the
+    /// object, for an analytic sphere).
+    pub fn material_of(&self, triangle: u32) -> &Material {
+        match self.triangle_materials.get(triangle as usize) {
+            Some(&k) if k > 0 => &self.face_materials[k as usize - 1],
+            _ => &self.material,
+        }
+    }
+
     /// The stretch of the path at lab time `t` (the first or last outside
     /// the lifetime).
     pub fn stretch_at(&self, t: f64) -> &Stretch {
@@ -108,6 +122,7 @@ mod tests {
             shape: Shape::Mesh(mesh),
             motion,
             material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
+            face_materials: Vec::new(),
         }
     }
 
@@ -153,5 +168,51 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Each triangle takes the material its index names (0: the object's
+    /// own), and an index naming no material, or a list not one per
+    /// triangle, is refused at insertion.
+    #[test]
+    fn triangles_take_the_material_they_name() {
+        let motion = Motion::at_rest(DVec3::ZERO, -1.0, 1.0);
+        let mut mesh = Mesh::cuboid(DVec3::splat(-1.0), DVec3::ONE);
+        mesh.materials = vec![0, 0, 1, 1, 2, 2, 0, 0, 0, 0, 0, 0];
+        let mut o = object("cube", ObjectKind::HObj, mesh, motion);
+        o.face_materials = vec![Material::matte(DVec3::X), Material::matte(DVec3::Y)];
+        let db = Database::build(&scene(vec![o.clone()]), false).unwrap();
+        let r = &db.objects()[0];
+        let colours: Vec<DVec3> = (0..12).map(|t| r.material_of(t).color).collect();
+        assert_eq!(colours[0], DVec3::new(0.8, 0.5, 0.2));
+        assert_eq!(
+            (colours[2], colours[3], colours[5]),
+            (DVec3::X, DVec3::X, DVec3::Y)
+        );
+        o.face_materials.pop();
+        let Err(e) = Database::build(&scene(vec![o.clone()]), false) else {
+            panic!("an index naming no material was accepted")
+        };
+        assert_eq!(
+            e.kind,
+            crate::SceneErrorKind::MaterialIndex {
+                triangle: 4,
+                index: 2,
+                materials: 2
+            }
+        );
+        let Shape::Mesh(m) = &mut o.shape else {
+            unreachable!()
+        };
+        m.materials.pop();
+        let Err(e) = Database::build(&scene(vec![o]), false) else {
+            panic!("11 indices for 12 triangles were accepted")
+        };
+        assert!(matches!(
+            e.kind,
+            crate::SceneErrorKind::Mesh(crate::MeshError::MaterialCount {
+                materials: 11,
+                triangles: 12
+            })
+        ));
     }
 }

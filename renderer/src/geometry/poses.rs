@@ -51,16 +51,40 @@ impl Hyperbolic {
     /// <= 1/A. Linear interpolation over a lab interval h is off by at most
     /// h^2 max|s''| / 8 <= h^2 / (8 A_min), so intervals of
     /// h = sqrt(8 tolerance A_min) keep every vertex within `tolerance`.
+    #[cfg(test)]
     pub(crate) fn poses(&self, mesh: &Mesh, born_rigid: bool) -> Result<Vec<Pose>, Fault> {
-        self.validate()?;
+        self.poses_in(mesh, born_rigid, self.intervals(mesh, born_rigid)?)
+    }
+
+    /// Whether `other` is the same worldline (every parameter but the
+    /// tolerance equal): objects on it are cut at the same lab times, so
+    /// that the vertices they share stay together between keyframes too.
+    pub(crate) fn same_worldline(&self, other: &Hyperbolic) -> bool {
+        Hyperbolic {
+            tolerance: other.tolerance,
+            ..*self
+        } == *other
+    }
+
+    /// The offset of each vertex of `mesh` along the acceleration (all 0
+    /// unless `born_rigid`).
+    fn offsets(&self, mesh: &Mesh, born_rigid: bool) -> Vec<f64> {
         let n = self.direction;
-        let a = self.acceleration;
-        let xi: Vec<f64> = mesh
-            .vertices
+        mesh.vertices
             .iter()
             .map(|p| if born_rigid { p.dot(n) } else { 0.0 })
-            .collect();
-        let xi_min = xi.iter().copied().fold(0.0, f64::min);
+            .collect()
+    }
+
+    /// How many equal lab intervals keep every vertex of `mesh` within
+    /// the tolerance (the bound above), or why the motion cannot be cut.
+    pub(crate) fn intervals(&self, mesh: &Mesh, born_rigid: bool) -> Result<usize, Fault> {
+        self.validate()?;
+        let a = self.acceleration;
+        let xi_min = self
+            .offsets(mesh, born_rigid)
+            .into_iter()
+            .fold(0.0, f64::min);
         if 1.0 + a * xi_min <= 0.0 {
             return Err(Fault::new(
                 F::Hyperbolic(H::Acceleration),
@@ -83,7 +107,23 @@ impl Hyperbolic {
                 },
             ));
         }
-        let count = count as usize;
+        Ok(count as usize)
+    }
+
+    /// The poses of this motion for `mesh` at `count` equal lab intervals
+    /// (at least [`Hyperbolic::intervals`], so within the tolerance; more
+    /// when objects on the same worldline share the finest cut), Born-rigid
+    /// when `born_rigid` (a V_obj with the Lorentz transform on), else every
+    /// vertex translated with the reference point.
+    pub(crate) fn poses_in(
+        &self,
+        mesh: &Mesh,
+        born_rigid: bool,
+        count: usize,
+    ) -> Result<Vec<Pose>, Fault> {
+        self.validate()?;
+        let n = self.direction;
+        let xi = self.offsets(mesh, born_rigid);
         let (t0, x0) = (self.start.t, self.start.x);
         Ok((0..=count)
             .map(|k| {

@@ -92,6 +92,16 @@ pub enum SceneErrorKind {
     },
     /// An analytic sphere's radius is not a positive length.
     SphereRadius(f64),
+    /// A triangle naming a material the object does not have.
+    MaterialIndex {
+        /// Index of the triangle in the mesh.
+        triangle: usize,
+        /// The material index it gives.
+        index: u32,
+        /// How many materials the object has (`material` and its
+        /// `face_materials`).
+        materials: usize,
+    },
     /// An analytic sphere was given non-uniform motion.
     SphereNotUniform,
     /// The velocity of uniform motion is not finite.
@@ -181,6 +191,7 @@ impl fmt::Display for SceneErrorKind {
             K::PoseMesh { t, error } => write!(f, "at t = {t}: {error}"),
             K::FlatTetrahedron { triangle } => write!(f, "triangle {triangle} extrudes to a tetrahedron with no 3-volume"),
             K::SphereRadius(r) => write!(f, "sphere radius {r}: expected a positive length"),
+            K::MaterialIndex { triangle, index, materials } => write!(f, "triangle {triangle} names material {index}; the object has {materials} (0 to {})", materials - 1),
             K::SphereNotUniform => write!(f, "an analytic sphere moves uniformly (extrusion or velocity); give a tessellated sphere keyframes or hyperbolic motion"),
             K::VelocityNotFinite => write!(f, "the velocity is not finite (zero-duration extrusion?)"),
             K::VObjTooFast { speed } => write!(f, "a V_obj moves at {speed:.6}c; it must be slower than light (use an H_obj for a Lorentz-decoupled, superluminal object)"),

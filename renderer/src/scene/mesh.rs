@@ -14,6 +14,10 @@ pub struct Mesh {
     pub vertices: Vec<DVec3>,
     /// Vertex indices of each triangle.
     pub triangles: Vec<[u32; 3]>,
+    /// The material of each triangle, by index among its object's
+    /// materials (0: the object's `material`, k: `face_materials[k - 1]`);
+    /// empty when every triangle is of material 0.
+    pub materials: Vec<u32>,
 }
 
 /// Why a mesh cannot be extruded.
@@ -32,6 +36,13 @@ pub enum MeshError {
         triangle: usize,
         /// The vertex index it gives.
         index: u32,
+    },
+    /// Per-triangle material indices that do not match the triangles.
+    MaterialCount {
+        /// How many indices.
+        materials: usize,
+        /// How many triangles.
+        triangles: usize,
     },
     /// A triangle with no area.
     DegenerateTriangle {
@@ -64,6 +75,13 @@ impl fmt::Display for MeshError {
                 "triangle {triangle} is degenerate (area {area:e}): its vertices are collinear or coincide"
             ),
             MeshError::Obj { line, message } => write!(f, "OBJ line {line}: {message}"),
+            MeshError::MaterialCount {
+                materials,
+                triangles,
+            } => write!(
+                f,
+                "{materials} per-triangle material indices for {triangles} triangles"
+            ),
         }
     }
 }
@@ -76,8 +94,20 @@ impl Mesh {
         self.triangles[triangle].map(|i| self.vertices[i as usize])
     }
 
-    /// Appends `other`, shifted by `offset`.
+    /// The material index of triangle `triangle` (see [`Mesh::materials`]).
+    pub fn material(&self, triangle: usize) -> u32 {
+        self.materials.get(triangle).copied().unwrap_or(0)
+    }
+
+    /// Appends `other`, shifted by `offset`; triangles keep their material
+    /// indices.
     pub fn append(&mut self, other: &Mesh, offset: DVec3) {
+        if !(self.materials.is_empty() && other.materials.is_empty()) {
+            let (mine, theirs) = (self.triangles.len(), other.triangles.len());
+            self.materials.resize(mine, 0);
+            self.materials
+                .extend((0..theirs).map(|t| other.material(t)));
+        }
         let base = self.vertices.len() as u32;
         self.vertices
             .extend(other.vertices.iter().map(|v| *v + offset));
@@ -90,6 +120,7 @@ impl Mesh {
         Mesh {
             vertices: self.vertices.iter().map(|v| f(*v)).collect(),
             triangles: self.triangles.clone(),
+            materials: self.materials.clone(),
         }
     }
 
@@ -98,6 +129,12 @@ impl Mesh {
     pub fn validate(&self) -> Result<(), MeshError> {
         if self.triangles.is_empty() {
             return Err(MeshError::Empty);
+        }
+        if !self.materials.is_empty() && self.materials.len() != self.triangles.len() {
+            return Err(MeshError::MaterialCount {
+                materials: self.materials.len(),
+                triangles: self.triangles.len(),
+            });
         }
         // A large mesh on both threads; the error is the first in order,
         // as on one. (Handing a small one to the thread pool would cost
@@ -145,6 +182,7 @@ impl Mesh {
         Mesh {
             vertices: vec![corner, corner + u, corner + u + v, corner + v],
             triangles: vec![[0, 1, 2], [0, 2, 3]],
+            materials: Vec::new(),
         }
     }
 
@@ -171,6 +209,7 @@ impl Mesh {
                 .iter()
                 .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
                 .collect(),
+            materials: Vec::new(),
         }
     }
 
@@ -306,6 +345,7 @@ mod tests {
         let m = Mesh {
             vertices: vec![DVec3::ZERO, DVec3::X, DVec3::X * 2.0],
             triangles: vec![[0, 1, 2]],
+            materials: Vec::new(),
         };
         assert!(matches!(
             m.validate(),
@@ -324,6 +364,7 @@ mod tests {
                 .map(|i| DVec3::new(i as f64, (i % 2) as f64, 0.0))
                 .collect(),
             triangles: (0..n as u32).map(|i| [i, i + 1, i + 2]).collect(),
+            materials: Vec::new(),
         };
         assert_eq!(m.validate(), Ok(()));
         for t in [150_000, 7, 90_001] {

@@ -18,6 +18,7 @@ pub use motion::{Hyperbolic, Keyframe, Motion};
 pub(crate) static NO_MESH: Mesh = Mesh {
     vertices: Vec::new(),
     triangles: Vec::new(),
+    materials: Vec::new(),
 };
 
 use glam::DVec3;
@@ -73,8 +74,12 @@ pub struct SceneObject {
     pub shape: Shape,
     /// How its reference point moves.
     pub motion: Motion,
-    /// Surface appearance.
+    /// Surface appearance: material 0, of every triangle unless its mesh
+    /// gives it another ([`Mesh::materials`]), and of an analytic sphere.
     pub material: Material,
+    /// Materials 1, 2, ... that a mesh's triangles may name
+    /// ([`Mesh::materials`]); usually empty.
+    pub face_materials: Vec<Material>,
 }
 
 /// Everything in the lab: objects, the one point light (at rest), and the

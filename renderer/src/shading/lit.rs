@@ -16,6 +16,8 @@ use glam::DVec3;
 /// view, the shadow test, and the surface's motion for the colour effects.
 pub(super) struct Lit {
     pub(super) object: u32,
+    /// The triangle hit, which picks its material.
+    pub(super) triangle: u32,
     pub(super) tau: f64,
     pub(super) n: DVec3,
     pub(super) l: DVec3,
@@ -127,7 +129,7 @@ impl Shader<'_> {
     pub(super) fn lit<T: Trace>(&self, ray: &Ray, hit: &Hit, trace: &mut T) -> Lit {
         let surface = self.db.surface(hit);
         let object = &self.db.objects()[surface.object as usize];
-        let m = &object.material;
+        let m = object.material_of(surface.triangle);
         let view = -ray.direction.x;
         let to_light = self.light.position - hit.event.x;
         // A light on the surface point lights nothing; a non-finite
@@ -159,6 +161,7 @@ impl Shader<'_> {
         let out = 1.0 / self.to_surface(velocity, gamma, view.normalize());
         Lit {
             object: surface.object,
+            triangle: surface.triangle,
             tau: object.proper_time(hit.event),
             n,
             l,

@@ -209,7 +209,7 @@ impl Shader<'_> {
         trace: &mut T,
     ) -> C {
         let lit = self.lit(ray, hit, trace);
-        let m = &self.db.objects()[lit.object as usize].material;
+        let m = self.db.objects()[lit.object as usize].material_of(lit.triangle);
         let factors = C::carries_factors(self.effects);
         if factors && (lit.out <= 0.0 || lit.from_light <= 0.0) {
             // A superluminal decoupled surface running into its own light:

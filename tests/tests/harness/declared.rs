@@ -61,7 +61,39 @@ fn bad_edge_declarations_name_the_file_and_json_path() {
         ),
         (
             Box::new(|v| v["checks"][0]["measure"]["edge"]["vertices"] = serde_json::json!([0, 9])),
-            "checks[0].measure.edge.vertices[1]: no vertex 9: the mesh has 4 vertices, counted from 0 (an OBJ file's faces count from 1",
+            "checks[0].measure.edge.vertices[1]: no vertex 9: `vertices` count from 0, and the mesh has 4 vertices (0 to 3); an OBJ file's faces count from 1: give those as `obj_index`",
+        ),
+        (
+            Box::new(|v| {
+                let e = v["checks"][0]["measure"]["edge"].as_object_mut().unwrap();
+                e.remove("vertices");
+                e.insert("obj_index".into(), serde_json::json!([0, 4]));
+            }),
+            "checks[0].measure.edge.obj_index[0]: no vertex 0: `obj_index` counts from 1, as an OBJ file's faces do, and the mesh has 4 vertices (1 to 4)",
+        ),
+        (
+            Box::new(|v| {
+                let e = v["checks"][0]["measure"]["edge"].as_object_mut().unwrap();
+                e.remove("vertices");
+                e.insert("obj_index".into(), serde_json::json!([1, 5]));
+            }),
+            "checks[0].measure.edge.obj_index[1]: no vertex 5: `obj_index` counts from 1",
+        ),
+        (
+            Box::new(|v| {
+                let e = v["checks"][0]["measure"]["edge"].as_object_mut().unwrap();
+                e.remove("vertices");
+                e.insert("obj_index".into(), serde_json::json!([1, 3]));
+            }),
+            "checks[0].measure.edge.obj_index: obj_index 1 and 3 (counted from 1, as in an OBJ file): not along an edge",
+        ),
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["vertices"] = serde_json::json!([0, 2])),
+            "checks[0].measure.edge.vertices: vertices 0 and 2 (counted from 0): not along an edge",
+        ),
+        (
+            Box::new(|v| v["checks"][0]["measure"]["edge"]["obj_index"] = serde_json::json!([1, 4])),
+            "checks[0].measure.edge.points: give the edge's ends once: as points, as vertices (counted from 0) or as obj_index (counted from 1, as in an OBJ file)",
         ),
         (
             Box::new(|v| v["checks"][0]["measure"]["edge"]["at"] = serde_json::json!({"row": 240})),
@@ -98,6 +130,34 @@ fn bad_edge_declarations_name_the_file_and_json_path() {
             "checks[1].name: check name",
         ),
     ]);
+}
+
+/// `obj_index` counts from 1, as an OBJ file does: the edge given as
+/// `obj_index` [1, 4] is the one `vertices` [0, 3] gives, measured the same.
+#[test]
+fn obj_index_is_vertices_counted_from_one() {
+    let with_index = parse(&cube_with(|v| {
+        let e = v["checks"][0]["measure"]["edge"].as_object_mut().unwrap();
+        e.remove("vertices");
+        e.insert("obj_index".into(), serde_json::json!([1, 4]));
+    }))
+    .unwrap();
+    let plain = parse(&cube_text()).unwrap();
+    let (a, b) = (rows(&with_index, &with_index), rows(&plain, &plain));
+    assert_eq!(
+        (a[0].measured, a[0].expected),
+        (b[0].measured, b[0].expected)
+    );
+    assert!(a[0].pass, "{:?}", a[0]);
+    // Control: the numbers [1, 2] as `vertices` name another edge (the
+    // right one), and the row scanning for the left edge fails.
+    let shifted = parse(&cube_with(|v| {
+        v["checks"][0]["measure"]["edge"]["vertices"] = serde_json::json!([1, 2])
+    }))
+    .unwrap();
+    let other = &rows(&shifted, &shifted)[0];
+    assert_ne!(other.expected, b[0].expected);
+    assert!(!other.pass, "{other:?}");
 }
 
 #[test]

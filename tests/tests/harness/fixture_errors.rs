@@ -10,6 +10,8 @@ use vstf::fixture::Fixture;
 mod meshes;
 /// Worldlines: uniform, keyframed and hyperbolic motion and light speed.
 mod motion;
+/// PLY meshes, and mesh files read only inside the project.
+mod ply;
 
 /// The flange fixture with `edit` applied to its JSON.
 fn flange_with(edit: impl FnOnce(&mut serde_json::Value)) -> String {

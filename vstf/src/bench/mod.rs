@@ -144,6 +144,7 @@ pub fn tessellated_boxes(n: usize, k: u32, seed: u64) -> Scene {
                     extrusion: FourVector::new(400.0, v * 400.0),
                 },
                 material: Material::matte(color),
+                face_materials: Vec::new(),
             }
         })
         .collect();
