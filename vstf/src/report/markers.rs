@@ -3,9 +3,9 @@
 
 use image::{Rgb, RgbImage};
 
-/// A group of markers no larger than this (pixels, the larger side of
-/// their bounding box) lies on a small object: its number is drawn once,
-/// beside the group, instead of beside each marker.
+/// Markers of one row that lie closer than this to one another (pixels,
+/// directly or through others of the row) carry the row's number once,
+/// beside them: the points on an object under this size get one label.
 pub const SMALL_GROUP: f64 = 40.0;
 
 /// The longest arm of a marker's cross (pixels from its centre).
@@ -58,57 +58,64 @@ fn arm(p: (i64, i64), all: &[(i64, i64)]) -> i64 {
     (nearest / 2 - 1).clamp(0, ARM)
 }
 
-/// Whether the group lies on a small object (see [`SMALL_GROUP`]).
-fn is_small(g: &MarkerGroup) -> bool {
-    if g.points.len() < 2 {
-        return false;
-    }
-    let (xs, ys): (Vec<f64>, Vec<f64>) = g.points.iter().copied().unzip();
-    let span = |v: &[f64]| {
-        v.iter().copied().fold(f64::NEG_INFINITY, f64::max)
-            - v.iter().copied().fold(f64::INFINITY, f64::min)
+/// The points split where they lie [`SMALL_GROUP`] or more apart: each
+/// part holds the points reached from one another in steps under it.
+fn clusters(points: &[(i64, i64)]) -> Vec<Vec<(i64, i64)>> {
+    let near = |a: (i64, i64), b: (i64, i64)| {
+        let (dx, dy) = ((a.0 - b.0) as f64, (a.1 - b.1) as f64);
+        dx.hypot(dy) < SMALL_GROUP
     };
-    span(&xs).max(span(&ys)) < SMALL_GROUP
+    let mut parts: Vec<Vec<(i64, i64)>> = Vec::new();
+    for &p in points {
+        let (joined, apart): (Vec<_>, Vec<_>) = parts
+            .into_iter()
+            .partition(|part| part.iter().any(|&q| near(p, q)));
+        let mut merged: Vec<(i64, i64)> = joined.into_iter().flatten().collect();
+        merged.push(p);
+        parts = apart;
+        parts.push(merged);
+    }
+    parts
+}
+
+/// Where a part's label goes: beside a lone marker as before, else right
+/// of the part's top right corner.
+fn label_at(part: &[(i64, i64)]) -> (i64, i64) {
+    match part {
+        [c] => (c.0 + ARM + 2, c.1 + ARM + 2),
+        _ => (
+            part.iter().map(|p| p.0).max().unwrap_or(0) + 3,
+            part.iter().map(|p| p.1).min().unwrap_or(0),
+        ),
+    }
 }
 
 /// Draws each marker on a copy of the image as a cross in the colour that
 /// contrasts with the pixels under it (black on light, white on dark),
 /// outlined in the other, its arms shortened where markers crowd (down to
-/// a dot); and numbers it with its row's number beside it, or, for a group
-/// on a small object, once beside the group.
+/// a dot) so that none touches another; and numbers the markers of each
+/// row once for each part of them closer than [`SMALL_GROUP`] together.
 pub fn with_markers(img: &RgbImage, groups: &[MarkerGroup]) -> RgbImage {
     let mut out = img.clone();
     let (w, h) = (i64::from(out.width()), i64::from(out.height()));
     let inside = |(x, y): (i64, i64)| x >= 0 && y >= 0 && x < w && y < h;
-    let all: Vec<(i64, i64)> = groups
+    let shown: Vec<Vec<(i64, i64)>> = groups
         .iter()
-        .flat_map(|g| g.points.iter().map(|&p| pixel(p)))
-        .filter(|&p| inside(p))
+        .map(|g| {
+            let points = g.points.iter().map(|&p| pixel(p));
+            points.filter(|&p| inside(p)).collect()
+        })
         .collect();
-    let mut labels = Vec::new();
-    for g in groups {
-        let small = is_small(g);
-        let shown: Vec<(i64, i64)> = g
-            .points
-            .iter()
-            .map(|&p| pixel(p))
-            .filter(|&p| inside(p))
-            .collect();
-        for &c in &shown {
-            cross(&mut out, img, c, arm(c, &all));
-            if !small {
-                labels.push((g.number, (c.0 + ARM + 2, c.1 + ARM + 2)));
-            }
-        }
-        if small && !shown.is_empty() {
-            let right = shown.iter().map(|p| p.0).max().unwrap_or(0);
-            let top = shown.iter().map(|p| p.1).min().unwrap_or(0);
-            labels.push((g.number, (right + 3, top)));
-        }
+    let all: Vec<(i64, i64)> = shown.iter().flatten().copied().collect();
+    for &c in &all {
+        cross(&mut out, img, c, arm(c, &all));
     }
-    for (number, (x, y)) in labels {
-        let at = (x.clamp(0, w - 1) as u32, y.clamp(0, h - 1) as u32);
-        crate::label::draw_at(&mut out, &number.to_string(), at, 1);
+    for (g, points) in groups.iter().zip(&shown) {
+        for part in clusters(points) {
+            let (x, y) = label_at(&part);
+            let at = (x.clamp(0, w - 1) as u32, y.clamp(0, h - 1) as u32);
+            crate::label::draw_at(&mut out, &g.number.to_string(), at, 1);
+        }
     }
     out
 }

@@ -293,8 +293,8 @@ mod tests {
     /// 16 points of one row on the outline of a 20-pixel ball are drawn as
     /// 16 separate small marks (crosses shrunk to arms of at most a pixel,
     /// none touching another) and numbered once, beside the ball, and the legend
-    /// has that row once; the same 16 points on a 120-pixel ball (the
-    /// control) keep full crosses, each numbered.
+    /// has that row once; the same 16 points on a 240-pixel ball, 47 pixels
+    /// apart (the control), keep full crosses, each numbered.
     #[test]
     fn markers_on_a_small_object_stay_apart_and_are_numbered_once() {
         let yellow = image::Rgb([250, 240, 20]);
@@ -309,8 +309,14 @@ mod tests {
         assert!(box_px > 0 && box_px <= 110, "{box_px} label pixels");
         assert!(ink <= 16 * 5, "{ink} ink pixels: crosses of arm at most 1");
         assert_eq!(ink_marks(&marked), 16, "16 marks, none touching another");
-        let large = marker_groups(&circle(16, 60.0, 100.5), &rows);
-        let img = image::RgbImage::from_pixel(200, 200, yellow);
+        // On a 50-pixel ball the points are 10 pixels apart: still one label.
+        let medium = marker_groups(&circle(16, 25.0, 50.5), &rows);
+        let marked = with_markers(&img, &medium);
+        let (box_px, _) = labels_and_ink(&marked);
+        assert!(box_px > 0 && box_px <= 110, "{box_px} label pixels");
+        assert_eq!(ink_marks(&marked), 16);
+        let large = marker_groups(&circle(16, 120.0, 150.5), &rows);
+        let img = image::RgbImage::from_pixel(300, 300, yellow);
         let (box_px, ink) = labels_and_ink(&with_markers(&img, &large));
         assert!(
             box_px > 10 * 110,
