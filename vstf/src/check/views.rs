@@ -38,8 +38,9 @@ pub struct ViewEntry {
 }
 
 /// Every view of `f`: the declared ones in order, then those of each named
-/// check in order; [`OWN_VIEW`] for a fixture that declares neither. A named kind whose views cannot be made (its derived
-/// fixture is invalid) lists none; `vstf check` reports why.
+/// check in order; [`OWN_VIEW`] for a fixture that declares neither. A
+/// named kind whose views cannot be made (its derived fixture is invalid)
+/// lists none; `vstf check` reports why.
 pub fn views_of(f: &Fixture) -> Vec<ViewEntry> {
     let declared = f.spec.views.iter().map(|v| {
         let o = Observer::declared(f, v);

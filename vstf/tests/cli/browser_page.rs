@@ -60,6 +60,11 @@ fn base64(text: &str) -> Vec<u8> {
 const IMAGES: &str = "return [...document.images].map(i => \
     ({ok: i.complete && i.naturalWidth > 0, src: i.getAttribute('src')}))";
 
+/// The render's caption, empty while there is none (between a view's
+/// choice and its render).
+const RENDER_CAPTION: &str =
+    "const f = document.getElementById('fig-render'); return f ? f.textContent : ''";
+
 /// The caption of the figure holding image `id`.
 fn caption(d: &Driver, id: &str) -> String {
     let js = format!(
@@ -156,6 +161,7 @@ fn the_page_captions_its_images_and_bounds_its_sliders_in_a_real_browser() {
     std::fs::create_dir_all(dir.join("fixtures")).unwrap();
     std::fs::write(dir.join("fixtures/rod.json"), square_at(0.9)).unwrap();
     std::fs::write(dir.join("fixtures/slow.json"), square_at(0.5)).unwrap();
+    std::fs::write(dir.join("fixtures/fast.json"), square_at(0.995)).unwrap();
     let (server, page) = start_server(&dir);
     let (_chromedriver, d) = start_browser(&driver, &browser);
     d.call(
@@ -211,25 +217,27 @@ fn the_page_captions_its_images_and_bounds_its_sliders_in_a_real_browser() {
 }
 
 /// The 0.9c rod's speed slider stops at or below 0.99c whatever is asked
-/// of it; the 0.5c square's keeps its ×1.2 (the control).
+/// of it; the 0.5c square's keeps its ×1.2 (the control); a 0.995c
+/// square's stays at ×1, its own speed.
 fn slider_stops_below_light(d: &Driver) {
     let top = "const s = document.getElementById('speed'); s.value = 5; \
         s.dispatchEvent(new Event('input')); return Number(s.value)";
     let k = d.script(top).as_f64().unwrap();
     assert!(k > 1.0 && k * 0.9 <= 0.99 + 1e-9, "×{k} of 0.9c");
-    d.wait_for(
-        "the fastest render",
-        "return document.getElementById('fig-render').textContent",
-        |v| {
-            v.as_str()
-                .is_some_and(|s| s.contains(&format!("speed ×{k}")))
-        },
-    );
+    d.wait_for("the fastest render", RENDER_CAPTION, |v| {
+        v.as_str()
+            .is_some_and(|s| s.contains(&format!("speed ×{k}")))
+    });
     let status = d.script("return document.getElementById('status').textContent");
     assert_eq!(status, json!(""), "the fastest speed was refused");
     choose(d, "slow", "view");
     let k = d.script(top).as_f64().unwrap();
     assert!((k - 1.2).abs() < 1e-9, "×{k} of 0.5c");
+    // An object already past 0.99c is shown at its own speed, not slowed.
+    choose(d, "fast", "view");
+    assert!(caption(d, "render").contains("speed ×1 (0.995c)"));
+    let k = d.script(top).as_f64().unwrap();
+    assert!((k - 1.0).abs() < 1e-9, "×{k} of 0.995c");
     choose(d, "rod", "view");
 }
 
@@ -265,11 +273,9 @@ fn model_after_a_check(d: &Driver) {
     d.script(
         "const m = document.getElementById('model'); m.value = 'infinite'; m.dispatchEvent(new Event('change'))",
     );
-    d.wait_for(
-        "the infinite render",
-        "return document.getElementById('fig-render').textContent",
-        |v| v.as_str().is_some_and(|s| s.contains("infinite model")),
-    );
+    d.wait_for("the infinite render", RENDER_CAPTION, |v| {
+        v.as_str().is_some_and(|s| s.contains("infinite model"))
+    });
     d.click("#check");
     d.wait_for(
         "the check",
@@ -280,14 +286,10 @@ fn model_after_a_check(d: &Driver) {
         "const m = document.getElementById('model'); return [m.value, m.selectedOptions[0].textContent]",
     );
     assert_eq!(menu, json!(["view", "as the view (relativistic)"]));
-    d.wait_for(
-        "the view's render again",
-        "return document.getElementById('fig-render').textContent",
-        |v| {
-            v.as_str()
-                .is_some_and(|s| s.contains("relativistic model, t = 10"))
-        },
-    );
+    d.wait_for("the view's render again", RENDER_CAPTION, |v| {
+        v.as_str()
+            .is_some_and(|s| s.contains("relativistic model, t = 10"))
+    });
     let images = d.wait_for("the pending image", IMAGES, |v| {
         v.as_array()
             .is_some_and(|a| a.len() == 2 && a.iter().all(|i| i["ok"] == json!(true)))
