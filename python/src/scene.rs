@@ -189,7 +189,8 @@ impl Scene {
     }
 
     /// Every view by name, as `vstf list --views` lists them: declared
-    /// views, then those the named checks render.
+    /// views, then those the named checks render; `view` for a fixture
+    /// that declares neither views nor checks.
     #[getter]
     fn views(&self) -> Vec<String> {
         vstf::check::views_of(&self.fixture)

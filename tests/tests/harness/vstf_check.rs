@@ -173,7 +173,8 @@ fn the_report_shows_images_markers_and_rows() {
                 .iter()
                 .filter(|(x, y)| (0.0..w).contains(x) && (0.0..h).contains(y))
                 .count();
-            let marked = vstf::report::with_markers(&v.image, &v.markers);
+            let groups = vstf::report::marker_groups(&v.markers, &v.rows);
+            let marked = vstf::report::with_markers(&v.image, &groups);
             assert!(
                 inside == 0 || marked != v.image,
                 "{} {}: markers not drawn",
@@ -221,6 +222,10 @@ fn the_report_shows_images_markers_and_rows() {
         "<p class=FAIL>Failing: <a href=\"#{}\">{name}</a></p>",
         vstf::golden::slug(name)
     )));
+    assert!(
+        html.contains(&format!(">{name} — FAIL (1 row)</h2>")),
+        "the failing fixture's heading"
+    );
     let first = html.find("<section id=").unwrap();
     assert!(html[first..].starts_with(&format!("<section id=\"{}\">", vstf::golden::slug(name))));
     std::fs::remove_dir_all(&dir).ok();

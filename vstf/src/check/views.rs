@@ -7,8 +7,23 @@ use crate::check::named;
 use crate::check::probe::VIEW_WIDTH;
 use crate::fixture::checks::{MeasureSpec, ViewSpec};
 use crate::fixture::{Fixture, View};
-use crate::observer::Observer;
+use crate::observer::{fixture_model, Observer};
 use renderer::Model;
+
+/// The name of the one view of a fixture that declares neither views nor
+/// checks.
+pub(crate) const OWN_VIEW: &str = "view";
+
+/// The observer of a fixture that declares neither views nor checks: its
+/// own camera event in its own model, the view [`OWN_VIEW`] that `vstf
+/// check` compares with its golden image. `None` for any other fixture.
+pub(crate) fn own_observer(f: &Fixture) -> Option<Observer<'_>> {
+    (f.spec.views.is_empty() && f.spec.checks.is_empty()).then(|| Observer {
+        fixture: f,
+        model: fixture_model(f),
+        camera_t: f.spec.camera.t,
+    })
+}
 
 /// A view of a fixture as `vstf list --views` shows it.
 pub struct ViewEntry {
@@ -23,8 +38,9 @@ pub struct ViewEntry {
 }
 
 /// Every view of `f`: the declared ones in order, then those of each named
-/// check in order. A named kind whose views cannot be made (its derived
-/// fixture is invalid) lists none; `vstf check` reports why.
+/// check in order; [`OWN_VIEW`] for a fixture that declares neither. A
+/// named kind whose views cannot be made (its derived fixture is invalid)
+/// lists none; `vstf check` reports why.
 pub fn views_of(f: &Fixture) -> Vec<ViewEntry> {
     let declared = f.spec.views.iter().map(|v| {
         let o = Observer::declared(f, v);
@@ -50,7 +66,13 @@ pub fn views_of(f: &Fixture) -> Vec<ViewEntry> {
                 rendered_by: Some(n.kind()),
             })
     });
-    declared.chain(named).collect()
+    let own = own_observer(f).map(|o| ViewEntry {
+        name: OWN_VIEW.to_string(),
+        model: o.model,
+        camera_t: o.camera_t,
+        rendered_by: None,
+    });
+    declared.chain(named).chain(own).collect()
 }
 
 /// The fixture with a view's colour effects, where the view sets any.
@@ -69,6 +91,9 @@ pub(crate) fn with_view_effects(f: &Fixture, v: &ViewSpec) -> Option<Fixture> {
 /// view (its camera time and model, the report's size, the fixture's
 /// samples), so that `vstf render --view` reproduces the golden bit for bit.
 pub fn golden_view(f: &Fixture, name: &str) -> Result<(Fixture, View), String> {
+    if let Some(own) = own_observer(f).filter(|_| name == OWN_VIEW) {
+        return Ok((f.clone(), own.report_view(VIEW_WIDTH)?));
+    }
     if !f.spec.views.iter().any(|v| v.name == name) {
         if let Some(found) = named_view(f, name)? {
             return Ok(found);

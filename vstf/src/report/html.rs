@@ -1,7 +1,7 @@
 //! The static HTML report: a summary, each fixture's views with their
 //! expected-point markers and rows, and the golden comparisons.
 
-use super::markers::with_markers;
+use super::markers::{marker_groups, with_markers, MarkerGroup};
 use super::numbers::num;
 use crate::check::{FixtureReport, Row};
 use crate::golden::{slug, Comparison};
@@ -55,8 +55,8 @@ fn summary(h: &mut String, order: &[&FixtureReport]) {
     let _ = write!(
         h,
         "<!doctype html><meta charset=utf-8><title>VSTF report: {verdict}</title><style>{STYLE}</style>\
-         <h1 class={class}>VSTF report: {verdict}</h1><p>{} fixtures; rows {} passed, {} failed; golden images {} passed, {} failed.</p>",
-        order.len(),
+         <h1 class={class}>VSTF report: {verdict}</h1><p>{}; rows {} passed, {} failed; golden images {} passed, {} failed.</p>",
+        counted(order.len(), "fixture", "fixtures"),
         rows.iter().filter(|r| r.pass).count(),
         rows.iter().filter(|r| !r.pass).count(),
         goldens.iter().filter(|g| g.pass).count(),
@@ -82,7 +82,8 @@ fn summary(h: &mut String, order: &[&FixtureReport]) {
             ok(r.goldens.iter().filter(|g| g.pass).count(), r.goldens.len()),
         );
     }
-    h.push_str("</ol></nav><p>The numbered crosses are where first-principles physics puts the points the checks read, computed without the ray tracer, drawn black on light pixels and white on dark ones. \
+    h.push_str("</ol></nav><p>The crosses are where first-principles physics puts the points the checks read, computed without the ray tracer, drawn black on light pixels and white on dark ones, \
+        numbered by the row they belong to (the legend under each view lists each row once); where points crowd their crosses shrink, down to dots, and a row's points within 40 pixels of each other carry its number once, beside them. \
         A paper figure marked * differs from first principles by more than the tolerance (see docs/physics.md).</p>");
 }
 
@@ -91,18 +92,13 @@ fn summary(h: &mut String, order: &[&FixtureReport]) {
 /// no single view after them; then the failing golden comparisons with
 /// actual and expected to swap.
 fn fixture_section(h: &mut String, dir: &Path, r: &FixtureReport) -> Result<(), String> {
-    let failed = r.rows.iter().filter(|x| !x.pass).count();
     let _ = write!(
         h,
         "<section id=\"{}\"><h2 class={}>{} {}</h2><p>{}</p>",
         slug(&r.fixture),
         if r.passed() { "pass" } else { "FAIL" },
         esc(&r.fixture),
-        if r.passed() {
-            "— pass".to_string()
-        } else {
-            format!("— FAIL ({failed} rows)")
-        },
+        verdict(r),
         esc(&r.description)
     );
     let mut shown = std::collections::HashSet::new();
@@ -144,9 +140,10 @@ fn view_figures(
 ) -> Result<(), String> {
     let base = format!("{}-{}", slug(&r.fixture), slug(&v.name));
     crate::output::write_png(&dir.join(format!("{base}.png")), &v.image)?;
+    let groups = marker_groups(&v.markers, &v.rows);
     crate::output::write_png(
         &dir.join(format!("{base}-markers.png")),
-        &with_markers(&v.image, &v.markers),
+        &with_markers(&v.image, &groups),
     )?;
     let _ = write!(h, "<h3>view {}</h3>", esc(&v.name));
     let mut figure = |src: &str, caption: &str| {
@@ -158,7 +155,10 @@ fn view_figures(
     figure(&format!("{base}.png"), "render");
     figure(
         &format!("{base}-markers.png"),
-        &format!("render, {} expected points numbered", v.markers.len()),
+        &format!(
+            "render, {} numbered by row",
+            counted(v.markers.len(), "expected point", "expected points")
+        ),
     );
     let comparison = r.goldens.iter().find(|g| g.view == v.name);
     if let Some(golden) = comparison.and_then(|g| g.golden.as_ref()) {
@@ -179,29 +179,47 @@ fn view_figures(
             figure(&name, "diff from the golden (red: differing pixels)");
         }
     }
-    marker_list(h, r, v);
+    marker_list(h, &r.fixture, &groups);
     Ok(())
 }
 
-/// Which row each numbered marker belongs to, each linked to its row.
-fn marker_list(h: &mut String, r: &FixtureReport, v: &crate::check::ViewReport) {
-    if v.rows.iter().all(String::is_empty) {
+/// The legend: each row with markers once, under its number, linked to
+/// the row, with how many points it marks.
+fn marker_list(h: &mut String, fixture: &str, groups: &[MarkerGroup]) {
+    if groups.iter().all(|g| g.row.is_empty()) {
         return;
     }
     h.push_str("<ol class=marks>");
-    for row in &v.rows {
-        if row.is_empty() {
-            h.push_str("<li>-</li>");
+    for g in groups {
+        let points = counted(g.points.len(), "point", "points");
+        if g.row.is_empty() {
+            let _ = write!(h, "<li value={}>no row ({points})</li>", g.number);
         } else {
             let _ = write!(
                 h,
-                "<li><a href=\"#{}\">{}</a></li>",
-                row_anchor(&r.fixture, row),
-                esc(row)
+                "<li value={}><a href=\"#{}\">{}</a> ({points})</li>",
+                g.number,
+                row_anchor(fixture, &g.row),
+                esc(&g.row)
             );
         }
     }
     h.push_str("</ol>");
+}
+
+/// `n` and the noun in the number it takes: "1 row", "2 rows", "0 rows".
+fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// What a fixture's heading says after its name: "— pass", or "— FAIL"
+/// with how many rows failed.
+fn verdict(r: &FixtureReport) -> String {
+    if r.passed() {
+        return "— pass".to_string();
+    }
+    let failed = r.rows.iter().filter(|x| !x.pass).count();
+    format!("— FAIL ({})", counted(failed, "row", "rows"))
 }
 
 /// The anchor of a fixture's row.
@@ -296,4 +314,67 @@ fn golden_section(h: &mut String, dir: &Path, goldens: &[Comparison]) -> Result<
         let _ = write!(h, "<p class=pass><code>{}</code></p>", esc(&g.to_string()));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::Unit;
+
+    fn row(quantity: &str, pass: bool) -> Row {
+        Row {
+            fixture: "ball".into(),
+            quantity: quantity.into(),
+            measured: 1.0,
+            expected: 1.0,
+            paper: None,
+            tolerance: 0.1,
+            unit: Unit::LUnitsPerTUnit,
+            pass,
+            error: None,
+        }
+    }
+
+    fn report(rows: Vec<Row>) -> FixtureReport {
+        FixtureReport {
+            fixture: "ball".into(),
+            description: String::new(),
+            views: Vec::new(),
+            rows,
+            goldens: Vec::new(),
+            declared_views: Vec::new(),
+        }
+    }
+
+    /// One failing row is "1 row", two are "2 rows"; all passing is "pass".
+    #[test]
+    fn the_heading_counts_failed_rows_in_the_right_number() {
+        let one = report(vec![row("radius", false), row("centre", true)]);
+        assert_eq!(verdict(&one), "— FAIL (1 row)");
+        let two = report(vec![row("radius", false), row("centre", false)]);
+        assert_eq!(verdict(&two), "— FAIL (2 rows)");
+        assert_eq!(verdict(&report(vec![row("radius", true)])), "— pass");
+        assert_eq!(counted(0, "row", "rows"), "0 rows");
+    }
+
+    /// The legend lists a row once however many points it marks, with
+    /// their count; two rows are listed under their own numbers.
+    #[test]
+    fn the_legend_lists_each_row_once() {
+        let at: Vec<(f64, f64)> = (0..16).map(|k| (f64::from(k), 5.0)).collect();
+        let mut rows = vec!["ball radius".to_string(); 16];
+        let mut h = String::new();
+        marker_list(&mut h, "ball", &marker_groups(&at, &rows));
+        assert_eq!(h.matches(">ball radius<").count(), 1, "{h}");
+        assert_eq!(h.matches("<li").count(), 1, "{h}");
+        assert!(h.contains("(16 points)"), "{h}");
+        rows[3] = "ball centre".into();
+        let mut h = String::new();
+        marker_list(&mut h, "ball", &marker_groups(&at, &rows));
+        assert_eq!(h.matches("<li").count(), 2, "{h}");
+        assert!(
+            h.contains("<li value=2><a href=\"#ball-row-ball-centre\">ball centre</a> (1 point)"),
+            "{h}"
+        );
+    }
 }

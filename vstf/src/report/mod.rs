@@ -6,7 +6,7 @@ mod markers;
 mod numbers;
 
 pub use html::html;
-pub use markers::with_markers;
+pub use markers::{marker_groups, with_markers, MarkerGroup, SMALL_GROUP};
 use numbers::num;
 
 use crate::check::Row;
@@ -221,7 +221,8 @@ mod tests {
                 img.put_pixel(x, y, image::Rgb([10, 10, 40]));
             }
         }
-        let marked = with_markers(&img, &[(10.5, 10.5), (45.5, 10.5)]);
+        let groups = marker_groups(&[(10.5, 10.5), (45.5, 10.5)], &["a".into(), "b".into()]);
+        let marked = with_markers(&img, &groups);
         assert_eq!(marked.get_pixel(12, 10).0, [0, 0, 0], "on yellow: black");
         assert_eq!(
             marked.get_pixel(12, 11).0,
@@ -236,6 +237,106 @@ mod tests {
         let numbered =
             (15..25).any(|x| (15..25).any(|y| marked.get_pixel(x, y).0 == [255, 255, 255]));
         assert!(numbered, "no number beside the first marker");
+    }
+
+    /// `n` points evenly on a circle of radius `r` about `c`.
+    fn circle(n: usize, r: f64, c: f64) -> Vec<(f64, f64)> {
+        (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                (c + r * a.cos(), c + r * a.sin())
+            })
+            .collect()
+    }
+
+    /// The pixels a label's box darkened on a plain yellow image (a quarter
+    /// of the yellow), and the black (ink) pixels.
+    fn labels_and_ink(marked: &image::RgbImage) -> (usize, usize) {
+        let box_px = marked.pixels().filter(|p| p.0 == [62, 60, 5]).count();
+        let ink = marked.pixels().filter(|p| p.0 == [0, 0, 0]).count();
+        (box_px, ink)
+    }
+
+    /// How many separate marks of ink (black pixels connected through
+    /// their sides) an image holds.
+    fn ink_marks(img: &image::RgbImage) -> usize {
+        let (w, h) = img.dimensions();
+        let mut seen = vec![false; (w * h) as usize];
+        let mut marks = 0;
+        for start in 0..w * h {
+            let ink = |i: u32| img.get_pixel(i % w, i / w).0 == [0, 0, 0];
+            if seen[start as usize] || !ink(start) {
+                continue;
+            }
+            marks += 1;
+            let mut stack = vec![start];
+            seen[start as usize] = true;
+            while let Some(i) = stack.pop() {
+                let (x, y) = (i % w, i / w);
+                let next = [
+                    (x > 0).then(|| i - 1),
+                    (x + 1 < w).then(|| i + 1),
+                    (y > 0).then(|| i - w),
+                    (y + 1 < h).then(|| i + w),
+                ];
+                for j in next.into_iter().flatten() {
+                    if !seen[j as usize] && ink(j) {
+                        seen[j as usize] = true;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        marks
+    }
+
+    /// 16 points of one row on the outline of a 20-pixel ball are drawn as
+    /// 16 separate small marks (crosses shrunk to arms of at most a pixel,
+    /// none touching another) and numbered once, beside the ball, and the legend
+    /// has that row once; the same 16 points on a 240-pixel ball, 47 pixels
+    /// apart (the control), keep full crosses, each numbered.
+    #[test]
+    fn markers_on_a_small_object_stay_apart_and_are_numbered_once() {
+        let yellow = image::Rgb([250, 240, 20]);
+        let rows = vec!["ball radius".to_string(); 16];
+        let small = marker_groups(&circle(16, 10.0, 50.5), &rows);
+        assert_eq!(small.len(), 1, "one legend row");
+        assert_eq!((small[0].number, small[0].points.len()), (1, 16));
+        let img = image::RgbImage::from_pixel(120, 100, yellow);
+        let marked = with_markers(&img, &small);
+        let (box_px, ink) = labels_and_ink(&marked);
+        // One label "1" is a 10 x 11 box less its glyph's pixels.
+        assert!(box_px > 0 && box_px <= 110, "{box_px} label pixels");
+        assert!(ink <= 16 * 5, "{ink} ink pixels: crosses of arm at most 1");
+        assert_eq!(ink_marks(&marked), 16, "16 marks, none touching another");
+        // On a 50-pixel ball the points are 10 pixels apart: still one label.
+        let medium = marker_groups(&circle(16, 25.0, 50.5), &rows);
+        let marked = with_markers(&img, &medium);
+        let (box_px, _) = labels_and_ink(&marked);
+        assert!(box_px > 0 && box_px <= 110, "{box_px} label pixels");
+        assert_eq!(ink_marks(&marked), 16);
+        let large = marker_groups(&circle(16, 120.0, 150.5), &rows);
+        let img = image::RgbImage::from_pixel(300, 300, yellow);
+        let (box_px, ink) = labels_and_ink(&with_markers(&img, &large));
+        assert!(
+            box_px > 10 * 110,
+            "{box_px} label pixels: a label per cross"
+        );
+        assert_eq!(ink, 16 * 13, "16 crosses of arm 3");
+        assert_eq!(ink_marks(&with_markers(&img, &large)), 16);
+    }
+
+    /// Rows are numbered in the order they first appear, each once.
+    #[test]
+    fn marker_groups_number_each_row_once() {
+        let at = [(1.0, 1.0), (2.0, 2.0), (3.0, 3.0), (4.0, 4.0)];
+        let rows = ["a", "b", "a", ""].map(String::from);
+        let g = marker_groups(&at, &rows);
+        let seen: Vec<(usize, &str, usize)> = g
+            .iter()
+            .map(|g| (g.number, g.row.as_str(), g.points.len()))
+            .collect();
+        assert_eq!(seen, [(1, "a", 2), (2, "b", 1), (3, "", 1)]);
     }
 
     /// Long names, negative and tiny numbers and the widest unit still fit

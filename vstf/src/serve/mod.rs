@@ -211,10 +211,11 @@ impl Site {
         Ok(value)
     }
 
-    /// Every fixture with its declared views, each with whether it has a
-    /// golden and a pending image, and the view's camera time; whether the
-    /// fixture has one moving object (the speed slider); and its last
-    /// check on this page, if any.
+    /// Every fixture with its views as `vstf check` names them (declared,
+    /// rendered by a named check, or the fixture's own view `view`), each
+    /// with whether it has a golden and a pending image, its camera time
+    /// and model; the speed of its one moving object, if it has one (the
+    /// speed slider); and its last check on this page, if any.
     fn fixtures(&self) -> serde_json::Value {
         let store = self.store();
         let checked = self.checked.lock().map(|c| c.clone()).unwrap_or_default();
@@ -224,20 +225,19 @@ impl Site {
             .into_iter()
             .filter_map(|name| {
                 let f = self.load(&name).ok()?;
-                let views: Vec<serde_json::Value> = f
-                    .spec
-                    .views
+                let views: Vec<serde_json::Value> = crate::check::views_of(&f)
                     .iter()
                     .map(|v| {
                         serde_json::json!({
                             "name": v.name,
-                            "t": v.t.unwrap_or(f.spec.camera.t),
+                            "t": v.camera_t,
+                            "model": v.model.to_string(),
                             "golden": store.golden_path(&name, &v.name).is_file(),
                             "pending": store.pending_dir(&name, &v.name).join("actual.png").is_file(),
                         })
                     })
                     .collect();
-                Some(serde_json::json!({"name": name, "views": views, "one_mover": single_mover(&f).is_some(),
+                Some(serde_json::json!({"name": name, "views": views, "mover_speed": mover_speed(&f),
                     "checked": checked.get(&name)}))
             })
             .collect();
@@ -272,6 +272,13 @@ impl Site {
             Ok(format!("rejected {fixture} / {view}"))
         }
     }
+}
+
+/// The speed (a fraction of c) of `f`'s one moving object, if it has
+/// exactly one in uniform motion: what the speed slider scales.
+fn mover_speed(f: &Fixture) -> Option<f64> {
+    let i = single_mover(f)?;
+    Some(f.scene.objects[i].motion.velocity()?.length())
 }
 
 /// A bound server, not yet answering: its address and site are known

@@ -26,7 +26,7 @@ fn on_path(names: &[&str]) -> Option<PathBuf> {
 }
 
 /// One HTTP/1.1 request; the status and the body.
-fn http(addr: &str, method: &str, path: &str, body: Option<&Value>) -> (u16, String) {
+pub(crate) fn http(addr: &str, method: &str, path: &str, body: Option<&Value>) -> (u16, String) {
     let mut s = TcpStream::connect(addr).unwrap_or_else(|e| panic!("connect {addr}: {e}"));
     s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
     let body = body.map(Value::to_string).unwrap_or_default();
@@ -90,13 +90,13 @@ fn dechunk(mut s: &str) -> String {
 }
 
 /// A WebDriver session.
-struct Driver {
-    addr: String,
-    session: String,
+pub(crate) struct Driver {
+    pub(crate) addr: String,
+    pub(crate) session: String,
 }
 
 impl Driver {
-    fn call(&self, method: &str, path: &str, body: Option<Value>) -> Value {
+    pub(crate) fn call(&self, method: &str, path: &str, body: Option<Value>) -> Value {
         let (status, text) = http(
             &self.addr,
             method,
@@ -108,7 +108,7 @@ impl Driver {
         v["value"].clone()
     }
 
-    fn script(&self, js: &str) -> Value {
+    pub(crate) fn script(&self, js: &str) -> Value {
         self.call(
             "POST",
             "/execute/sync",
@@ -117,7 +117,7 @@ impl Driver {
     }
 
     /// Polls `js` until `ok` holds of its value (at most 60 s).
-    fn wait_for(&self, what: &str, js: &str, ok: impl Fn(&Value) -> bool) -> Value {
+    pub(crate) fn wait_for(&self, what: &str, js: &str, ok: impl Fn(&Value) -> bool) -> Value {
         let start = Instant::now();
         loop {
             let v = self.script(js);
@@ -132,7 +132,7 @@ impl Driver {
         }
     }
 
-    fn click(&self, css: &str) {
+    pub(crate) fn click(&self, css: &str) {
         let el = self.call(
             "POST",
             "/element",
@@ -149,7 +149,7 @@ impl Driver {
 }
 
 /// Kills the child when dropped (a failing test leaves no process behind).
-struct Reaper(Child);
+pub(crate) struct Reaper(Child);
 
 impl Drop for Reaper {
     fn drop(&mut self) {
@@ -192,7 +192,7 @@ fn pending_project() -> (Scratch, PathBuf, Vec<u8>) {
 }
 
 /// `vstf serve` on a free port in `dir`, and its page's address.
-fn start_server(dir: &Path) -> (Reaper, String) {
+pub(crate) fn start_server(dir: &Path) -> (Reaper, String) {
     let mut server = Reaper(
         vstf()
             .current_dir(dir)
@@ -216,7 +216,7 @@ fn start_server(dir: &Path) -> (Reaper, String) {
 }
 
 /// chromedriver on a free port with a headless chromium session.
-fn start_browser(driver: &Path, browser: &Path) -> (Reaper, Driver) {
+pub(crate) fn start_browser(driver: &Path, browser: &Path) -> (Reaper, Driver) {
     let port = free_port();
     let chromedriver = Reaper(
         Command::new(driver)
@@ -297,8 +297,10 @@ fn a_cross_site_form_does_not_approve(d: &Driver, page: &str, golden: &Path) {
     );
 }
 
-#[test]
-fn the_page_renders_debugs_and_approves_in_a_real_browser() {
+/// chromedriver and chromium, if both are on PATH; else `None`, having
+/// said loudly that a browser test did not run (a failure with
+/// `VSTF_REQUIRE_BROWSER` set).
+pub(crate) fn browser_tools() -> Option<(PathBuf, PathBuf)> {
     let (Some(driver), Some(browser)) = (
         on_path(&["chromedriver"]),
         on_path(&["chromium", "chromium-browser", "google-chrome"]),
@@ -308,6 +310,14 @@ fn the_page_renders_debugs_and_approves_in_a_real_browser() {
                    (apt-get install chromium chromium-driver)";
         assert!(std::env::var_os("VSTF_REQUIRE_BROWSER").is_none(), "{msg}");
         eprintln!("SKIPPED: {msg}");
+        return None;
+    };
+    Some((driver, browser))
+}
+
+#[test]
+fn the_page_renders_debugs_and_approves_in_a_real_browser() {
+    let Some((driver, browser)) = browser_tools() else {
         return;
     };
     let (dir, golden, actual) = pending_project();

@@ -9,6 +9,9 @@ mod animate;
 mod bench;
 /// `vstf serve` driven in a real browser (skips without chromium).
 mod browser;
+/// `vstf serve`'s page as a user sees it, in a real browser: captions,
+/// images, sliders, a screenshot.
+mod browser_page;
 /// `vstf check`: its table, JSON and golden images, in and out of a copy
 /// of this repository.
 mod check;

@@ -140,6 +140,60 @@ fn list_views_names_what_view_takes() {
         .stdout_has("--view \"t_c = 26\"");
 }
 
+/// A fixture that declares neither views nor checks has the one view
+/// `vstf check` gives it, `view`: `list --views` names it and `render
+/// --view view` reproduces the check's image bit for bit; a fixture with
+/// declared views has no such view (the control).
+#[test]
+fn a_fixture_without_views_has_its_own_view() {
+    let dir = Scratch::new("own-view");
+    std::fs::create_dir_all(dir.join("fixtures")).unwrap();
+    let sphere =
+        std::fs::read_to_string(repo_root().join("fixtures/sphere-relativistic.json")).unwrap();
+    let mut bare: serde_json::Value = serde_json::from_str(&sphere).unwrap();
+    let spec = bare.as_object_mut().unwrap();
+    spec.remove("views");
+    spec.remove("checks");
+    std::fs::write(dir.join("fixtures/bare.json"), bare.to_string()).unwrap();
+    std::fs::copy(
+        repo_root().join("fixtures/flange.json"),
+        dir.join("fixtures/flange.json"),
+    )
+    .unwrap();
+    let listed = vstf().current_dir(&dir).args(["list", "--views"]).run();
+    listed
+        .succeeds()
+        .stdout_has("--view \"view\"  (camera t = ");
+    assert_eq!(
+        listed.stdout().matches("--view \"view\"").count(),
+        1,
+        "{listed}"
+    );
+    vstf()
+        .current_dir(&dir)
+        .args(["check", "bare", "--quick"])
+        .run()
+        .stderr_has("MISSING");
+    let out = dir.join("own.png");
+    vstf()
+        .current_dir(&dir)
+        .args(["render", "bare", "--view", "view", "--out"])
+        .arg(&out)
+        .run()
+        .succeeds();
+    let checked = rgb(&dir.join("target/vstf/bare/view/actual.png"));
+    assert!(
+        rgb(&out) == checked,
+        "render --view view differs from the check's image"
+    );
+    vstf()
+        .current_dir(&dir)
+        .args(["render", "flange", "--view", "view", "--out"])
+        .arg(dir.join("no.png"))
+        .run()
+        .fails_with("no view named \"view\"");
+}
+
 /// `--camera-t auto:OBJECT` picks the time the object is seen crossing
 /// the line of sight; a render in which a moving object is nowhere in view
 /// says so, with that hint; a word that is neither a time nor `auto` is

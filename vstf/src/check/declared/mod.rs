@@ -26,13 +26,13 @@ mod period;
 use crate::check::findings::{CheckOutcome, ViewReport};
 use crate::check::probe::Effort;
 use crate::check::row::{difference, Quantity, Reading, Unit};
-use crate::check::views::with_view_effects;
+use crate::check::views::{own_observer, with_view_effects, OWN_VIEW};
 use crate::error::Error;
 use crate::fixture::checks::{
     dimensions, CheckSpec, DopplerSpec, MeasureSpec, ToleranceSpec, ViewSpec,
 };
 use crate::fixture::Fixture;
-use crate::observer::{fixture_model, Observer};
+use crate::observer::Observer;
 use doppler::Panel;
 use glam::DVec3;
 use outline::Outline;
@@ -402,13 +402,8 @@ impl<'a> Evaluation<'a> {
             };
             views.push(Observer::declared(f, v).full_view_labelled(&v.name, &marks)?);
         }
-        if spec.views.is_empty() && spec.checks.is_empty() {
-            let own = Observer {
-                fixture: self.rendered,
-                model: fixture_model(self.rendered),
-                camera_t: spec.camera.t,
-            };
-            views.push(own.full_view("view", &[])?);
+        if let Some(own) = own_observer(self.rendered) {
+            views.push(own.full_view(OWN_VIEW, &[])?);
         }
         Ok(views)
     }

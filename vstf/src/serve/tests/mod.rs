@@ -10,6 +10,7 @@ use std::time::Instant;
 
 /// A small fixture: a square moving at 0.8c, one view.
 mod limits;
+mod views;
 
 const TINY: &str = r#"{
   "camera": {"position": [0.0, 0.0, 10.0], "t": 10.0, "look_at": [0.0, 0.0, 0.0], "vfov_deg": 40.0},

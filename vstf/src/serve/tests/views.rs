@@ -1,0 +1,110 @@
+//! What the page lists and renders, as `vstf check` names and renders it:
+//! a fixture's own view, and a speed that stays below light's.
+
+use super::*;
+
+/// `TINY` without its views: a fixture `vstf check` compares with its
+/// golden image as its own view `view`.
+fn bare() -> String {
+    let (head, _) = TINY.split_once(",\n  \"views\"").unwrap();
+    format!("{head}\n}}")
+}
+
+/// A GET with the token; the status and the body's bytes.
+fn get_bytes(s: &Running, target: &str) -> (u16, Vec<u8>) {
+    let mut stream = TcpStream::connect(s.addr).unwrap();
+    stream
+        .set_read_timeout(Some(Duration::from_secs(60)))
+        .unwrap();
+    let raw = format!(
+        "GET {target} HTTP/1.1\r\nHost: {}\r\nX-Vstf-Token: {}\r\n\r\n",
+        s.host(),
+        s.site.token()
+    );
+    stream.write_all(raw.as_bytes()).unwrap();
+    let mut answer = Vec::new();
+    let _ = stream.read_to_end(&mut answer);
+    let status = parse_answer(&answer).0;
+    let at = answer.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
+    (status, answer[at + 4..].to_vec())
+}
+
+/// The views the page lists for `fixture`.
+fn listed(s: &Running, fixture: &str) -> Vec<serde_json::Value> {
+    let (status, list) = s.get("/api/fixtures");
+    assert_eq!(status, 200, "{list}");
+    let list: serde_json::Value = serde_json::from_str(&list).unwrap();
+    let f = list
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["name"] == fixture)
+        .unwrap_or_else(|| panic!("{fixture} not listed: {list}"));
+    f["views"].as_array().unwrap().clone()
+}
+
+/// A fixture that declares neither views nor checks is listed with the
+/// one view `vstf check` gives it, `view`, at its camera time and model;
+/// the page renders that view exactly as the check rendered it. A fixture
+/// with declared views lists those and not `view` (the control).
+#[test]
+fn a_fixture_without_views_lists_its_own_view() {
+    let s = start("own-view", Limits::default());
+    std::fs::write(s.dir.0.join("fixtures/bare.json"), bare()).unwrap();
+    let views = listed(&s, "bare");
+    assert_eq!(views.len(), 1, "{views:?}");
+    assert_eq!(
+        (&views[0]["name"], &views[0]["t"], &views[0]["model"]),
+        (
+            &serde_json::json!("view"),
+            &serde_json::json!(10.0),
+            &serde_json::json!("relativistic")
+        )
+    );
+    let names: Vec<serde_json::Value> = listed(&s, "tiny")
+        .into_iter()
+        .map(|v| v["name"].clone())
+        .collect();
+    assert_eq!(names, [serde_json::json!("t = 10")]);
+    let (status, said) = s.post("/api/check", r#"{"fixture": "bare"}"#);
+    assert_eq!(status, 200, "{said}");
+    let checked = s.dir.0.join("target/vstf/bare/view/actual.png");
+    assert!(
+        checked.is_file(),
+        "the check wrote no pending image: {said}"
+    );
+    let (status, png) = get_bytes(&s, "/api/render?fixture=bare&view=view");
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&png));
+    let served = image::load_from_memory(&png).unwrap().to_rgb8();
+    let checked = image::open(&checked).unwrap().to_rgb8();
+    assert!(
+        served == checked,
+        "the page's view differs from the check's"
+    );
+    assert_eq!(listed(&s, "bare")[0]["pending"], true);
+}
+
+/// The speed slider's factor takes the one moving object (0.8c) up to
+/// just below c and no further: 1.24 renders (0.992c), 1.25 (c) and 2 are
+/// refused with why; the list gives the object's speed, from which the
+/// page bounds its slider.
+#[test]
+fn the_speed_stays_below_light() {
+    let s = start("speed", Limits::default());
+    let (status, list) = s.get("/api/fixtures");
+    assert_eq!(status, 200);
+    let list: serde_json::Value = serde_json::from_str(&list).unwrap();
+    let speed = list[0]["mover_speed"].as_f64().unwrap();
+    assert!((speed - 0.8).abs() < 1e-12, "{list}");
+    let at = |k: &str| {
+        s.get(&format!(
+            "/api/render?fixture=tiny&view=t%20%3D%2010&speed={k}"
+        ))
+    };
+    assert_eq!(at("1.24").0, 200);
+    for k in ["1.25", "2", "-1.3"] {
+        let (status, said) = at(k);
+        assert_eq!(status, 400, "×{k}: {said}");
+        assert!(said.contains("slower than light"), "{said}");
+    }
+}
