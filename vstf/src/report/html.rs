@@ -49,7 +49,11 @@ fn summary(h: &mut String, order: &[&FixtureReport]) {
     let verdict = if failing.is_empty() {
         "pass".to_string()
     } else {
-        format!("FAIL ({} of {} fixtures)", failing.len(), order.len())
+        format!(
+            "FAIL ({} of {})",
+            failing.len(),
+            counted(order.len(), "fixture", "fixtures")
+        )
     };
     let class = if failing.is_empty() { "pass" } else { "FAIL" };
     let _ = write!(
@@ -355,6 +359,15 @@ mod tests {
         assert_eq!(verdict(&two), "— FAIL (2 rows)");
         assert_eq!(verdict(&report(vec![row("radius", true)])), "— pass");
         assert_eq!(counted(0, "row", "rows"), "0 rows");
+        let mut h = String::new();
+        summary(&mut h, &[&one]);
+        assert!(
+            h.contains("<title>VSTF report: FAIL (1 of 1 fixture)</title>"),
+            "{h}"
+        );
+        let mut h = String::new();
+        summary(&mut h, &[&one, &two]);
+        assert!(h.contains("FAIL (2 of 2 fixtures)"), "{h}");
     }
 
     /// The legend lists a row once however many points it marks, with
