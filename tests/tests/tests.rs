@@ -22,6 +22,7 @@ mod spacetime {
 mod rendering {
     mod render;
     mod shading;
+    mod textures;
 }
 
 /// The VSTF itself: fixture errors, the per-pixel debug log, the checks

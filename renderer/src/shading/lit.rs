@@ -17,6 +17,8 @@ use glam::DVec3;
 pub(super) struct Lit {
     pub(super) object: u32,
     pub(super) tau: f64,
+    /// The texture's colour at the hit (`None` untextured).
+    pub(super) texel: Option<DVec3>,
     pub(super) n: DVec3,
     pub(super) l: DVec3,
     pub(super) light_distance: f64,
@@ -160,6 +162,7 @@ impl Shader<'_> {
         Lit {
             object: surface.object,
             tau: object.proper_time(hit.event),
+            texel: self.texel(hit, &surface, object),
             n,
             l,
             light_distance: to_light.length(),
