@@ -33,6 +33,7 @@ mod harness {
     mod declared;
     mod emulator;
     mod fixture_errors;
+    mod gltf;
     mod grid_line;
     mod independent_models;
     mod mirrors;
