@@ -100,8 +100,9 @@ pub use render::{
 };
 pub use rng::SplitMix64;
 pub use scene::{
-    Blink, Hyperbolic, HyperbolicField, Keyframe, Light, Material, Mesh, MeshError, Motion,
-    ObjectKind, Scene, SceneError, SceneErrorKind, SceneField, SceneObject, Shape,
+    Axes, Blink, Hyperbolic, HyperbolicField, Keyframe, Light, Material, Mesh, MeshError, Motion,
+    ObjectKind, Scene, SceneError, SceneErrorKind, SceneField, SceneObject, Shape, Texels, Texture,
+    UvMapping,
 };
 pub use shading::{Effects, Shader};
 pub use spacetime::{Boost, Event, FourVector, LightSpeed, Ray};

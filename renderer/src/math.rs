@@ -78,6 +78,16 @@ pub(crate) fn atanh(x: f64) -> f64 {
     libm::atanh(x)
 }
 
+/// The angle of the point (x, y) from the +x axis, in (-pi, pi].
+pub(crate) fn atan2(y: f64, x: f64) -> f64 {
+    libm::atan2(y, x)
+}
+
+/// The angle in [0, pi] whose cosine is `x`.
+pub(crate) fn acos(x: f64) -> f64 {
+    libm::acos(x)
+}
+
 /// sqrt(x^2 + y^2) without undue overflow or underflow.
 pub(crate) fn hypot(x: f64, y: f64) -> f64 {
     libm::hypot(x, y)

@@ -22,6 +22,7 @@ mod spacetime {
 mod rendering {
     mod render;
     mod shading;
+    mod textures;
 }
 
 /// The VSTF itself: fixture errors, the per-pixel debug log, the checks
@@ -33,6 +34,8 @@ mod harness {
     mod emulator;
     mod face_materials;
     mod fixture_errors;
+    mod gltf;
+    mod grid_line;
     mod independent_models;
     mod mirrors;
     mod shared_worldline;

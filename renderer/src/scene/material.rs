@@ -1,6 +1,7 @@
 //! Surface appearance and the light: what shading reads from the scene
 //! (paper 3, item 5; time-dependent materials, paper 3, item 2d).
 
+use super::texture::Texture;
 use crate::color::Spectrum;
 use glam::DVec3;
 #[cfg(feature = "serde")]
@@ -103,6 +104,12 @@ pub struct Material {
     /// radiance (its RGB is added when wavelengths are not shifted).
     #[cfg_attr(feature = "serde", serde(default))]
     pub emission: Option<Spectrum>,
+    /// A colour varying over the surface, in place of `color` (and of
+    /// `spectrum`: with wavelengths shifted, a textured point reflects the
+    /// smooth spectrum of its colour) wherever it gives one; the blink
+    /// colour still shows over it.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pub texture: Option<Texture>,
 }
 
 impl Material {
@@ -117,6 +124,7 @@ impl Material {
             blink: None,
             spectrum: None,
             emission: None,
+            texture: None,
         }
     }
 
@@ -128,6 +136,29 @@ impl Material {
             }
             (Some(s), _) => Cow::Borrowed(s),
             (None, _) => Cow::Owned(Spectrum::Rgb(self.color)),
+        }
+    }
+
+    /// Whether the blink colour shows at proper time `tau`.
+    fn blinks(&self, tau: f64) -> bool {
+        self.blink
+            .is_some_and(|b| (tau / b.period).rem_euclid(1.0) < 0.5)
+    }
+
+    /// [`Material::reflectance_at`] at a point whose texture colour is
+    /// `texel` (`None`: untextured there).
+    pub fn reflectance_textured(&self, tau: f64, texel: Option<DVec3>) -> Cow<'_, Spectrum> {
+        match texel {
+            Some(c) if !self.blinks(tau) => Cow::Owned(Spectrum::Rgb(c)),
+            _ => self.reflectance_at(tau),
+        }
+    }
+
+    /// [`Material::color_at`] at a point whose texture colour is `texel`.
+    pub fn color_textured(&self, tau: f64, texel: Option<DVec3>) -> DVec3 {
+        match texel {
+            Some(c) if !self.blinks(tau) => c,
+            _ => self.color_at(tau),
         }
     }
 

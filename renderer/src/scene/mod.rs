@@ -6,6 +6,7 @@ mod error;
 mod material;
 mod mesh;
 mod motion;
+mod texture;
 
 pub(crate) use error::Fault;
 pub use error::{HyperbolicField, SceneError, SceneErrorKind, SceneField};
@@ -13,6 +14,8 @@ pub use material::{Blink, Light, Material};
 pub use mesh::{Mesh, MeshError};
 pub(crate) use motion::MAX_KEYFRAMES;
 pub use motion::{Hyperbolic, Keyframe, Motion};
+pub(crate) use texture::SurfacePoint;
+pub use texture::{Axes, Texels, Texture, UvMapping};
 
 /// The mesh of an object without one (an analytic sphere).
 pub(crate) static NO_MESH: Mesh = Mesh {

@@ -101,7 +101,7 @@ impl Carried for DVec3 {
         _: &(),
         lamp_gain: Option<f64>,
     ) -> (DVec3, RgbLocal) {
-        let albedo = m.color_at(lit.tau);
+        let albedo = m.color_textured(lit.tau, lit.texel);
         let ambient = albedo * shader.light.ambient;
         let (mut diffuse, mut specular) = (DVec3::ZERO, 0.0);
         if lit.faces_light() && !lit.shadowed {
@@ -176,7 +176,7 @@ impl Carried for Band {
         lamp_gain: Option<f64>,
     ) -> (Band, Band) {
         let surface_nm = scaled(nm, lit.out);
-        let reflectance = sample(&m.reflectance_at(lit.tau), &surface_nm);
+        let reflectance = sample(&m.reflectance_textured(lit.tau, lit.texel), &surface_nm);
         let white = sample(&Spectrum::Rgb(DVec3::ONE), &surface_nm);
         let lamp = sample(
             &shader.light.spectrum(),

@@ -19,6 +19,8 @@ pub(super) struct Lit {
     /// The triangle hit, which picks its material.
     pub(super) triangle: u32,
     pub(super) tau: f64,
+    /// The texture's colour at the hit (`None` untextured).
+    pub(super) texel: Option<DVec3>,
     pub(super) n: DVec3,
     pub(super) l: DVec3,
     pub(super) light_distance: f64,
@@ -163,6 +165,7 @@ impl Shader<'_> {
             object: surface.object,
             triangle: surface.triangle,
             tau: object.proper_time(hit.event),
+            texel: self.texel(hit, &surface, object),
             n,
             l,
             light_distance: to_light.length(),

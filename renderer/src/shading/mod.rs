@@ -8,6 +8,7 @@ mod frame;
 mod lit;
 mod mirror;
 mod shader;
+mod texture;
 
 pub use doppler::Effects;
 pub use shader::Shader;

@@ -22,7 +22,7 @@ type Row = (Reading, f64, Unit);
 
 /// The edge of an edge check, as the oracle sees it from the view's camera
 /// event: the point at parameter s along it, and where that point is seen.
-struct SeenEdge<'a> {
+pub(super) struct SeenEdge<'a> {
     ends: [DVec3; 2],
     path: BodyPath,
     setup: Observer<'a>,
@@ -79,7 +79,7 @@ impl SeenEdge<'_> {
     }
 
     /// The first point along the edge whose `level_of` is `level`.
-    fn crossing(
+    pub(super) fn crossing(
         &self,
         level_of: impl Fn(&Retarded) -> Option<f64>,
         level: f64,
@@ -99,7 +99,7 @@ fn kept<'k>(keep: &'k Option<Vec<String>>, object: &'k str) -> Vec<&'k str> {
 
 /// The seen edge from `from` to `to` of the object `object`, as the oracle
 /// sees it from `described`'s camera event.
-fn seen_edge<'a>(
+pub(super) fn seen_edge<'a>(
     described: &Observer<'a>,
     object: &str,
     ends: [DVec3; 2],

@@ -18,6 +18,7 @@ mod edge;
 
 mod doppler;
 mod emulated;
+mod grid_line;
 mod lambert;
 mod mirror;
 mod outline;
@@ -284,6 +285,13 @@ impl<'a> Evaluation<'a> {
             MeasureSpec::Lambert(l) => {
                 let v = self.view(&l.view)?;
                 let (reading, mark) = lambert::measure(&v.measuring, &v.described, l)?;
+                self.mark(v.index, Some(mark), &c.name);
+                Ok(row(reading))
+            }
+            MeasureSpec::GridLine(g) => {
+                let v = self.view(&g.view)?;
+                let (reading, mark) =
+                    grid_line::measure(&v.measuring, &v.described, v.spec, g, self.effort)?;
                 self.mark(v.index, Some(mark), &c.name);
                 Ok(row(reading))
             }
