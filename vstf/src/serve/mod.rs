@@ -231,7 +231,7 @@ impl Site {
                     .map(|v| {
                         serde_json::json!({
                             "name": v.name,
-                            "t": v.t.unwrap_or(f.spec.camera.t),
+                            "t": v.camera_t(f.spec.camera.t),
                             "golden": store.golden_path(&name, &v.name).is_file(),
                             "pending": store.pending_dir(&name, &v.name).join("actual.png").is_file(),
                         })
