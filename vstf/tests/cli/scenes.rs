@@ -43,7 +43,7 @@ fn scenes(name: &str) -> Scratch {
 fn rows(dir: &Path, file: &str) -> Vec<serde_json::Value> {
     let run = vstf()
         .current_dir(dir)
-        .args(["check", file, "--quick", "--json", "-", "--root", "."])
+        .args(["check", file, "--quick", "--json", "-"])
         .run();
     let json: serde_json::Value = serde_json::from_str(run.stdout())
         .unwrap_or_else(|e| panic!("{file}: no JSON ({e}):\n{}", run.stderr()));
@@ -145,7 +145,7 @@ fn unsolvable_view_times_name_the_field() {
         std::fs::write(dir.join("bad.json"), bad).unwrap();
         let run = vstf()
             .current_dir(&dir)
-            .args(["check", "bad.json", "--quick", "--root", "."])
+            .args(["check", "bad.json", "--quick"])
             .run();
         let field = if from.contains("azimuth") {
             "views[2].t"
