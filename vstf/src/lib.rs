@@ -46,7 +46,7 @@ pub mod run;
 pub mod serve;
 pub mod shard;
 
-pub use aim::{out_of_view, resolve_camera_time};
+pub use aim::{nothing_in_view_at_all, out_of_view, resolve_camera_time};
 pub use aov::{aovs, PixelAov};
 pub use budget::{prisms, Budget, Prisms};
 pub use check::{Effort, FixtureReport, Row, Unit};

@@ -155,3 +155,74 @@ fn unsolvable_view_times_name_the_field() {
         run.fails_with(field).stderr_has(says);
     }
 }
+
+/// `vstf render` of `file` in `dir` at camera time `t` (`None`: the
+/// fixture's own), small and quick.
+fn render(dir: &Path, file: &str, t: Option<&str>) -> crate::support::Run {
+    let mut c = vstf();
+    c.current_dir(dir)
+        .args(["render", file, "--out", "out.png", "--spp", "1"]);
+    if let Some(t) = t {
+        c.args(["--camera-t", t]);
+    }
+    c.run()
+}
+
+/// The sphere half in the image's left side (camera time 38) is in view:
+/// no warning, and an outline check of that view measures it; at 36 it is
+/// wholly outside, and the warning gives the camera time that shows it.
+#[test]
+fn half_an_object_is_in_view() {
+    let dir = scenes("scenes-half");
+    render(&dir, "ball.json", Some("38"))
+        .succeeds()
+        .stderr_lacks("out of view")
+        .stderr_lacks("nothing is in view");
+    render(&dir, "ball.json", Some("36"))
+        .fails_with("nothing is in view")
+        .stderr_has("\"ball\" is out of view")
+        .stderr_has("try --camera-t auto:ball (t = 43.8");
+    let half = BALL.replace(r#""t": "auto:ball""#, r#""t": 38"#);
+    std::fs::write(dir.join("half.json"), half).unwrap();
+    let rows = rows(&dir, "half.json");
+    let r = row(&rows, "crossing: outline radius");
+    assert_eq!(r["pass"], true, "{r:#}");
+}
+
+/// A camera looking away from the rod's path says so, naming
+/// `camera.look_at` and `camera.vfov_deg` rather than a camera time, and
+/// the render fails; a field of view in radians (0.7) and objects under a
+/// pixel are warned of by field; the scene as written gets none of these.
+#[test]
+fn an_empty_or_unreadable_picture_names_the_field_to_change() {
+    let dir = scenes("scenes-aim");
+    render(&dir, "rod.json", Some("auto:rod"))
+        .succeeds()
+        .stderr_lacks("warning");
+    let away = ROD.replace(r#""look_at": [0, 0, -10]"#, r#""look_at": [0, 0, 10]"#);
+    assert_ne!(away, ROD);
+    std::fs::write(dir.join("away.json"), away).unwrap();
+    render(&dir, "away.json", Some("auto:rod"))
+        .fails_with("nothing is in view")
+        .stderr_has("point camera.look_at at the object's path or widen camera.vfov_deg")
+        .stderr_lacks("try --camera-t");
+    let radians = ROD.replace(r#""vfov_deg": 40"#, r#""vfov_deg": 0.7"#);
+    std::fs::write(dir.join("radians.json"), radians).unwrap();
+    render(&dir, "radians.json", Some("auto:rod"))
+        .stderr_has("warning: camera.vfov_deg is 0.7: a field of view under 5 degrees");
+    let tiny = ROD.replace(
+        r#"{ "min": [-2, -0.25, -0.25], "max": [2, 0.25, 0.25] }"#,
+        r#"{ "min": [-0.005, -0.005, -0.005], "max": [0.005, 0.005, 0.005] }"#,
+    );
+    assert_ne!(tiny, ROD);
+    let tiny = tiny
+        .split(r#"  "views""#)
+        .next()
+        .unwrap()
+        .trim_end()
+        .trim_end_matches(',');
+    std::fs::write(dir.join("tiny.json"), format!("{tiny}\n}}\n")).unwrap();
+    render(&dir, "tiny.json", Some("auto:rod"))
+        .succeeds()
+        .stderr_has("every object in view is smaller than a pixel");
+}
