@@ -210,6 +210,16 @@ fn an_empty_or_unreadable_picture_names_the_field_to_change() {
     std::fs::write(dir.join("radians.json"), radians).unwrap();
     render(&dir, "radians.json", Some("auto:rod"))
         .stderr_has("warning: camera.vfov_deg is 0.7: a field of view under 5 degrees");
+    let checked = rows(&dir, "radians.json");
+    let r = row(&checked, "at 20 deg: trailing end at row 120 (azimuth)");
+    assert_eq!(r["pass"], false, "{r:#}");
+    let error = r["error"].as_str().unwrap_or_default();
+    assert!(error.contains("camera.vfov_deg is 0.7"), "{r:#}");
+    let fine = rows(&dir, "rod.json");
+    let error = row(&fine, "at 20 deg: trailing end at row 120 (azimuth)")
+        .get("error")
+        .cloned();
+    assert_eq!(error, None);
     let tiny = ROD.replace(
         r#"{ "min": [-2, -0.25, -0.25], "max": [2, 0.25, 0.25] }"#,
         r#"{ "min": [-0.005, -0.005, -0.005], "max": [0.005, 0.005, 0.005] }"#,

@@ -84,8 +84,10 @@ pub fn evaluate(
     let mut named_views = Vec::new();
     let units = dimensions(&spec.checks).into_iter().map(Unit::of);
     for ((i, c), unit) in spec.checks.iter().enumerate().zip(units) {
-        let failed =
-            |message: String| Quantity::failed(&c.name, unit, format!("checks[{i}]: {message}"));
+        let failed = |message: String| {
+            let hint = narrow_field_of_view(described);
+            Quantity::failed(&c.name, unit, format!("checks[{i}]: {message}{hint}"))
+        };
         if let MeasureSpec::Named(n) = &c.measure {
             let found = match crate::check::named::run(rendered, n, effort) {
                 Ok(found) => found,
@@ -133,6 +135,18 @@ pub fn evaluate(
     }
     outcome.views.extend(named_views);
     Ok(outcome)
+}
+
+/// What a failing row adds when the camera's field of view is under 5
+/// degrees: more likely radians, it fills the image with one colour and
+/// leaves no edge to measure.
+fn narrow_field_of_view(f: &Fixture) -> String {
+    let vfov = f.spec.camera.vfov_deg;
+    if vfov < 5.0 {
+        format!(" (camera.vfov_deg is {vfov}: under 5 degrees; it is in degrees, not radians)")
+    } else {
+        String::new()
+    }
 }
 
 /// The views each declared check (not a named kind) is measured in: its
