@@ -38,6 +38,8 @@ enum Sight {
     },
     /// Its light would have left it outside its lifetime (at this lab time).
     NotAlive(f64),
+    /// Its worldline never meets the camera's past light cone.
+    Never,
     /// Seen, but wholly outside the image (its reference point seen there).
     Outside(DVec3),
     /// Not judged (accelerated or keyframed motion).
@@ -74,7 +76,7 @@ fn sight(f: &Fixture, obj: &SceneObject, view: &View, tc: f64) -> Sight {
         }
     };
     let Some(middle) = seen_at(DVec3::ZERO) else {
-        return Sight::NotAlive(f64::NAN);
+        return Sight::Never;
     };
     let alive: Vec<DVec3> = body_points(obj)
         .into_iter()
@@ -200,7 +202,7 @@ pub fn nothing_in_view_at_all(f: &Fixture, view: &View) -> bool {
     !sights.is_empty()
         && sights
             .iter()
-            .all(|s| matches!(s, Sight::NotAlive(_) | Sight::Outside(_)))
+            .all(|s| matches!(s, Sight::NotAlive(_) | Sight::Outside(_) | Sight::Never))
 }
 
 /// The warning for a moving object that `view` does not show, if it does
@@ -210,7 +212,7 @@ fn missing(f: &Fixture, obj: &SceneObject, view: &View, s: &Sight) -> Option<Str
     let name = &obj.name;
     let what = match s {
         Sight::InView { .. } | Sight::Unknown => return None,
-        Sight::NotAlive(t) if t.is_nan() => format!("{name:?} is never seen from the camera at t = {}", view.camera_t),
+        Sight::Never => format!("{name:?} is never seen from the camera at t = {}", view.camera_t),
         Sight::NotAlive(t) => {
             let (t0, t1) = lifetime(obj, view.model);
             format!(
