@@ -7,7 +7,7 @@
 //! All of it uses the oracle's light-cone solve and the measurements' own
 //! camera model, never the renderer's.
 
-use crate::fixture::time::{lifetime, solve};
+use crate::fixture::solve::{lifetime, line_of_sight, solve};
 use crate::fixture::{CameraTime, Fixture, View};
 use crate::measure::Pinhole;
 use crate::observer::{uniform, Observer};
@@ -25,7 +25,19 @@ const MAX_POINTS: usize = 4096;
 /// The lab time `t` (`--camera-t`) stands for in fixture `f` under `model`:
 /// the same solve as a view's `t` ([`crate::fixture::time`]).
 pub fn resolve_camera_time(f: &Fixture, t: &CameraTime, model: Model) -> Result<f64, String> {
-    solve(f, t, model).map_err(|m| format!("--camera-t: {m}"))
+    solve(&f.spec, &f.scene, t, model).map_err(|m| format!("--camera-t: {m}"))
+}
+
+/// A warning if the camera's field of view is under 5 degrees: more likely
+/// radians, it fills the image with one colour and leaves no edge to measure.
+pub(crate) fn narrow_field_of_view(f: &Fixture) -> Option<String> {
+    let vfov = f.spec.camera.vfov_deg;
+    (vfov < NARROW_VFOV_DEG).then(|| {
+        format!(
+            "camera.vfov_deg is {vfov}: a field of view under {NARROW_VFOV_DEG} degrees; it is in degrees (radians {vfov} would be {:.1} degrees)",
+            vfov.to_degrees()
+        )
+    })
 }
 
 /// How much of an object a camera sees at one camera time.
@@ -151,14 +163,7 @@ fn body_points(obj: &SceneObject) -> Vec<DVec3> {
 /// degrees; every object in view smaller than a pixel. Each names the
 /// field or flag to change.
 pub fn out_of_view(f: &Fixture, view: &View) -> Vec<String> {
-    let mut warnings = Vec::new();
-    let vfov = f.spec.camera.vfov_deg;
-    if vfov < NARROW_VFOV_DEG {
-        warnings.push(format!(
-            "camera.vfov_deg is {vfov}: a field of view under {NARROW_VFOV_DEG} degrees; it is in degrees (radians {vfov} would be {:.1} degrees)",
-            vfov.to_degrees()
-        ));
-    }
+    let mut warnings: Vec<String> = narrow_field_of_view(f).into_iter().collect();
     let sights: Vec<Sight> = f
         .scene
         .objects
@@ -237,7 +242,7 @@ fn hint(f: &Fixture, obj: &SceneObject, view: &View) -> String {
     } else {
         format!("--camera-t auto:{}", obj.name)
     };
-    match solve(f, &auto, view.model) {
+    match solve(&f.spec, &f.scene, &auto, view.model) {
         Ok(t) if matches!(sight(f, obj, view, t), Sight::InView { .. }) => {
             format!(
                 "try {flag} (t = {t:.4}; or \"t\": \"auto:{}\" in a view)",
@@ -260,7 +265,7 @@ fn aim_advice(f: &Fixture) -> String {
     } else {
         "camera.yaw_deg / camera.pitch_deg"
     };
-    let d = crate::fixture::time::line_of_sight(f);
+    let d = line_of_sight(&f.spec.camera);
     format!(
         "the camera at ({}, {}, {}) looks along ({:.3}, {:.3}, {:.3}) with camera.vfov_deg = {}; point {aim} at the object's path or widen camera.vfov_deg",
         c.position.x, c.position.y, c.position.z, d.x, d.y, d.z, c.vfov_deg
@@ -272,7 +277,13 @@ fn aim_advice(f: &Fixture) -> String {
 /// (then the camera's aim and field of view are).
 fn nothing_in_view(f: &Fixture, view: &View) -> String {
     let shown = f.scene.objects.iter().find_map(|o| {
-        let t = solve(f, &CameraTime::AutoObject(o.name.clone()), view.model).ok()?;
+        let t = solve(
+            &f.spec,
+            &f.scene,
+            &CameraTime::AutoObject(o.name.clone()),
+            view.model,
+        )
+        .ok()?;
         matches!(sight(f, o, view, t), Sight::InView { .. }).then(|| (o.name.clone(), t))
     });
     match shown {

@@ -155,4 +155,4 @@ pub(crate) fn background(fixture: &Fixture) -> DVec3 {
     (fixture.scene.background.clamp(DVec3::ZERO, DVec3::ONE) * 255.0).round() / 255.0
 }
 
-pub(crate) use crate::fixture::time::uniform;
+pub(crate) use crate::fixture::solve::uniform;

@@ -9,7 +9,7 @@
 //! view sees; the full view is rendered for the report.
 
 use crate::check::findings::ViewReport;
-use crate::fixture::time::line_of_sight;
+use crate::fixture::solve::line_of_sight;
 use crate::fixture::{Overrides, View};
 use crate::measure::{self, Pinhole};
 use crate::observer::{is_background, Observer};
@@ -205,7 +205,7 @@ impl Observer<'_> {
             (Some(b), cam) => (b, cam),
             (None, _) => match self.find(
                 keep,
-                self.camera_x() + line_of_sight(self.fixture),
+                self.camera_x() + line_of_sight(&self.fixture.spec.camera),
                 self.whole_image_fov(),
             )? {
                 (Some(b), cam) => (b, cam),

@@ -23,6 +23,7 @@ mod mirror;
 mod outline;
 mod period;
 
+use crate::aim::narrow_field_of_view;
 use crate::check::findings::{CheckOutcome, ViewReport};
 use crate::check::probe::Effort;
 use crate::check::row::{difference, Quantity, Reading, Unit};
@@ -85,7 +86,7 @@ pub fn evaluate(
     let units = dimensions(&spec.checks).into_iter().map(Unit::of);
     for ((i, c), unit) in spec.checks.iter().enumerate().zip(units) {
         let failed = |message: String| {
-            let hint = narrow_field_of_view(described);
+            let hint = narrow_field_of_view(described).map_or(String::new(), |w| format!(" ({w})"));
             Quantity::failed(&c.name, unit, format!("checks[{i}]: {message}{hint}"))
         };
         if let MeasureSpec::Named(n) = &c.measure {
@@ -135,18 +136,6 @@ pub fn evaluate(
     }
     outcome.views.extend(named_views);
     Ok(outcome)
-}
-
-/// What a failing row adds when the camera's field of view is under 5
-/// degrees: more likely radians, it fills the image with one colour and
-/// leaves no edge to measure.
-fn narrow_field_of_view(f: &Fixture) -> String {
-    let vfov = f.spec.camera.vfov_deg;
-    if vfov < 5.0 {
-        format!(" (camera.vfov_deg is {vfov}: under 5 degrees; it is in degrees, not radians)")
-    } else {
-        String::new()
-    }
 }
 
 /// The views each declared check (not a named kind) is measured in: its
