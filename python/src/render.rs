@@ -64,17 +64,19 @@ impl Request {
             }
             return vstf::check::golden_view(f, name).map_err(vstf::Error::usage);
         }
+        let model = self.model.as_deref().map(model_named).transpose()?;
         let camera_t = match &self.t {
             None => None,
             Some(TimeArg::At(t)) => Some(*t),
             Some(TimeArg::Named(s)) => {
                 let t = CameraTime::from_str(s)
                     .map_err(|e| vstf::Error::usage(format!("t={s:?}: {e}")))?;
-                Some(vstf::resolve_camera_time(f, &t).map_err(vstf::Error::usage)?)
+                let solving = model.unwrap_or_else(|| f.model(&Overrides::default()));
+                Some(vstf::resolve_camera_time(f, &t, solving).map_err(vstf::Error::usage)?)
             }
         };
         let overrides = Overrides {
-            model: self.model.as_deref().map(model_named).transpose()?,
+            model,
             camera_t,
             width: self.width,
             height: self.height,

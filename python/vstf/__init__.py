@@ -196,7 +196,9 @@ class Row:
     """One checked quantity: measured from the images, expected from first
     principles, the paper's printed figure where it gives one, and the
     tolerance derived from the measurement. A check that could not be
-    measured is a failing row with no numbers (``None``) and its ``error``."""
+    measured is a failing row with no numbers (``None``) and its ``error``.
+    ``camera_t`` is the camera time of the view it was measured in where the
+    view's ``t`` was solved (``"auto:OBJECT"``, ``seen_at_azimuth``)."""
 
     fixture: str
     quantity: str
@@ -207,6 +209,7 @@ class Row:
     unit: str
     passed: bool
     error: Optional[str] = None
+    camera_t: Optional[float] = None
 
 
 @dataclass(frozen=True)

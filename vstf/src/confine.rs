@@ -52,6 +52,23 @@ pub(crate) fn real_folder(root: &Path, dir: &Path) -> Result<(), Error> {
     Ok(())
 }
 
+/// An error if `file` is a symbolic link: a golden image read outside a
+/// project is read only from the fixture's own folder, never through a
+/// link out of it.
+pub(crate) fn no_link(file: &Path) -> Result<(), Error> {
+    match std::fs::symlink_metadata(file) {
+        Ok(meta) if meta.file_type().is_symlink() => Err(Error::io(
+            file,
+            format!(
+                "{} is a symbolic link: vstf reads golden images from the fixture's folder \
+                 only, never through a link",
+                file.display()
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// Removes the files vstf wrote into the pending folder `dir` (and their
 /// temporary files), then the folder if nothing else is left in it.
 pub(crate) fn clear_pending(root: &Path, dir: &Path) -> Result<(), Error> {

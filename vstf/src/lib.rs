@@ -46,12 +46,12 @@ pub mod run;
 pub mod serve;
 pub mod shard;
 
-pub use aim::{out_of_view, resolve_camera_time, CameraTime};
+pub use aim::{nothing_in_view_at_all, out_of_view, resolve_camera_time};
 pub use aov::{aovs, PixelAov};
 pub use budget::{prisms, Budget, Prisms};
 pub use check::{Effort, FixtureReport, Row, Unit};
 pub use error::Error;
-pub use fixture::{FieldError, Fixture, FixtureError, Overrides, View};
+pub use fixture::{CameraTime, FieldError, Fixture, FixtureError, Overrides, View};
 pub use golden::{Comparison, Fuzzy, Store};
 pub use label::{draw_label, label_scale};
 pub use output::{

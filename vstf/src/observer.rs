@@ -11,7 +11,7 @@ use crate::fixture::{Fixture, Overrides};
 use crate::measure::{Kinematics, Pinhole};
 use crate::oracle::{body_point, PointWorldline};
 use glam::DVec3;
-use renderer::{Event, LightSpeed, Model, Motion};
+use renderer::{Event, LightSpeed, Model};
 
 /// The model the fixture names (no overrides).
 pub(crate) fn fixture_model(fixture: &Fixture) -> Model {
@@ -43,7 +43,7 @@ impl<'a> Observer<'a> {
         Observer {
             fixture: f,
             model,
-            camera_t: v.t.unwrap_or(f.spec.camera.t),
+            camera_t: v.camera_t(f.spec.camera.t),
         }
     }
 }
@@ -155,15 +155,4 @@ pub(crate) fn background(fixture: &Fixture) -> DVec3 {
     (fixture.scene.background.clamp(DVec3::ZERO, DVec3::ONE) * 255.0).round() / 255.0
 }
 
-/// The start event and lab velocity of a uniform motion, read from the
-/// scene's description (the velocity of an extrusion is dx / dt); `None`
-/// for keyframed or accelerated motion.
-pub(crate) fn uniform(motion: &Motion) -> Option<(Event, DVec3)> {
-    match motion {
-        Motion::Extrusion { start, extrusion } => Some((*start, extrusion.x / extrusion.t)),
-        Motion::Velocity {
-            start, velocity, ..
-        } => Some((*start, *velocity)),
-        Motion::Keyframes(_) | Motion::Hyperbolic(_) => None,
-    }
-}
+pub(crate) use crate::fixture::solve::uniform;

@@ -7,6 +7,9 @@
 //! `--root`. A binary installed with `cargo install` therefore checks the
 //! project it is run in, and a copy of a project is checked against its own
 //! goldens. `vstf.toml` only marks the root; its content is not read.
+//! Outside any project, `vstf check FILE` takes the file's folder as one
+//! that is only read ([`Project::beside`]): goldens from its `golden/`, no
+//! pending images.
 
 use crate::budget::Budget;
 use crate::error::Error;
@@ -22,6 +25,9 @@ pub const MARKER: &str = "vstf.toml";
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Project {
     root: PathBuf,
+    /// A fixture file's folder outside any project: goldens are read from
+    /// its `golden/`, and nothing is written there.
+    beside_file: bool,
 }
 
 impl Project {
@@ -35,7 +41,10 @@ impl Project {
         let root = root
             .canonicalize()
             .map_err(|e| Error::io(root, format!("--root {}: {e}", root.display())))?;
-        Ok(Project { root })
+        Ok(Project {
+            root,
+            beside_file: false,
+        })
     }
 
     /// The nearest ancestor of `start` (itself included) that holds
@@ -49,6 +58,7 @@ impl Project {
             .find(|dir| is_root(dir))
             .map(|root| Project {
                 root: root.to_path_buf(),
+                beside_file: false,
             })
             .ok_or_else(|| Error::NoProject {
                 message: format!(
@@ -88,7 +98,56 @@ impl Project {
             root: self.root.clone(),
             golden: self.root.join("golden"),
             pending: self.root.join("target").join("vstf"),
+            writes_pending: !self.beside_file,
         }
+    }
+
+    /// The folder of the fixture files `files` outside any project, as a
+    /// project that only reads: goldens from its `golden/` (as `vstf init`
+    /// there would keep them), no pending images written. The files must
+    /// share one folder.
+    pub fn beside(files: &[String]) -> Result<Project, Error> {
+        let mut folder: Option<PathBuf> = None;
+        for f in files {
+            let p = Path::new(f);
+            if !p.is_file() {
+                return Err(Error::NoProject {
+                    message: format!(
+                        "no vstf project here, and {f:?} is not a fixture file: outside a project                          `vstf check` takes fixture files (vstf check FILE.json), or make one with                          `vstf init`"
+                    ),
+                });
+            }
+            let dir = p
+                .canonicalize()
+                .map_err(|e| Error::io(p, format!("{f}: {e}")))?
+                .parent()
+                .map(Path::to_path_buf)
+                .unwrap_or_default();
+            match &folder {
+                Some(d) if *d != dir => {
+                    return Err(Error::usage(format!(
+                        "outside a project the fixture files must share one folder (its golden/                          holds their images): {} and {}",
+                        d.display(),
+                        dir.display()
+                    )))
+                }
+                _ => folder = Some(dir),
+            }
+        }
+        let root = folder.ok_or_else(|| Error::NoProject {
+            message: "no vstf project here: name fixture files (vstf check FILE.json), or make                       a project with `vstf init`"
+                .into(),
+        })?;
+        Ok(Project {
+            root,
+            beside_file: true,
+        })
+    }
+
+    /// Whether this is a fixture file's folder outside any project
+    /// ([`Project::beside`]).
+    pub fn is_beside_file(&self) -> bool {
+        self.beside_file
     }
 
     /// A fixture file: `name_or_path` if it is a file, else

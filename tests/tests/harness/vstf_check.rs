@@ -383,6 +383,7 @@ fn a_one_pixel_change_in_a_real_render_is_caught_without_touching_golden() {
         root: std::path::PathBuf::from("/"),
         golden: real.golden.clone(),
         pending: scratch.clone(),
+        writes_pending: true,
     };
     let mut changed = view.image.clone();
     let p = changed.get_pixel(10, 10).0;

@@ -58,7 +58,13 @@ impl FixtureReport {
             rows: outcome
                 .quantities
                 .into_iter()
-                .map(|q| q.judge(name))
+                .map(|q| {
+                    let camera_t = solved_time(fixture, &q.name);
+                    Row {
+                        camera_t,
+                        ..q.judge(name)
+                    }
+                })
                 .collect(),
             goldens: Vec::new(),
             declared_views: fixture.spec.views.iter().map(|v| v.name.clone()).collect(),
@@ -69,4 +75,13 @@ impl FixtureReport {
     pub fn passed(&self) -> bool {
         self.rows.iter().all(|r| r.pass) && self.goldens.iter().all(|g| g.pass)
     }
+}
+
+/// The camera time of the view the declared check `name` is measured in,
+/// where that view's `t` was solved rather than given as a number.
+fn solved_time(fixture: &Fixture, name: &str) -> Option<f64> {
+    let check = fixture.spec.checks.iter().find(|c| c.name == name)?;
+    let view = check.measure.view()?;
+    let v = fixture.spec.views.iter().find(|v| v.name == view)?;
+    v.solved_t
 }

@@ -9,12 +9,16 @@
 //! view sees; the full view is rendered for the report.
 
 use crate::check::findings::ViewReport;
+use crate::fixture::solve::line_of_sight;
 use crate::fixture::{Overrides, View};
 use crate::measure::{self, Pinhole};
 use crate::observer::{is_background, Observer};
 use glam::DVec3;
 use image::RgbImage;
 use renderer::Traversal;
+
+/// A box of pixels: first column, first row, last column, last row.
+type PixelBox = (u32, u32, u32, u32);
 
 /// Width of the full views: the report's images and the golden images,
 /// the same at every effort so that `cargo test` and `vstf check` compare
@@ -191,30 +195,28 @@ impl Observer<'_> {
     /// along the central line of sight) and a field of view covering the box
     /// with `margin` (fraction) to spare.
     pub(crate) fn aim(&self, keep: &[&str], margin: f64) -> Result<(DVec3, f64), String> {
-        let wide = self.fixture.spec.camera.vfov_deg.max(30.0);
-        let look = self
-            .fixture
-            .spec
-            .camera
-            .look_at
-            .unwrap_or(self.camera_x() + DVec3::NEG_Z);
-        let (img, cam) = self.probe(&Probe {
-            keep,
-            look_at: look,
-            hfov_deg: wide,
-            size: (240, 240),
-            spp: 1,
-        })?;
-        let bg = measure::color(&img, 0, 0);
-        let (mut x0, mut y0, mut x1, mut y1) = (u32::MAX, u32::MAX, 0, 0);
-        for (x, y, _) in img.enumerate_pixels() {
-            if !is_background(measure::color(&img, x, y), bg) {
-                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
-            }
-        }
-        if x0 > x1 {
-            return Err(format!("{}: {keep:?} not in view", self.fixture.name));
-        }
+        let camera = &self.fixture.spec.camera;
+        let wide = camera.vfov_deg.max(30.0);
+        let look = camera.look_at.unwrap_or(self.camera_x() + DVec3::NEG_Z);
+        let found = self.find(keep, look, wide)?;
+        // An object at the image's side may lie outside that square probe:
+        // look again over the whole image, along the camera's own line of sight.
+        let ((x0, y0, x1, y1), cam) = match found {
+            (Some(b), cam) => (b, cam),
+            (None, _) => match self.find(
+                keep,
+                self.camera_x() + line_of_sight(&self.fixture.spec.camera),
+                self.whole_image_fov(),
+            )? {
+                (Some(b), cam) => (b, cam),
+                (None, _) => {
+                    return Err(format!(
+                        "{}: {keep:?} not in view (no part of it is in the image)",
+                        self.fixture.name
+                    ))
+                }
+            },
+        };
         let (cx, cy) = (
             (f64::from(x0) + f64::from(x1) + 1.0) / 2.0,
             (f64::from(y0) + f64::from(y1) + 1.0) / 2.0,
@@ -232,5 +234,41 @@ impl Observer<'_> {
             self.camera_x() + centre,
             (2.0 * half.to_degrees() * (1.0 + margin)).min(170.0),
         ))
+    }
+
+    /// A square probe of `keep` looking at `look` across `hfov_deg`: the
+    /// box of its pixels that are not background (none if all are), and
+    /// the probe's camera.
+    fn find(
+        &self,
+        keep: &[&str],
+        look: DVec3,
+        hfov_deg: f64,
+    ) -> Result<(Option<PixelBox>, Pinhole), String> {
+        let (img, cam) = self.probe(&Probe {
+            keep,
+            look_at: look,
+            hfov_deg,
+            size: (240, 240),
+            spp: 1,
+        })?;
+        let bg = measure::color(&img, 0, 0);
+        let (mut x0, mut y0, mut x1, mut y1) = (u32::MAX, u32::MAX, 0, 0);
+        for (x, y, _) in img.enumerate_pixels() {
+            if !is_background(measure::color(&img, x, y), bg) {
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            }
+        }
+        Ok(((x0 <= x1).then_some((x0, y0, x1, y1)), cam))
+    }
+
+    /// The field of view (degrees) of a square probe that holds the
+    /// fixture's whole image: its wider side, with 10 % to spare.
+    fn whole_image_fov(&self) -> f64 {
+        let (camera, image) = (&self.fixture.spec.camera, &self.fixture.spec.image);
+        let aspect = f64::from(image.width) / f64::from(image.height);
+        // libm: a probe renders the same pixels on every platform.
+        let half = libm::tan(camera.vfov_deg.to_radians() / 2.0) * aspect.max(1.0);
+        (2.0 * libm::atan(half).to_degrees() * 1.1).min(170.0)
     }
 }

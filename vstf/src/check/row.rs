@@ -167,6 +167,7 @@ impl Quantity {
                 && tolerance.is_finite()
                 && (value - self.expected).abs() <= tolerance,
             error: self.error,
+            camera_t: None,
         }
     }
 }
@@ -198,6 +199,11 @@ pub struct Row {
     /// Why the quantity could not be measured, if it could not.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// The camera time of the view measured in, where the view's `t` was
+    /// solved (`auto`, `auto:OBJECT`, `seen_at_azimuth`) rather than given
+    /// as a number; the key is absent from other rows.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera_t: Option<f64>,
 }
 
 /// A number, or NaN where JSON has `null` (as serde_json writes a NaN).

@@ -26,10 +26,17 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), Error> {
     } = args;
     let effort = if quick { Effort::QUICK } else { Effort::FULL };
     let started = Instant::now();
-    let project = Project::locate(root)?;
+    let project = match Project::locate(root) {
+        Err(Error::NoProject { .. }) if root.is_none() && !fixtures.is_empty() => {
+            Project::beside(&fixtures)?
+        }
+        found => found?,
+    };
     let store = project.store();
-    for p in store.remove_stale_temps() {
-        eprintln!("removed {} (left by an interrupted write)", p.display());
+    if store.writes_pending {
+        for p in store.remove_stale_temps() {
+            eprintln!("removed {} (left by an interrupted write)", p.display());
+        }
     }
     let budget = vstf::Budget::forced(force);
     let shard = match shard {
@@ -67,7 +74,29 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), Error> {
         report,
         verbose,
     };
-    conclude(&reports, &asked, &store.pending, started)
+    let pending = store.writes_pending.then_some(store.pending.as_path());
+    if !store.writes_pending && reports.iter().any(|r| r.goldens.iter().any(|g| !g.pass)) {
+        eprintln!("{}", approve_outside_a_project(project.root(), &fixtures));
+    }
+    conclude(&reports, &asked, pending, started)
+}
+
+/// What to run to approve the images of fixture files checked outside any
+/// project, where nothing was written.
+fn approve_outside_a_project(dir: &Path, files: &[String]) -> String {
+    let stems: Vec<String> = files
+        .iter()
+        .filter_map(|f| Path::new(f).file_stem()?.to_str().map(String::from))
+        .collect();
+    format!(
+        "no vstf project here: the golden images were read from {}, and nothing was written. \
+         To approve these images make the folder a project, then check and approve:\n    \
+         vstf init {dir}\n    vstf check --root {dir} {}\n    vstf approve --root {dir} {}",
+        dir.join("golden").display(),
+        files.join(" "),
+        stems.join(" "),
+        dir = dir.display(),
+    )
 }
 
 /// The fixtures `names` checked, each fixture's line printed as it finishes
@@ -109,7 +138,7 @@ pub struct Asked {
 pub fn conclude(
     reports: &[FixtureReport],
     asked: &Asked,
-    pending: &Path,
+    pending: Option<&Path>,
     started: Instant,
 ) -> Result<(), Error> {
     let rows: Vec<Row> = reports.iter().flat_map(|r| r.rows.clone()).collect();
@@ -137,7 +166,7 @@ pub fn conclude(
         "golden: {} passed, {failed} failed",
         goldens.len() - failed
     ));
-    if failed > 0 {
+    if let Some(pending) = pending.filter(|_| failed > 0) {
         eprintln!("golden images differ or are missing: look at the pending images under {}, then `vstf approve --list` and `vstf approve FIXTURE...` if the change is right", pending.display());
     }
     match &asked.json {

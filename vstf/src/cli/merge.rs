@@ -50,7 +50,7 @@ pub fn run(args: MergeArgs) -> Result<(), Error> {
             conclude(
                 &reports,
                 &asked,
-                std::path::Path::new("the shards' folders"),
+                Some(std::path::Path::new("the shards' folders")),
                 started,
             )
         }

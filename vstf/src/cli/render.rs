@@ -50,6 +50,7 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), Error> {
     for warning in vstf::out_of_view(&fixture, &view) {
         eprintln!("warning: {warning}");
     }
+    let empty = vstf::nothing_in_view_at_all(&fixture, &view);
     eprintln!(
         "rendered {} ({} model{}, t_c = {}, {}x{}, {} spp, {} prisms) in {:.2} s -> {}",
         fixture.name,
@@ -67,6 +68,14 @@ pub fn run(root: Option<&Path>, args: RenderArgs) -> Result<(), Error> {
         started.elapsed().as_secs_f64(),
         out.display()
     );
+    if empty {
+        return Err(Error::Failed {
+            message: format!(
+                "nothing is in view: {} shows no object (written to look at; see the warning above)",
+                out.display()
+            ),
+        });
+    }
     Ok(())
 }
 

@@ -11,12 +11,14 @@ use vstf::Budget;
 impl ViewArgs {
     /// The fixture overrides these flags ask for.
     pub fn overrides(&self, fixture: &Fixture) -> Result<Overrides, String> {
+        let model = model_of(self.model, self.lorentz, fixture);
+        let solving = model.unwrap_or_else(|| fixture.model(&Overrides::default()));
         Ok(Overrides {
-            model: model_of(self.model, self.lorentz, fixture),
+            model,
             camera_t: self
                 .camera_t
                 .as_ref()
-                .map(|t| vstf::resolve_camera_time(fixture, t))
+                .map(|t| vstf::resolve_camera_time(fixture, t, solving))
                 .transpose()?,
             width: self.width,
             height: self.height,

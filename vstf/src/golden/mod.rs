@@ -59,6 +59,10 @@ pub struct Store {
     pub golden: PathBuf,
     /// Pending images, `<fixture>/<view>/{actual,expected,diff}.png`.
     pub pending: PathBuf,
+    /// Whether [`Store::check`] writes (and clears) pending images: not
+    /// for a fixture file checked outside any project, beside which
+    /// nothing is written.
+    pub writes_pending: bool,
 }
 
 impl Store {
@@ -101,6 +105,10 @@ impl Store {
         allowed: Fuzzy,
     ) -> Result<Comparison, Error> {
         let path = self.golden_path(fixture, view);
+        if !self.writes_pending {
+            crate::confine::real_folder(&self.root, path.parent().unwrap_or(&self.golden))?;
+            crate::confine::no_link(&path)?;
+        }
         let expected = if path.exists() {
             Some(
                 image::open(&path)
@@ -116,7 +124,9 @@ impl Store {
         let pass =
             measured.is_some_and(|m| m.max <= allowed.max_diff && m.pixels <= allowed.max_pixels);
         let dir = self.pending_dir(fixture, view);
-        let pending = if pass {
+        let pending = if !self.writes_pending {
+            None
+        } else if pass {
             crate::confine::clear_pending(&self.root, &dir)?;
             None
         } else {

@@ -9,6 +9,7 @@ fn temp_store(name: &str) -> Store {
         golden: root.join("golden"),
         pending: root.join("pending"),
         root,
+        writes_pending: true,
     }
 }
 

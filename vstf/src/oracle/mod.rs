@@ -3,12 +3,14 @@
 //! kinematics of special relativity and of Galilean addition
 //! ([`kinematics`]), the quadratic solver both rest on ([`quadratic`]),
 //! extremes over a body's outline or a closed curve ([`extremes`]), the point of an edge
-//! seen at a given place ([`crossing`]), and light reflected by a moving
+//! seen at a given place ([`crossing`]), when a point is seen crossing an
+//! azimuth ([`azimuth`]), and light reflected by a moving
 //! mirror ([`mirror`]).
 //!
 //! Nothing here calls the ray tracer: each formula is written out so that
 //! an error in the tracer's own cannot cancel.
 
+pub mod azimuth;
 pub mod crossing;
 pub mod extremes;
 pub mod kinematics;
@@ -16,6 +18,7 @@ pub mod mirror;
 pub mod quadratic;
 pub mod seen;
 
+pub use azimuth::{seen_at_azimuth, AzimuthCrossing, AzimuthMiss};
 pub use crossing::first_root;
 pub use extremes::{extremes_on_loop, extremes_on_polygon};
 pub use kinematics::{

@@ -336,6 +336,7 @@ mod tests {
             unit: Unit::LUnitsPerTUnit,
             pass,
             error: None,
+            camera_t: None,
         }
     }
 

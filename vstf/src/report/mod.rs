@@ -354,6 +354,7 @@ mod tests {
             unit: Unit::LUnitsPerTUnit,
             pass: false,
             error: None,
+            camera_t: None,
         };
         let text = summary_table(std::slice::from_ref(&row));
         for line in text.lines() {

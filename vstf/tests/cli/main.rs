@@ -25,6 +25,9 @@ mod outputs;
 mod project;
 /// `vstf render` and `vstf list --views`.
 mod render;
+/// A new user's scenes, their views at solved camera times, checked
+/// outside any project.
+mod scenes;
 /// Sharded `animate` and `check` runs and `vstf merge`.
 mod shards;
 /// How a run ends when interrupted or when its reader goes away.

@@ -190,3 +190,83 @@ fn check_never_deletes_through_a_linked_pending_folder() {
     std::fs::remove_file(project.join("target/vstf")).unwrap();
     run(&["check", "moving-cube", "--quick"]).succeeds();
 }
+
+/// Every file under `dir`, sorted, with its bytes.
+fn listing(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                let bytes = std::fs::read(&p).unwrap_or_default();
+                out.push((p, bytes));
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// Whether a folder above `dir` is a project (then nothing outside one can
+/// be tested there).
+fn inside_a_project(dir: &Path) -> bool {
+    dir.ancestors()
+        .skip(1)
+        .any(|d| d.join("fixtures").is_dir() || d.join("vstf.toml").is_file())
+}
+
+/// `vstf check FILE` outside any project checks the file against the
+/// golden images in a `golden/` beside it and writes nothing there: first
+/// MISSING with the commands that approve them (which work as said), then,
+/// with the folder no project again, passing; a changed golden fails, and a
+/// golden that is a link out of the folder is refused, not read.
+#[test]
+fn a_fixture_file_outside_a_project_checks_against_the_golden_beside_it() {
+    let dir = Scratch::new("beside");
+    if inside_a_project(&dir) {
+        return;
+    }
+    std::fs::write(dir.join("ball.json"), FAST_BALL).unwrap();
+    let check = || {
+        vstf()
+            .current_dir(&dir)
+            .env_remove("CI")
+            .args(["check", "ball.json", "--quick"])
+            .run()
+    };
+    let before = listing(&dir);
+    check()
+        .fails()
+        .stdout_has("golden MISSING fixture=ball view=now")
+        .stderr_has("vstf init")
+        .stderr_has("vstf approve --root");
+    assert_eq!(listing(&dir), before, "check wrote beside the file");
+    let root = dir.to_str().unwrap();
+    let run = |args: &[&str]| vstf().current_dir(&dir).env_remove("CI").args(args).run();
+    run(&["init", root]).succeeds();
+    run(&["check", "--root", root, "ball.json", "--quick"]).fails();
+    run(&["approve", "--root", root, "ball"]).succeeds();
+    assert!(dir.join("golden/ball/now.png").is_file());
+    for made in ["vstf.toml", "README.md", ".gitignore"] {
+        std::fs::remove_file(dir.join(made)).unwrap();
+    }
+    std::fs::remove_dir_all(dir.join("fixtures")).unwrap();
+    std::fs::remove_dir_all(dir.join("target")).unwrap();
+    let approved = listing(&dir);
+    check().succeeds().stdout_has("golden: 1 passed, 0 failed");
+    tamper(&dir.join("golden/ball/now.png"));
+    let tampered = listing(&dir);
+    check()
+        .fails()
+        .stdout_has("golden FAIL fixture=ball view=now");
+    assert_eq!(listing(&dir), tampered, "check wrote beside the file");
+    assert_ne!(tampered, approved);
+    let outside = Scratch::new("beside-outside");
+    std::fs::copy(dir.join("golden/ball/now.png"), outside.join("now.png")).unwrap();
+    std::fs::remove_file(dir.join("golden/ball/now.png")).unwrap();
+    std::os::unix::fs::symlink(outside.join("now.png"), dir.join("golden/ball/now.png")).unwrap();
+    check().fails_with("symbolic link");
+}

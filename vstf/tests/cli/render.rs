@@ -210,7 +210,7 @@ fn camera_time_auto_finds_a_moving_object_and_an_empty_render_is_flagged() {
             .run()
     };
     run("0")
-        .succeeds()
+        .fails_with("nothing is in view")
         .stderr_has("warning: \"cube front\" is out of view")
         .stderr_has("try --camera-t \"auto:cube front\"");
     run("auto:cube front")

@@ -24,6 +24,7 @@ mod mirror;
 mod outline;
 mod period;
 
+use crate::aim::narrow_field_of_view;
 use crate::check::findings::{CheckOutcome, ViewReport};
 use crate::check::probe::Effort;
 use crate::check::row::{difference, Quantity, Reading, Unit};
@@ -85,8 +86,10 @@ pub fn evaluate(
     let mut named_views = Vec::new();
     let units = dimensions(&spec.checks).into_iter().map(Unit::of);
     for ((i, c), unit) in spec.checks.iter().enumerate().zip(units) {
-        let failed =
-            |message: String| Quantity::failed(&c.name, unit, format!("checks[{i}]: {message}"));
+        let failed = |message: String| {
+            let hint = narrow_field_of_view(described).map_or(String::new(), |w| format!(" ({w})"));
+            Quantity::failed(&c.name, unit, format!("checks[{i}]: {message}{hint}"))
+        };
         if let MeasureSpec::Named(n) = &c.measure {
             let found = match crate::check::named::run(rendered, n, effort) {
                 Ok(found) => found,
