@@ -232,6 +232,39 @@ fn a_gltf_plates_checkerboard_shows_in_linear_light_where_its_uvs_put_it() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A glTF file given as `{"file": {"path"}}` is chosen by its extension
+/// (`.gltf`, `.glb`) or by `"format": "gltf"`, and renders exactly as the
+/// same file given as `{"gltf": {"path"}}`, texture included; read as OBJ it
+/// is refused, saying what it is (the control).
+#[test]
+fn a_gltf_file_is_chosen_by_its_extension_or_format() {
+    let dir = folder("by-extension");
+    let image = |text: String| {
+        let f = load(&dir, &text).unwrap_or_else(|e| panic!("{e}"));
+        let view = vstf::run::view(&f, &vstf::fixture::Overrides::default()).unwrap();
+        vstf::run::render(&f, &view, renderer::Traversal::Bvh)
+            .unwrap()
+            .pixels
+    };
+    for file in ["external.gltf", "binary.glb"] {
+        let as_gltf = fixture_text(file, 0.0);
+        let expected = image(as_gltf.clone());
+        let by_name = as_gltf.replace(r#"{"gltf":"#, r#"{"file":"#);
+        assert_eq!(image(by_name.clone()), expected, "{file} by extension");
+        let by_format = by_name.replace(r#""path":"#, r#""format":"gltf","path":"#);
+        assert_eq!(image(by_format), expected, "{file} by format");
+        let as_obj = by_name
+            .replace(r#""path":"#, r#""format":"obj","path":"#)
+            .replace(r#""material":{}"#, r#""material":{"color":[1.0,1.0,1.0]}"#);
+        let e = load(&dir, &as_obj).unwrap_err();
+        assert!(
+            e.contains("objects[0].mesh.file.path") && e.contains("this is a glTF file"),
+            "{e}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Moving at 0.8c, the textured glTF plate is measured by declared edge
 /// checks, which pass; rendered 0.02 l.units elsewhere, its edges fail.
 #[test]
