@@ -113,7 +113,7 @@ impl Project {
             if !p.is_file() {
                 return Err(Error::NoProject {
                     message: format!(
-                        "no vstf project here, and {f:?} is not a fixture file: outside a project                          `vstf check` takes fixture files (vstf check FILE.json), or make one with                          `vstf init`"
+                        "no vstf project here, and {f:?} is not a fixture file: outside a project `vstf check` takes fixture files (vstf check FILE.json), or make one with `vstf init`"
                     ),
                 });
             }
@@ -126,7 +126,7 @@ impl Project {
             match &folder {
                 Some(d) if *d != dir => {
                     return Err(Error::usage(format!(
-                        "outside a project the fixture files must share one folder (its golden/                          holds their images): {} and {}",
+                        "outside a project the fixture files must share one folder (its golden/ holds their images): {} and {}",
                         d.display(),
                         dir.display()
                     )))
@@ -135,7 +135,7 @@ impl Project {
             }
         }
         let root = folder.ok_or_else(|| Error::NoProject {
-            message: "no vstf project here: name fixture files (vstf check FILE.json), or make                       a project with `vstf init`"
+            message: "no vstf project here: name fixture files (vstf check FILE.json), or make a project with `vstf init`"
                 .into(),
         })?;
         Ok(Project {

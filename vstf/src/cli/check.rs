@@ -73,6 +73,11 @@ pub fn run(root: Option<&Path>, args: CheckArgs) -> Result<(), Error> {
         json,
         report,
         verbose,
+        files: if store.writes_pending {
+            Vec::new()
+        } else {
+            fixtures.clone()
+        },
     };
     let pending = store.writes_pending.then_some(store.pending.as_path());
     if !store.writes_pending && reports.iter().any(|r| r.goldens.iter().any(|g| !g.pass)) {
@@ -129,6 +134,9 @@ pub struct Asked {
     pub report: Option<std::path::PathBuf>,
     /// The full table and every golden line.
     pub verbose: bool,
+    /// The fixture files checked outside any project, which the commands
+    /// after a failure name instead of the fixtures' names.
+    pub files: Vec<String>,
 }
 
 /// The table, the golden lines, the JSON and report asked for, the
@@ -183,7 +191,7 @@ pub fn conclude(
     }
     let failed_rows = rows.iter().filter(|r| !r.pass).count();
     if failed_rows > 0 || failed > 0 {
-        eprintln!("{}", failures(reports));
+        eprintln!("{}", failures(reports, &asked.files));
     }
     eprintln!(
         "check: {} fixtures, {} rows ({failed_rows} failed), {} golden images ({failed} failed) in {:.1} s",
@@ -252,10 +260,15 @@ fn fixture_line(r: &FixtureReport, seconds: f64, colour: bool) -> String {
     )
 }
 
-/// The failures again, after the table, with the commands that show them.
-fn failures(reports: &[FixtureReport]) -> String {
+/// The failures again, after the table, with the commands that show them;
+/// a fixture checked from its file outside any project is named by `files`.
+fn failures(reports: &[FixtureReport], files: &[String]) -> String {
     let mut out = String::from("failures:");
     for r in reports {
+        let fixture = files
+            .iter()
+            .find(|f| Path::new(f).file_stem().and_then(|s| s.to_str()) == Some(&r.fixture))
+            .unwrap_or(&r.fixture);
         for row in r.rows.iter().filter(|x| !x.pass) {
             out.push_str(&format!(
                 "\n  {} {}: measured {} expected {} (tolerance {} {})",
@@ -266,15 +279,14 @@ fn failures(reports: &[FixtureReport]) -> String {
             out.push_str(&format!("\n  {g}"));
             if r.declared_views.contains(&g.view) {
                 out.push_str(&format!(
-                    "\n    vstf render {} --view {:?} --out target/vstf/{}.png",
-                    r.fixture,
+                    "\n    vstf render {fixture} --view {:?} --out target/vstf/{}.png",
                     g.view,
                     vstf::golden::slug(&format!("{}-{}", r.fixture, g.view))
                 ));
                 if let Some((x, y)) = g.worst_at {
                     out.push_str(&format!(
-                        "\n    vstf debug {} --view {:?} --pixel {x},{y}   (the largest difference, at {}x{})",
-                        r.fixture, g.view, g.size.0, g.size.1
+                        "\n    vstf debug {fixture} --view {:?} --pixel {x},{y}   (the largest difference, at {}x{})",
+                        g.view, g.size.0, g.size.1
                     ));
                 }
             }

@@ -46,6 +46,7 @@ pub fn run(args: MergeArgs) -> Result<(), Error> {
                 json: args.json,
                 report: args.report,
                 verbose: args.verbose,
+                files: Vec::new(),
             };
             conclude(
                 &reports,

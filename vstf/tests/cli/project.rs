@@ -247,7 +247,10 @@ fn a_fixture_file_outside_a_project_checks_against_the_golden_beside_it() {
     let root = dir.to_str().unwrap();
     let run = |args: &[&str]| vstf().current_dir(&dir).env_remove("CI").args(args).run();
     run(&["init", root]).succeeds();
-    run(&["check", "--root", root, "ball.json", "--quick"]).fails();
+    // Inside a project the commands name the fixture (the control).
+    run(&["check", "--root", root, "ball.json", "--quick"])
+        .fails()
+        .stderr_has("vstf render ball --view \"now\"");
     run(&["approve", "--root", root, "ball"]).succeeds();
     assert!(dir.join("golden/ball/now.png").is_file());
     for made in ["vstf.toml", "README.md", ".gitignore"] {
@@ -259,9 +262,13 @@ fn a_fixture_file_outside_a_project_checks_against_the_golden_beside_it() {
     check().succeeds().stdout_has("golden: 1 passed, 0 failed");
     tamper(&dir.join("golden/ball/now.png"));
     let tampered = listing(&dir);
+    // The commands after the failure name the file, which they take
+    // outside a project (the fixture's name alone they would not find).
     check()
         .fails()
-        .stdout_has("golden FAIL fixture=ball view=now");
+        .stdout_has("golden FAIL fixture=ball view=now")
+        .stderr_has("vstf render ball.json --view \"now\"")
+        .stderr_has("vstf debug ball.json --view \"now\"");
     assert_eq!(listing(&dir), tampered, "check wrote beside the file");
     assert_ne!(tampered, approved);
     let outside = Scratch::new("beside-outside");
