@@ -109,11 +109,17 @@ pub fn summary_table(rows: &[Row]) -> String {
         SUMMARY_WIDTH - (2 + 2 + NUMBER + 2 + NUMBER + 2 + (NUMBER + 1) + 1 + UNIT + 1 + 4);
     let mut out = String::new();
     let mut fixture = None;
+    let mut solved_t = None;
     for r in rows {
         if fixture != Some(&r.fixture) {
             let _ = writeln!(out, "{}", r.fixture);
             fixture = Some(&r.fixture);
+            solved_t = None;
         }
+        if let Some(t) = r.camera_t.filter(|t| solved_t != Some(*t)) {
+            let _ = writeln!(out, "  at camera t = {t} (solved from the view's t)");
+        }
+        solved_t = r.camera_t;
         let name = shortened(&r.quantity, quantity);
         let short_num = |x: f64| {
             if r.error.is_some() {
@@ -337,6 +343,37 @@ mod tests {
             .map(|g| (g.number, g.row.as_str(), g.points.len()))
             .collect();
         assert_eq!(seen, [(1, "a", 2), (2, "b", 1), (3, "", 1)]);
+    }
+
+    /// A view's solved camera time is printed once above the rows measured
+    /// in it, the number in full; rows of a view given a number print none.
+    #[test]
+    fn the_summary_records_solved_camera_times() {
+        let row = |quantity: &str, camera_t: Option<f64>| Row {
+            fixture: "rod".into(),
+            quantity: quantity.into(),
+            measured: 1.0,
+            expected: 1.0,
+            paper: None,
+            tolerance: 0.1,
+            unit: Unit::Pixels,
+            pass: true,
+            error: None,
+            camera_t,
+        };
+        let t = 32.234_567_891;
+        let text = summary_table(&[
+            row("left edge", Some(t)),
+            row("right edge", Some(t)),
+            row("static", None),
+        ]);
+        assert_eq!(
+            text.matches("at camera t = 32.234567891 (solved").count(),
+            1,
+            "{text}"
+        );
+        let text = summary_table(&[row("static", None)]);
+        assert!(!text.contains("camera t"), "{text}");
     }
 
     /// Long names, negative and tiny numbers and the widest unit still fit
