@@ -38,7 +38,7 @@ pub struct ViewEntry {
 }
 
 /// Every view of `f`: the declared ones in order, then those of each named
-/// check in order; [`OWN_VIEW`] for a fixture that declares neither. A
+/// check in order; the own view `"view"` for a fixture that declares neither. A
 /// named kind whose views cannot be made (its derived fixture is invalid)
 /// lists none; `vstf check` reports why.
 pub fn views_of(f: &Fixture) -> Vec<ViewEntry> {
