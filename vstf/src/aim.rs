@@ -164,12 +164,7 @@ fn body_points(obj: &SceneObject) -> Vec<DVec3> {
 /// field or flag to change.
 pub fn out_of_view(f: &Fixture, view: &View) -> Vec<String> {
     let mut warnings: Vec<String> = narrow_field_of_view(f).into_iter().collect();
-    let sights: Vec<Sight> = f
-        .scene
-        .objects
-        .iter()
-        .map(|o| sight(f, o, view, view.camera_t))
-        .collect();
+    let sights = sights(f, view);
     for (obj, s) in f.scene.objects.iter().zip(&sights) {
         let moving = uniform(&obj.motion).is_some_and(|(_, v)| v != DVec3::ZERO);
         if let (true, Some(w)) = (moving, missing(f, obj, view, s)) {
@@ -195,15 +190,19 @@ pub fn out_of_view(f: &Fixture, view: &View) -> Vec<String> {
     warnings
 }
 
-/// Whether the image of `view` shows no part of any object (every object
-/// judged), as [`out_of_view`] warns.
-pub fn nothing_in_view_at_all(f: &Fixture, view: &View) -> bool {
-    let sights: Vec<Sight> = f
-        .scene
+/// What `view` shows of each object of `f`, at its camera time.
+fn sights(f: &Fixture, view: &View) -> Vec<Sight> {
+    f.scene
         .objects
         .iter()
         .map(|o| sight(f, o, view, view.camera_t))
-        .collect();
+        .collect()
+}
+
+/// Whether the image of `view` shows no part of any object (every object
+/// judged), as [`out_of_view`] warns.
+pub fn nothing_in_view_at_all(f: &Fixture, view: &View) -> bool {
+    let sights = sights(f, view);
     !sights.is_empty()
         && sights
             .iter()
