@@ -32,3 +32,6 @@ mod scenes;
 mod shards;
 /// How a run ends when interrupted or when its reader goes away.
 mod signals;
+/// The sharded jobs of docs/scaling.md on a one-machine Slurm cluster
+/// (skips without Slurm).
+mod slurm;
