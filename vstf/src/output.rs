@@ -225,14 +225,19 @@ pub(crate) fn remove_stale(dir: &Path) -> Vec<PathBuf> {
         .collect()
 }
 
-/// Encodes an 8-bit RGB image as PNG and writes it atomically.
-pub fn write_png(path: &Path, img: &image::RgbImage) -> Result<(), Error> {
+/// An 8-bit RGB image encoded as PNG, as [`write_png`] writes it.
+pub fn encode_png(img: &image::RgbImage) -> Result<Vec<u8>, image::ImageError> {
     let mut bytes = Vec::new();
     img.write_to(
         &mut std::io::Cursor::new(&mut bytes),
         image::ImageFormat::Png,
-    )
-    .map_err(|e| Error::io(path, format!("cannot encode PNG: {e}")))?;
+    )?;
+    Ok(bytes)
+}
+
+/// Encodes an 8-bit RGB image as PNG and writes it atomically.
+pub fn write_png(path: &Path, img: &image::RgbImage) -> Result<(), Error> {
+    let bytes = encode_png(img).map_err(|e| Error::io(path, format!("cannot encode PNG: {e}")))?;
     write_atomic(path, &bytes)
         .map_err(|e| Error::io(path, format!("cannot write {}: {e}", path.display())))
 }

@@ -19,21 +19,53 @@ fn bench_quick_prints_every_figure() {
     ] {
         assert!(text.contains(section), "{section:?} missing from:\n{text}");
     }
+    // Each goal of the figures beside it.
+    for goal in [
+        "same scene and size (goal <= 1.3)",
+        "(goal >= 100x at 10k)",
+        "goal <= 0.3 s)",
+        "its static frame (goal <= 1.1x)",
+    ] {
+        assert!(text.contains(goal), "{goal:?} missing from:\n{text}");
+    }
     // Section 7: with Embree installed both sides trace the same rays and
-    // hit on the same pixels; without it, it says how to install it.
+    // hit on the same pixels; without it, it says how to install it. Under
+    // the header, the goals of the ratio columns.
     let seven = &text[text.find("\n7. against Embree 3").unwrap()..];
-    let table: Vec<Vec<&str>> = seven
+    let words: Vec<Vec<&str>> = seven
         .lines()
         .map(|l| l.split_whitespace().collect::<Vec<_>>())
-        .filter(|w| w.len() == 9 && w[0].parse::<u64>().is_ok())
+        .collect();
+    let goals = words.iter().find(|w| w.first() == Some(&"goal"));
+    assert_eq!(
+        goals.map(|w| w.join(" ")).as_deref(),
+        Some("goal <= 1.2x <= 1.3x <= 1.5x <= 2x"),
+        "{seven}"
+    );
+    let table: Vec<&Vec<&str>> = words
+        .iter()
+        .filter(|w| w.len() == 12 && w[0].parse::<u64>().is_ok())
         .collect();
     assert_eq!(table.len(), 2, "{seven}");
+    for row in &table {
+        // A delivered frame is its render and then its PNG encoding.
+        let secs = |i: usize| row[i].parse::<f64>().unwrap();
+        assert!(secs(2) >= secs(1), "frame+png under the render: {seven}");
+    }
     if std::path::Path::new("/usr/include/embree3/rtcore.h").is_file() {
         for row in &table {
-            assert_eq!(row[7], row[8], "hits differ from Embree's: {seven}");
-            assert!(row[4].ends_with('x'), "{seven}");
+            assert_eq!(row[10], row[11], "hits differ from Embree's: {seven}");
+            for ratio in [5, 7, 8, 9] {
+                assert!(row[ratio].ends_with('x'), "{seven}");
+            }
         }
-        assert!(seven.contains("peak memory per triangle"), "{seven}");
+        for line in ["peak memory per triangle", "first frame"] {
+            let found = seven.lines().find(|l| l.contains(line));
+            assert!(
+                found.is_some_and(|l| l.ends_with("(goal <= 1.2x)")),
+                "{line}: {seven}"
+            );
+        }
     } else {
         assert!(seven.contains("apt-get install libembree-dev"), "{seven}");
     }
