@@ -35,6 +35,10 @@ pub(crate) const RAYS_PER_SECOND: f64 = 1.0e6;
 /// triangle (the renderer's cap on generated keyframes).
 const MAX_HYPERBOLIC_INTERVALS: u64 = 100_000;
 
+/// The most triangles the renderer's cut of a Born-rigid surface may add
+/// to one object.
+const MAX_BORN_RIGID_ADDED: u64 = 1 << 20;
+
 /// The limits a command stays within unless forced.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Budget {
@@ -191,10 +195,17 @@ fn triangles(o: &renderer::SceneObject) -> u64 {
 /// The triangles an object is extruded as: its own, or for a V_obj under
 /// hyperbolic motion (Born-rigid under the Lorentz transform) the pieces
 /// its curved surface is cut into.
+/// A cut adding more than the renderer's cap is refused by the renderer
+/// (naming the tolerance), so the estimate counts the mesh alone.
 fn surface(o: &renderer::SceneObject) -> u64 {
     match (&o.motion, &o.shape, o.kind) {
         (Motion::Hyperbolic(h), Shape::Mesh(m), renderer::ObjectKind::VObj) => {
-            h.born_rigid_triangles(m)
+            let cut = h.born_rigid_triangles(m);
+            if cut - triangles(o) > MAX_BORN_RIGID_ADDED {
+                triangles(o)
+            } else {
+                cut
+            }
         }
         _ => triangles(o),
     }

@@ -241,6 +241,12 @@ impl Cutter<'_> {
     }
 }
 
+/// Whether a vertex lies below the first level, where A reaches 0 (or
+/// behind the horizon) and no spacing bounds the cut.
+fn too_near(p: &Place) -> bool {
+    p.slab == 0 && p.on != Some(1)
+}
+
 /// How many triangles the cut adds: one per level an edge crosses, summed
 /// over the triangles (a triangle crossed c times is cut into c + 1).
 fn added(levels: &Levels, places: &[Place], mesh: &Mesh) -> u64 {
@@ -264,11 +270,17 @@ impl Hyperbolic {
     /// Born-rigid under this motion on its own: the cut of
     /// [`Hyperbolic::born_rigid_pieces`] within half the tolerance,
     /// counted without being made (for an estimate of the work; objects
-    /// sharing the worldline may cut finer).
+    /// sharing the worldline may cut finer). A mesh that cannot be cut
+    /// (a vertex at or behind the first level) counts as it is: inserting
+    /// it is an error.
     pub fn born_rigid_triangles(&self, mesh: &Mesh) -> u64 {
         let levels = Levels::new(self, 0.5 * self.tolerance);
         let places: Vec<Place> = mesh.vertices.iter().map(|p| levels.place(*p)).collect();
-        (mesh.triangles.len() as u64).saturating_add(added(&levels, &places, mesh))
+        let given = mesh.triangles.len() as u64;
+        if places.iter().any(too_near) {
+            return given;
+        }
+        given.saturating_add(added(&levels, &places, mesh))
     }
 
     /// `mesh` (rest frame) cut so that, Born-rigid under this motion, every
@@ -280,7 +292,7 @@ impl Hyperbolic {
     pub(crate) fn born_rigid_pieces(&self, mesh: &Mesh, tolerance: f64) -> Result<Pieces, Fault> {
         let levels = Levels::new(self, tolerance);
         let places: Vec<Place> = mesh.vertices.iter().map(|p| levels.place(*p)).collect();
-        if let Some(p) = places.iter().find(|p| p.slab == 0 && p.on != Some(1)) {
+        if let Some(p) = places.iter().find(|p| too_near(p)) {
             return Err(Fault::new(
                 F::Hyperbolic(H::Tolerance),
                 K::NearHorizon {

@@ -52,7 +52,7 @@ fn tilted_edges_are_where_the_exact_born_rigid_body_puts_them() {
         &workspace_tests::fixture("born-rigid-plate"),
         "born-rigid-plate",
     );
-    assert_eq!(exact.len(), 4);
+    assert_eq!(exact.len(), 6);
     assert!(
         exact.iter().all(|r| r.pass),
         "{}",
