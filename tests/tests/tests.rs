@@ -29,6 +29,7 @@ mod rendering {
 /// with their snapshotted table and golden images, and the measurements'
 /// and oracle's own models against the renderer's.
 mod harness {
+    mod born_rigid;
     mod debug;
     mod declared;
     mod emulator;

@@ -35,6 +35,10 @@ pub(crate) const RAYS_PER_SECOND: f64 = 1.0e6;
 /// triangle (the renderer's cap on generated keyframes).
 const MAX_HYPERBOLIC_INTERVALS: u64 = 100_000;
 
+/// The most triangles the renderer's cut of a Born-rigid surface may add
+/// to one object.
+const MAX_BORN_RIGID_ADDED: u64 = 1 << 20;
+
 /// The limits a command stays within unless forced.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Budget {
@@ -131,7 +135,8 @@ pub struct Prisms {
 /// straight stretch of its path (one stretch for uniform motion, one per
 /// keyframe interval, and for hyperbolic motion one per generated
 /// interval, h = sqrt(8 tolerance A_min) long, A_min = 1/a less how far a
-/// V_obj reaches behind its reference point; docs/physics.md).
+/// V_obj reaches behind its reference point, half the tolerance for a
+/// V_obj, whose mesh is cut into more triangles; docs/physics.md).
 pub fn prisms(scene: &Scene) -> Prisms {
     let own: Vec<u64> = scene.objects.iter().map(stretches).collect();
     scene
@@ -139,7 +144,7 @@ pub fn prisms(scene: &Scene) -> Prisms {
         .iter()
         .enumerate()
         .fold(Prisms::default(), |p, (i, o)| {
-            let n = triangles(o).saturating_mul(shared(scene, &own, i).max(1));
+            let n = surface(o).saturating_mul(shared(scene, &own, i).max(1));
             match o.motion {
                 Motion::Extrusion { .. } | Motion::Velocity { .. } => Prisms {
                     translated: p.translated.saturating_add(n),
@@ -187,6 +192,25 @@ fn triangles(o: &renderer::SceneObject) -> u64 {
     }
 }
 
+/// The triangles an object is extruded as: its own, or for a V_obj under
+/// hyperbolic motion (Born-rigid under the Lorentz transform) the pieces
+/// its curved surface is cut into.
+/// A cut adding more than the renderer's cap is refused by the renderer
+/// (naming the tolerance), so the estimate counts the mesh alone.
+fn surface(o: &renderer::SceneObject) -> u64 {
+    match (&o.motion, &o.shape, o.kind) {
+        (Motion::Hyperbolic(h), Shape::Mesh(m), renderer::ObjectKind::VObj) => {
+            let cut = h.born_rigid_triangles(m);
+            if cut - triangles(o) > MAX_BORN_RIGID_ADDED {
+                triangles(o)
+            } else {
+                cut
+            }
+        }
+        _ => triangles(o),
+    }
+}
+
 /// One object's stretches: one for uniform motion, one per keyframe
 /// interval, and for hyperbolic motion its own cut's intervals.
 fn stretches(o: &renderer::SceneObject) -> u64 {
@@ -203,8 +227,13 @@ fn stretches(o: &renderer::SceneObject) -> u64 {
                     .fold(0.0, f64::min),
                 _ => 0.0,
             };
+            // A Born-rigid body's cut in time takes half the tolerance.
+            let share = match o.kind {
+                renderer::ObjectKind::VObj => 0.5,
+                renderer::ObjectKind::HObj => 1.0,
+            };
             let a_min = 1.0 / h.acceleration + xi_min;
-            let step = (8.0 * h.tolerance * a_min).sqrt();
+            let step = (8.0 * share * h.tolerance * a_min).sqrt();
             let n = (h.duration / step).ceil();
             if n.is_finite() && n >= 1.0 {
                 (n as u64).min(MAX_HYPERBOLIC_INTERVALS)

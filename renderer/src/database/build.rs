@@ -1,6 +1,7 @@
 //! Insertion: every object of the scene temporally extruded once into
 //! prisms (paper 3, items 1-2), its path cut into straight stretches.
 
+use super::worldlines::{resolve_hyperbolic, shared_cuts, Resolved, Shared};
 use super::{Database, Keyframed, ObjectRecord, Packing, Run, Stretch, Traversal};
 use crate::accel::{rounding_margin, StretchPrisms, TwoLevel};
 use crate::geometry::{
@@ -123,11 +124,12 @@ impl Builder {
     }
 
     /// Extrudes a keyframed object pose to pose, each interval one stretch
-    /// of its path.
+    /// of its path; `parents` names each triangle's triangle of the given
+    /// mesh (empty: its own).
     fn keyframed(
         &mut self,
         object: u32,
-        mesh: &Mesh,
+        (mesh, parents): (&Mesh, &[u32]),
         poses: &[Pose],
         contracted: bool,
     ) -> Result<Vec<Stretch>, Fault> {
@@ -157,7 +159,8 @@ impl Builder {
             };
             let (first, slot) = (self.prism_count(), self.keyframed.prisms.len());
             let kf = &mut self.keyframed;
-            extrude_between(mesh, &w[0], &w[1], object, &mut kf.prisms, &mut kf.corners);
+            let (prisms, corners) = (&mut kf.prisms, &mut kf.corners);
+            extrude_between(mesh, parents, &w[0], &w[1], object, prisms, corners);
             self.runs.push(Run {
                 object,
                 stretch: StretchPrisms {
@@ -235,14 +238,13 @@ impl Builder {
     }
 
     /// Inserts object `i`, returning its path as stretches; hyperbolic
-    /// motion is cut into at least `shared` intervals (its worldline's
-    /// finest cut, [`shared_cuts`]).
+    /// motion is cut as its worldline's objects share ([`shared_cuts`]).
     fn insert(
         &mut self,
         i: usize,
         obj: &SceneObject,
         lorentz: bool,
-        shared: Option<usize>,
+        shared: Option<Shared>,
     ) -> Result<Vec<Stretch>, Fault> {
         match &obj.shape {
             Shape::Sphere { radius: r } if !(*r > 0.0 && r.is_finite()) => {
@@ -257,59 +259,25 @@ impl Builder {
         }
         let mesh = mesh_of(obj);
         let contracted = lorentz && obj.kind == ObjectKind::VObj;
-        let poses = match &obj.motion {
-            Motion::Keyframes(k) => Some(geometry::resolve(k, mesh, contracted)?),
-            Motion::Hyperbolic(h) => {
-                let own = h.intervals(mesh, contracted)?;
-                Some(h.poses_in(mesh, contracted, own.max(shared.unwrap_or(0)))?)
-            }
+        let resolved = match &obj.motion {
+            Motion::Keyframes(k) => Some(Resolved {
+                pieces: None,
+                poses: geometry::resolve(k, mesh, contracted)?,
+            }),
+            Motion::Hyperbolic(h) => Some(resolve_hyperbolic(h, mesh, contracted, shared)?),
             _ => None,
         };
-        match poses {
+        match resolved {
             Some(_) if matches!(obj.shape, Shape::Sphere { .. }) => {
                 Err(Fault::new(F::Motion, K::SphereNotUniform))
             }
-            Some(poses) => self.keyframed(i as u32, mesh, &poses, contracted),
+            Some(r) => {
+                let surface = (r.mesh(mesh), r.parents());
+                self.keyframed(i as u32, surface, &r.poses, contracted)
+            }
             None => Ok(vec![self.uniform(i, obj, lorentz)?]),
         }
     }
-}
-
-/// For each object in hyperbolic motion, the most intervals any object on
-/// the same worldline, moving the same way (Born-rigid or not), needs: all
-/// of them are cut at the same lab times, so that where their meshes meet
-/// (a cube of six faces as six objects) the shared vertices, on the same
-/// hyperbolae, are interpolated between the same events and the edges stay
-/// closed. An object whose own cut fails is left to report its error.
-fn shared_cuts(scene: &Scene, lorentz: bool) -> Vec<Option<usize>> {
-    let motion = |obj: &SceneObject| match &obj.motion {
-        Motion::Hyperbolic(h) => Some((*h, lorentz && obj.kind == ObjectKind::VObj)),
-        _ => None,
-    };
-    let own: Vec<Option<usize>> = scene
-        .objects
-        .iter()
-        .map(|obj| {
-            let (h, born_rigid) = motion(obj)?;
-            h.intervals(mesh_of(obj), born_rigid).ok()
-        })
-        .collect();
-    scene
-        .objects
-        .iter()
-        .map(|obj| {
-            let (h, born_rigid) = motion(obj)?;
-            scene
-                .objects
-                .iter()
-                .zip(&own)
-                .filter(|(other, _)| {
-                    motion(other).is_some_and(|(g, b)| b == born_rigid && h.same_worldline(&g))
-                })
-                .filter_map(|(_, n)| *n)
-                .max()
-        })
-        .collect()
 }
 
 /// Every object inserted, before the acceleration structure is built.
@@ -323,7 +291,7 @@ struct Inserted {
 fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
     let mut b = Builder::default();
     let mut records = Vec::new();
-    let cuts = shared_cuts(scene, lorentz);
+    let cuts = shared_cuts(scene, lorentz, mesh_of);
     for (i, obj) in scene.objects.iter().enumerate() {
         let first = b.keyframed.prisms.len();
         let stretches = b
@@ -456,7 +424,7 @@ impl Database {
     /// the acceleration structure and holding one object's prisms at a
     /// time. `lorentz` only matters for V_obj objects.
     pub fn validate(scene: &Scene, lorentz: bool) -> Result<(), SceneError> {
-        let cuts = shared_cuts(scene, lorentz);
+        let cuts = shared_cuts(scene, lorentz, mesh_of);
         for (i, obj) in scene.objects.iter().enumerate() {
             let mut b = Builder {
                 checking: true,

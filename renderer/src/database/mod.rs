@@ -5,6 +5,7 @@
 mod build;
 mod object;
 mod query;
+mod worldlines;
 
 pub(crate) use object::{ObjectRecord, Stretch};
 

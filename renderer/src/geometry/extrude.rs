@@ -98,9 +98,13 @@ pub fn piece(corners: &PrismCorners, k: usize) -> [Event; 4] {
 /// in `to` (curved temporal extrusion, paper 6, as a chain of straight
 /// ones). The cut follows the rest mesh's [`corner_order`], the same in
 /// every interval, so neighbouring prisms share faces. The caller has
-/// checked that no triangle is degenerate at either keyframe.
+/// checked that no triangle is degenerate at either keyframe. A prism
+/// names the triangle `parents` gives for its own (a piece of a cut
+/// Born-rigid surface names the given mesh's triangle it lies in; empty:
+/// its own).
 pub fn extrude_between(
     mesh: &Mesh,
+    parents: &[u32],
     from: &Pose,
     to: &Pose,
     object: u32,
@@ -113,7 +117,7 @@ pub fn extrude_between(
         let hi = tri.map(|i| Event::new(to.t, to.vertices[i as usize]));
         prisms.push(Prism {
             object,
-            triangle: t as u32,
+            triangle: parents.get(t).copied().unwrap_or(t as u32),
             normal: normal_of(lo),
             end_normal: normal_of(hi),
             span: (from.t, to.t),

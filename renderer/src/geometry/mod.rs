@@ -4,6 +4,7 @@
 //! whole, as its triangle at rest in the comoving frame; the barycentric
 //! solve against a tetrahedron (paper 3.2); and the analytic sphere.
 
+mod born_rigid;
 mod extrude;
 mod filter;
 mod hit;
@@ -12,6 +13,7 @@ mod sphere;
 mod tetrahedron;
 mod triangle;
 
+pub(crate) use born_rigid::Pieces;
 pub use extrude::Tetrahedron;
 pub(crate) use extrude::{
     corner_order, corners_between, extrude_between, piece, Prism, PrismCorners,

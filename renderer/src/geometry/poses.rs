@@ -17,6 +17,10 @@
 //!   a / (1 + a xi), every point on a hyperbola about the same centre (the
 //!   Rindler congruence), so distances in the instantaneous rest frame never
 //!   change. The object must lie in front of the horizon, 1 + a xi > 0.
+//!   The body's surface is curved in the lab (each point on its own
+//!   hyperbola), so its mesh is first cut into pieces flat within the
+//!   tolerance (`born_rigid.rs`); the tolerance then bounds every point of
+//!   the surface, not only the vertices.
 
 use crate::scene::{
     Fault, Hyperbolic, HyperbolicField as H, Keyframe, Mesh, SceneErrorKind as K, SceneField as F,
@@ -50,7 +54,12 @@ impl Hyperbolic {
     /// s(t) = sqrt(A^2 + T^2) + const, and |s''| = A^2 / (A^2 + T^2)^(3/2)
     /// <= 1/A. Linear interpolation over a lab interval h is off by at most
     /// h^2 max|s''| / 8 <= h^2 / (8 A_min), so intervals of
-    /// h = sqrt(8 tolerance A_min) keep every vertex within `tolerance`.
+    /// h = sqrt(8 delta A_min) keep every vertex within delta: the whole
+    /// `tolerance`, or half of it when Born-rigid, whose flat pieces
+    /// between the vertices take the other half
+    /// ([`Hyperbolic::born_rigid_pieces`]). Both errors are along the
+    /// acceleration and of one sign (s is convex in t and in xi), so they
+    /// add: every point of the surface stays within `tolerance`.
     #[cfg(test)]
     pub(crate) fn poses(&self, mesh: &Mesh, born_rigid: bool) -> Result<Vec<Pose>, Fault> {
         self.poses_in(mesh, born_rigid, self.intervals(mesh, born_rigid)?)
@@ -64,6 +73,16 @@ impl Hyperbolic {
             tolerance: other.tolerance,
             ..*self
         } == *other
+    }
+
+    /// The part of the tolerance the cut in lab time may take: all of it,
+    /// or half when Born-rigid (the flat pieces take the rest).
+    pub(crate) fn in_time(&self, born_rigid: bool) -> f64 {
+        if born_rigid {
+            0.5 * self.tolerance
+        } else {
+            self.tolerance
+        }
     }
 
     /// The offset of each vertex of `mesh` along the acceleration (all 0
@@ -95,7 +114,7 @@ impl Hyperbolic {
             ));
         }
         let a_min = 1.0 / a + xi_min;
-        let h = (8.0 * self.tolerance * a_min).sqrt();
+        let h = (8.0 * self.in_time(born_rigid) * a_min).sqrt();
         let count = (self.duration / h).ceil().max(1.0);
         if count.is_nan() || count > MAX_KEYFRAMES as f64 {
             return Err(Fault::new(

@@ -180,6 +180,26 @@ pub enum SceneErrorKind {
         /// The most allowed.
         max: usize,
     },
+    /// A Born-rigid vertex too near its Rindler horizon for the curved
+    /// surface to be cut within the tolerance.
+    NearHorizon {
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// How far in front of the horizon the vertex is (its 1/a + xi).
+        ahead: f64,
+        /// The tolerance below which it is allowed.
+        limit: f64,
+    },
+    /// Cutting a Born-rigid surface within the tolerance would add too
+    /// many triangles.
+    TooManyPieces {
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// The triangles it would add.
+        count: u64,
+        /// The most allowed.
+        max: usize,
+    },
 }
 
 impl fmt::Display for SceneErrorKind {
@@ -212,6 +232,8 @@ impl fmt::Display for SceneErrorKind {
             K::Tolerance => write!(f, "must be a positive finite length"),
             K::BeyondHorizon { acceleration, behind } => write!(f, "a Born-rigid object under proper acceleration {acceleration} must lie within 1/a = {} behind its reference point (the Rindler horizon); a vertex is {behind} behind it", 1.0 / acceleration),
             K::TooManyKeyframes { tolerance, count, max } => write!(f, "tolerance {tolerance} would take {count} keyframes (at most {max}); loosen it"),
+            K::NearHorizon { tolerance, ahead, limit } => write!(f, "a Born-rigid vertex {ahead} l.units in front of its Rindler horizon is too near it for the curved surface to be kept within tolerance {tolerance}; a tolerance below {limit} allows it"),
+            K::TooManyPieces { tolerance, count, max } => write!(f, "tolerance {tolerance} would cut the Born-rigid surface into {count} more triangles (at most {max}); loosen it"),
         }
     }
 }

@@ -96,8 +96,10 @@ pub struct Hyperbolic {
     pub initial_velocity: f64,
     /// Lab time the motion lasts, t.units.
     pub duration: f64,
-    /// Largest allowed lab distance, l.units, between a vertex's generated
-    /// polyline and its exact hyperbola.
+    /// Largest allowed lab distance, l.units, between any point of the
+    /// object's generated surface and its exact position (a vertex's
+    /// polyline and its hyperbola; for a Born-rigid V_obj every point of
+    /// its curved surface too).
     pub tolerance: f64,
 }
 

@@ -127,20 +127,23 @@ fn a_database_over_the_memory_budget_is_refused_with_its_estimate() {
 
 /// The memory budget's estimate of the prisms is never below what the
 /// database holds, for every kind of motion (uniform, keyframed, hyperbolic
-/// H_obj and Born-rigid V_obj), and not far above it.
+/// H_obj and Born-rigid V_obj) and either model, and not far above the
+/// larger of the two (a Born-rigid V_obj, cut into many more triangles than
+/// the same mesh inserted without the Lorentz transform, sets it).
 #[test]
 fn the_prism_estimate_bounds_the_database() {
     for name in workspace_tests::repo().fixture_names() {
         let f = workspace_tests::fixture(&name);
         let p = vstf::prisms(&f.scene);
         let estimate = p.translated + p.keyframed;
-        for lorentz in [false, true] {
-            let built = f.database(lorentz).unwrap().prism_count() as u64;
-            assert!(estimate >= built, "{name}: estimate {estimate} < {built}");
-            assert!(
-                estimate <= 2 * built.max(1),
-                "{name}: estimate {estimate} >> {built}"
-            );
+        let built = [false, true].map(|lorentz| f.database(lorentz).unwrap().prism_count() as u64);
+        for b in built {
+            assert!(estimate >= b, "{name}: estimate {estimate} < {b}");
         }
+        let most = built[0].max(built[1]);
+        assert!(
+            estimate <= 2 * most.max(1),
+            "{name}: estimate {estimate} >> {most}"
+        );
     }
 }

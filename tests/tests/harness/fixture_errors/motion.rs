@@ -192,6 +192,27 @@ fn bad_hyperbolic_motion_names_the_field() {
         true,
     ));
     assert!(e.contains("horizon"), "{e}");
+    // In front of the horizon, but nearer it than the first level of the
+    // cut of its curved surface (about 1.15 times the tolerance): 1e-5 in
+    // front at the default tolerance 1e-4. The error names the tolerance
+    // and a finer one that would allow it (the unit test of the cut builds
+    // with it).
+    let near = serde_json::json!({ "acceleration": [-1.0 / (2.0 + 1e-5), 0, 0], "duration": 2 });
+    let e = error_of(&with(near, true));
+    assert!(
+        e.contains("hyperbolic.tolerance") && e.contains("too near it"),
+        "{e}"
+    );
+    let limit: f64 = e
+        .rsplit("a tolerance below ")
+        .next()
+        .unwrap()
+        .split(|c: char| c.is_whitespace() || c == ';')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(limit > 0.0 && limit < 1e-4, "{e}");
 }
 
 #[test]
