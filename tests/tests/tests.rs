@@ -37,6 +37,7 @@ mod harness {
     mod gltf;
     mod grid_line;
     mod independent_models;
+    mod lensing;
     mod mirrors;
     mod shared_worldline;
     mod spinning;
