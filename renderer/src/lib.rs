@@ -37,7 +37,7 @@
 //! use glam::DVec3;
 //! use renderer::{
 //!     render, Attitude, Camera, Database, Event, FourVector, Light, Material, Mesh, Model,
-//!     Motion, ObjectKind, RenderSettings, Scene, SceneObject, Shape,
+//!     Motion, ObjectKind, RenderSettings, Scene, SceneObject, Shape, Spacetime,
 //! };
 //!
 //! // A 2 x 2 x 2 cube (rest frame) moving along +x at 0.5c, centred on
@@ -62,6 +62,7 @@
 //!         spectrum: None,
 //!     },
 //!     background: DVec3::ZERO,
+//!     spacetime: Spacetime::Flat,
 //! };
 //! let model = Model::RELATIVISTIC;
 //! let db = Database::build(&scene, model.lorentz)?;
@@ -105,5 +106,8 @@ pub use scene::{
     UvMapping,
 };
 pub use shading::{Effects, Shader};
-pub use spacetime::{Boost, Event, FourVector, LightSpeed, Ray};
+pub use spacetime::{
+    Boost, Event, FourVector, Geodesic, Leg, LightSpeed, Ray, Schwarzschild, Spacetime,
+    CHORD_TOLERANCE, MAX_CHORDS,
+};
 pub use trace::{Outcome, RayKind, Recorder, Step, Trace};

@@ -31,6 +31,12 @@ pub(crate) fn exp(x: f64) -> f64 {
     libm::exp(x)
 }
 
+/// The natural logarithm.
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) fn ln(x: f64) -> f64 {
+    libm::log(x)
+}
+
 /// e^x - 1, accurate near 0.
 pub(crate) fn exp_m1(x: f64) -> f64 {
     libm::expm1(x)

@@ -12,6 +12,7 @@ use crate::database::Database;
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
 use crate::shading::{Effects, Shader};
+use crate::spacetime::Spacetime;
 use crate::trace::{NoTrace, Step, Trace};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -88,6 +89,7 @@ pub fn shader<'a>(
         max_depth: settings.max_depth,
         shadows: settings.shadows,
         effects: settings.effects,
+        spacetime: scene.spacetime,
     }
 }
 
@@ -137,6 +139,14 @@ pub fn render_stoppable(
                 return;
             }
             let y0 = 2 * pair as u32;
+            if shader.spacetime != Spacetime::Flat {
+                // Bent rays are searched chord by chord, one pixel at a time.
+                for (i, c) in rows.iter_mut().enumerate() {
+                    let (x, y) = (i as u32 % w, y0 + i as u32 / w);
+                    *c = pixel(&shader, &frame, x, y);
+                }
+                return;
+            }
             for x0 in (0..w).step_by(2) {
                 let mut block = [(0, 0); PACKET];
                 let mut n = 0;

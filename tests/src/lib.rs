@@ -1,10 +1,10 @@
 //! Helpers shared by the workspace-level integration tests in `tests/tests/`.
 
 use glam::DVec3;
-use renderer::SplitMix64;
 use renderer::{
     Event, FourVector, Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject, Shape,
 };
+use renderer::{Spacetime, SplitMix64};
 
 /// A random point in the cube [-r, r]^3.
 pub fn point(rng: &mut SplitMix64, r: f64) -> DVec3 {
@@ -62,6 +62,7 @@ pub fn scene(objects: Vec<SceneObject>) -> Scene {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        spacetime: Spacetime::Flat,
     }
 }
 

@@ -38,6 +38,7 @@ mod harness {
     mod gltf;
     mod grid_line;
     mod independent_models;
+    mod lensing;
     mod mirrors;
     mod shared_worldline;
     mod spinning;

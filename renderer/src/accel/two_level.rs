@@ -208,6 +208,18 @@ impl TwoLevel {
         }
     }
 
+    /// The lab-space box holding every slice's box: all the prisms ever
+    /// are inside it (empty, lower above upper, when there are none).
+    pub(crate) fn spatial_box(&self) -> (DVec3, DVec3) {
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for s in &self.slices {
+            let b = s.bounds.map(f64::from);
+            lo = lo.min(DVec3::new(b[0], b[1], b[2]));
+            hi = hi.max(DVec3::new(b[4], b[5], b[6]));
+        }
+        (lo, hi)
+    }
+
     /// How many time slices the top level holds.
     pub(crate) fn slice_count(&self) -> usize {
         self.slices.len()

@@ -14,6 +14,7 @@ use crate::scene::{
 use crate::spacetime::{Boost, Event, FourVector, Worldline};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::sync::OnceLock;
 
 /// An object's mesh; none for an analytic sphere.
 fn mesh_of(obj: &SceneObject) -> &Mesh {
@@ -416,6 +417,7 @@ impl Database {
             spheres: b.spheres,
             traversal: Traversal::Bvh,
             packing: Packing::Auto,
+            reach: OnceLock::new(),
         })
     }
 

@@ -16,6 +16,7 @@ use crate::geometry::{
 };
 use crate::spacetime::{Event, FourVector};
 use glam::DVec3;
+use std::sync::OnceLock;
 
 /// How rays find candidate prisms and tetrahedra. Both give identical hits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -94,6 +95,8 @@ pub struct Database {
     spheres: Vec<Sphere>,
     traversal: Traversal,
     packing: Packing,
+    /// The lab-space box of all geometry ever, found when first asked for.
+    reach: OnceLock<(DVec3, DVec3)>,
 }
 
 /// The surface a hit lies on: its object, the lab-frame unit normal, and the
@@ -148,6 +151,37 @@ impl Database {
     /// The objects as inserted, in scene order.
     pub fn objects(&self) -> &[ObjectRecord] {
         &self.records
+    }
+
+    /// The greatest distance from `centre` of any point of any object at
+    /// any time (an upper bound; 0 for an empty database, infinite for an
+    /// object that lives for ever).
+    pub fn reach_from(&self, centre: DVec3) -> f64 {
+        let (lo, hi) = *self.reach.get_or_init(|| {
+            let (mut lo, mut hi) = self.accel.spatial_box();
+            for s in &self.spheres {
+                for t in [s.origin.t, s.end] {
+                    let c = if s.velocity == DVec3::ZERO {
+                        s.origin.x
+                    } else {
+                        s.origin.x + s.velocity * (t - s.origin.t)
+                    };
+                    lo = lo.min(c - DVec3::splat(s.radius));
+                    hi = hi.max(c + DVec3::splat(s.radius));
+                }
+            }
+            (lo, hi)
+        });
+        if lo.cmpgt(hi).any() {
+            return 0.0;
+        }
+        let far = (centre - lo).abs().max((hi - centre).abs());
+        let d = far.length();
+        if d.is_nan() {
+            f64::INFINITY
+        } else {
+            d
+        }
     }
 
     /// How many prisms (extruded triangles) there are.

@@ -96,7 +96,7 @@ impl ObjectRecord {
 mod tests {
     use crate::database::Database;
     use crate::scene::{Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject, Shape};
-    use crate::spacetime::{Event, FourVector};
+    use crate::spacetime::{Event, FourVector, Spacetime};
     use glam::DVec3;
 
     /// A scene of the given objects under a light far above.
@@ -110,6 +110,7 @@ mod tests {
                 spectrum: None,
             },
             background: DVec3::ZERO,
+            spacetime: Spacetime::Flat,
         }
     }
 

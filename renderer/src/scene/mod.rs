@@ -24,6 +24,7 @@ pub(crate) static NO_MESH: Mesh = Mesh {
     materials: Vec::new(),
 };
 
+use crate::spacetime::Spacetime;
 use glam::DVec3;
 #[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
@@ -95,4 +96,6 @@ pub struct Scene {
     pub light: Light,
     /// Colour where a ray meets nothing.
     pub background: DVec3,
+    /// The spacetime light crosses: flat, or curved by a mass at rest.
+    pub spacetime: Spacetime,
 }

@@ -2,6 +2,7 @@
 //! with shadow and mirror rays on past light cones, and the colour effects
 //! of motion (Doppler shift and searchlight, paper 6).
 
+mod bent;
 mod carried;
 mod doppler;
 mod frame;

@@ -14,7 +14,7 @@ use crate::database::Database;
 use crate::geometry::Hit;
 use crate::scene::Light;
 use crate::spacetime::{gamma, Event};
-use crate::spacetime::{LightSpeed, Ray};
+use crate::spacetime::{LightSpeed, Ray, Spacetime};
 use crate::trace::{NoTrace, RayKind, Step, Trace};
 use glam::DVec3;
 
@@ -53,6 +53,8 @@ pub struct Shader<'a> {
     pub shadows: bool,
     /// Doppler shift and searchlight.
     pub effects: Effects,
+    /// The spacetime primary rays cross: straight lines, or bent by a mass.
+    pub spacetime: Spacetime,
 }
 impl Shader<'_> {
     /// Colour of the light arriving along `ray` (towards its origin).
@@ -98,7 +100,7 @@ impl Shader<'_> {
 
     /// The rest of [`Shader::carry`], once the closest hit within its
     /// range is known: shade `hit`, or return the background.
-    fn carry_hit<C: Carried, T: Trace>(
+    pub(super) fn carry_hit<C: Carried, T: Trace>(
         &self,
         ray: &Ray,
         hit: Option<Hit>,
@@ -310,6 +312,9 @@ impl Shader<'_> {
         band: &C::At,
         trace: &mut T,
     ) -> C {
+        if let Spacetime::Schwarzschild(hole) = &self.spacetime {
+            return self.bent(hole, ray, band, trace);
+        }
         let Some(hit) = found else {
             return self.carry(ray, 0, RayKind::Primary, band, trace);
         };

@@ -5,11 +5,13 @@
 mod boost;
 mod event;
 mod ray;
+mod schwarzschild;
 
 pub use boost::Boost;
 pub(crate) use event::Worldline;
 pub use event::{Event, FourVector};
 pub use ray::{LightSpeed, Ray};
+pub use schwarzschild::{Geodesic, Leg, Schwarzschild, Spacetime, CHORD_TOLERANCE, MAX_CHORDS};
 
 use glam::DVec3;
 

@@ -2,13 +2,13 @@
 //! anti-aliasing blurs motion, and V_obj clocks and lifetimes are dilated.
 
 use glam::DVec3;
-use renderer::Effects;
 use renderer::{Attitude, LightSpeed, Ray};
 use renderer::{Blink, Shader};
 use renderer::{
     Camera, Database, Event, FourVector, Light, Material, Mesh, Model, Motion, ObjectKind,
     RenderSettings, Scene,
 };
+use renderer::{Effects, Spacetime};
 use vstf::oracle::{retarded, PointWorldline};
 use workspace_tests::object;
 
@@ -46,12 +46,14 @@ fn shadows_are_cast_where_the_light_was_blocked_earlier() {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        spacetime: Spacetime::Flat,
     };
     let db = Database::build(&scene, false).unwrap();
     let shader = |light_speed| Shader {
         db: &db,
         light: &scene.light,
         background: DVec3::ZERO,
+        spacetime: Spacetime::Flat,
         light_speed,
         max_depth: 0,
         shadows: true,
@@ -125,12 +127,14 @@ fn a_mirror_shows_a_moving_object_retarded_over_the_reflected_path() {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        spacetime: Spacetime::Flat,
     };
     let db = Database::build(&scene, false).unwrap();
     let shader = Shader {
         db: &db,
         light: &scene.light,
         background: DVec3::ZERO,
+        spacetime: Spacetime::Flat,
         light_speed: LightSpeed::Finite,
         max_depth: 2,
         shadows: true,
@@ -195,6 +199,7 @@ fn the_shutter_blurs_a_moving_edge_over_its_travel() {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        spacetime: Spacetime::Flat,
     };
     let db = Database::build(&scene, false).unwrap();
     let tc = 20.0; // emission at t = 0: the leading edge is at x = 0
@@ -273,6 +278,7 @@ fn a_v_obj_clock_and_lifetime_are_dilated() {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        spacetime: Spacetime::Flat,
     };
     let rel = Database::build(&scene, true).unwrap();
     let cls = Database::build(&scene, false).unwrap();
@@ -340,12 +346,14 @@ fn a_non_finite_light_direction_reaches_the_pixel_instead_of_shading_unlit() {
                 spectrum: None,
             },
             background: DVec3::ZERO,
+            spacetime: Spacetime::Flat,
         };
         let db = Database::build(&scene, false).unwrap();
         let shader = Shader {
             db: &db,
             light: &scene.light,
             background: DVec3::ZERO,
+            spacetime: Spacetime::Flat,
             light_speed: LightSpeed::Finite,
             max_depth: 0,
             shadows: false,

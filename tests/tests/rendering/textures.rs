@@ -3,6 +3,7 @@
 //! shaded exactly as a material's colour would be, Doppler shift included.
 
 use glam::DVec3;
+use renderer::Spacetime;
 use renderer::{
     render, Attitude, Axes, Camera, Database, Effects, Event, Light, LightSpeed, Material, Mesh,
     Model, Motion, ObjectKind, Ray, RenderSettings, Scene, SceneObject, Shader, Shape, Texture,
@@ -51,6 +52,7 @@ fn scene(objects: Vec<SceneObject>, ambient: f64) -> Scene {
         objects,
         light: Light::white(DVec3::new(4.0, 10.0, 12.0), ambient),
         background: DVec3::ZERO,
+        spacetime: Spacetime::Flat,
     }
 }
 
@@ -141,6 +143,7 @@ fn a_moving_plates_checkerboard_is_its_rest_frame_pattern() {
         db: &db,
         light: &s.light,
         background: DVec3::ZERO,
+        spacetime: Spacetime::Flat,
         light_speed: LightSpeed::Finite,
         max_depth: 0,
         shadows: false,

@@ -10,11 +10,11 @@ pub mod tori;
 use crate::fixture::{Fixture, Overrides, View};
 use crate::project::Project;
 use glam::DVec3;
-use renderer::SplitMix64;
 use renderer::{
     Attitude, Camera, Database, Event, FourVector, Light, Material, Mesh, Model, Motion,
     ObjectKind, RenderSettings, Scene, SceneObject, Shape, Traversal,
 };
+use renderer::{Spacetime, SplitMix64};
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -157,6 +157,7 @@ pub fn tessellated_boxes(n: usize, k: u32, seed: u64) -> Scene {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        spacetime: Spacetime::Flat,
     }
 }
 

@@ -2,7 +2,8 @@
 //! back through an independent model of the camera ([`pinhole`]) to
 //! positions on known planes or to directions, fitted along the edge
 //! ([`fit`]), or as directions fitted by a circle on the sky ([`sky`]); and
-//! colours turned back into chromaticities ([`colorimetry`]).
+//! colours turned back into chromaticities ([`colorimetry`]); areas and
+//! centroids of regions of a colour ([`regions`]).
 //!
 //! Nothing here calls the ray tracer: a measurement that shared its
 //! camera or colour code would cancel that code's errors instead of
@@ -12,6 +13,7 @@
 pub mod colorimetry;
 pub mod fit;
 pub mod pinhole;
+pub mod regions;
 pub mod scan;
 pub mod sky;
 

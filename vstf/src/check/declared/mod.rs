@@ -16,10 +16,12 @@
 
 mod edge;
 
+mod combine;
 mod doppler;
 mod emulated;
 mod grid_line;
 mod lambert;
+mod lensing;
 mod mirror;
 mod outline;
 mod period;
@@ -34,9 +36,12 @@ use crate::fixture::checks::{
     dimensions, CheckSpec, DopplerSpec, MeasureSpec, ToleranceSpec, ViewSpec,
 };
 use crate::fixture::Fixture;
+use crate::measure::Pinhole;
 use crate::observer::Observer;
+use combine::{atan_degrees, ratio};
 use doppler::Panel;
 use glam::DVec3;
+use image::RgbImage;
 use outline::Outline;
 
 /// A declared check's row, kept for the checks that combine it.
@@ -78,6 +83,7 @@ pub fn evaluate(
         marks: vec![Vec::new(); spec.views.len()],
         outlines: Vec::new(),
         panels: Vec::new(),
+        lensed: Vec::new(),
     };
     let mut outcome = CheckOutcome {
         views: Vec::new(),
@@ -186,6 +192,8 @@ struct Evaluation<'a> {
     marks: Vec<Vec<(DVec3, String)>>,
     outlines: Vec<(usize, String, Outline)>,
     panels: Vec<(usize, String, Panel)>,
+    /// The renders of lensing checks, by view and marker.
+    lensed: Vec<(usize, String, (RgbImage, Pinhole))>,
 }
 
 /// A view: its index, declaration, and setups for measuring (on the
@@ -288,6 +296,17 @@ impl<'a> Evaluation<'a> {
             MeasureSpec::Lambert(l) => {
                 let v = self.view(&l.view)?;
                 let (reading, mark) = lambert::measure(&v.measuring, &v.described, l)?;
+                self.mark(v.index, Some(mark), &c.name);
+                Ok(row(reading))
+            }
+            MeasureSpec::Lensing(l) => {
+                let v = self.view(&l.view)?;
+                let effort = self.effort;
+                let key = l.marker.clone().unwrap_or_default();
+                let (rendered, _) = shared(&mut self.lensed, (v.index, &key), || {
+                    lensing::render(&v.measuring, l, effort)
+                })?;
+                let (reading, mark) = lensing::measure(&v.measuring, &v.described, l, rendered)?;
                 self.mark(v.index, Some(mark), &c.name);
                 Ok(row(reading))
             }
@@ -447,24 +466,6 @@ fn same_unit(a: &EarlierRow, b: &EarlierRow) -> Result<(), String> {
             "{:?} is in {} and {:?} in {}",
             a.name, a.unit, b.name, b.unit
         ))
-    }
-}
-
-/// a / b of two independent readings (relative uncertainties in quadrature).
-fn ratio(a: &Reading, b: &Reading) -> Reading {
-    let value = a.value / b.value;
-    Reading {
-        value,
-        tolerance: value.abs() * (a.tolerance / a.value).hypot(b.tolerance / b.value),
-    }
-}
-
-/// atan(r) in degrees of a ratio, its tolerance carried by d atan / dr =
-/// 1 / (1 + r^2).
-fn atan_degrees(r: &Reading) -> Reading {
-    Reading {
-        value: r.value.atan().to_degrees(),
-        tolerance: (r.tolerance / (1.0 + r.value * r.value)).to_degrees(),
     }
 }
 

@@ -1,0 +1,253 @@
+//! Curved spacetime: the field of a mass at rest in the lab (Schwarzschild),
+//! and light's null geodesics through it, cut into straight 4D chords that
+//! the flat database searches one after another.
+//!
+//! Coordinates are Schwarzschild's (t, r, theta, phi) around the mass's
+//! centre, written as lab x, y, z = centre + r (unit direction): far from
+//! the mass they are the lab's. A null geodesic stays in the plane of its
+//! start and its direction; in that plane its orbit u(phi) = 1/r obeys
+//! u'' = 3 M u^2 - u exactly. That orbit is the path of a point pushed by
+//! the central acceleration a = -3 M h^2 x / r^5, h = |x cross v| (Binet's
+//! equation of the orbit under a central force: u'' + u = -F / (h^2 u^2)),
+//! for any starting speed, which is what is integrated here in the lab's
+//! Cartesian form (no pole in the plane; a radial ray has h = 0 and runs
+//! straight, as the radial null geodesic does). Coordinate time follows
+//! from the null condition: (1 - 2M/r) dt^2 = dr^2 / (1 - 2M/r) + r^2 dOmega^2.
+
+use super::{Event, FourVector, LightSpeed, Ray};
+use glam::DVec3;
+
+/// The spacetime light travels through.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum Spacetime {
+    /// Special relativity: every ray is one straight line.
+    #[default]
+    Flat,
+    /// The field of one mass at rest in the lab.
+    Schwarzschild(Schwarzschild),
+}
+
+impl Spacetime {
+    /// The field of `mass` (l.units: M = G m / c^2) centred on `centre`;
+    /// flat when the mass is 0.
+    pub fn of_mass(mass: f64, centre: DVec3) -> Spacetime {
+        if mass == 0.0 {
+            Spacetime::Flat
+        } else {
+            Spacetime::Schwarzschild(Schwarzschild { mass, centre })
+        }
+    }
+}
+
+/// A mass at rest in the lab, its field outside its horizon r = 2M.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Schwarzschild {
+    /// M = G m / c^2, l.units (the horizon's radius is 2M).
+    pub mass: f64,
+    /// Where it is, lab coordinates.
+    pub centre: DVec3,
+}
+
+/// The most a chord strays from its geodesic, in units of M: no point of a
+/// chord is farther than `CHORD_TOLERANCE * M` in space, nor in coordinate
+/// time, from the geodesic's point at the same fraction of its arc.
+pub const CHORD_TOLERANCE: f64 = 1e-3;
+
+/// A ray still bound after this many chords (circling near the photon
+/// sphere r = 3M, each turn dimming its light by e^(2 pi)) is taken as
+/// captured.
+pub const MAX_CHORDS: usize = 20_000;
+
+/// Where a light ray's coordinate distance from the mass is measured from,
+/// beyond which no geometry is searched as curved: `FAR_FACTOR` times the
+/// camera's distance (geometry farther still is met on a straight last chord).
+const FAR_FACTOR: f64 = 1e6;
+
+/// One leg of a geodesic traced backwards from its camera event.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Leg {
+    /// A straight chord: its ray (origin at the chord's later event, the
+    /// direction's spatial part a unit vector, its time part the chord's
+    /// coordinate time per unit length) and its length; the last chord of
+    /// an escaping ray is infinite.
+    Chord(Ray, f64),
+    /// The light came out of the hole: the ray crossed the photon sphere
+    /// inwards (every such null geodesic reaches the horizon), or stayed
+    /// bound past [`MAX_CHORDS`].
+    Captured,
+}
+
+/// A null geodesic traced backwards from an event, chord by chord.
+pub struct Geodesic {
+    mass: f64,
+    centre: DVec3,
+    /// Position relative to the centre, and d/d(lambda) of it.
+    x: DVec3,
+    v: DVec3,
+    /// Coordinate time.
+    t: f64,
+    /// -1 when light takes time (c = 1), 0 when it is instantaneous.
+    time_sign: f64,
+    /// Outgoing beyond this radius, the ray meets no geometry bent.
+    far: f64,
+    chords: usize,
+    done: bool,
+}
+
+/// d/d(lambda) of (x, v, t) (t's with `time_sign` applied by the caller).
+fn derivative(m: f64, x: DVec3, v: DVec3) -> (DVec3, DVec3, f64) {
+    let r2 = x.length_squared();
+    let r = r2.sqrt();
+    let h2 = x.cross(v).length_squared();
+    let a = x * (-3.0 * m * h2 / (r2 * r2 * r));
+    let f = 1.0 - 2.0 * m / r;
+    let vr = x.dot(v) / r;
+    let vt2 = (v.length_squared() - vr * vr).max(0.0);
+    let dt = (vr * vr / (f * f) + vt2 / f).sqrt();
+    (v, a, dt)
+}
+
+/// The longest chord whose sagitta and time error stay within the
+/// tolerance where the geodesic's radius is at least `r`: the path's
+/// curvature is at most 3M / r^2 and dt/ds changes at most 7M / (r^2 f^3)
+/// per unit length (docs/physics.md), so a chord of length L strays by at
+/// most 7 M L^2 / (8 r^2 f^3).
+fn longest_chord(m: f64, r: f64) -> f64 {
+    let f = 1.0 - 2.0 * m / r;
+    if f <= 0.0 {
+        return 0.0;
+    }
+    r * f * f.sqrt() * (8.0 * CHORD_TOLERANCE / 7.0).sqrt()
+}
+
+/// The distance from the origin to the segment from `a` to `b`.
+fn distance_to_segment(a: DVec3, b: DVec3) -> f64 {
+    let d = b - a;
+    let len2 = d.length_squared();
+    let s = if len2 > 0.0 {
+        (-a.dot(d) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + d * s).length()
+}
+
+impl Geodesic {
+    /// The null geodesic along which light reaches `origin` from the
+    /// direction `towards` (a unit vector in the frame of an observer at
+    /// rest there, whose radial lengths are dr / sqrt(1 - 2M/r)), traced
+    /// backwards; `reach` bounds the distance from the centre of all
+    /// geometry.
+    pub fn backwards(
+        s: &Schwarzschild,
+        origin: Event,
+        towards: DVec3,
+        light: LightSpeed,
+        reach: f64,
+    ) -> Geodesic {
+        let x = origin.x - s.centre;
+        let r = x.length();
+        let f = 1.0 - 2.0 * s.mass / r;
+        let v = if r > 0.0 && f > 0.0 {
+            let radial = x / r;
+            let nr = towards.dot(radial);
+            (towards + radial * (nr * (f.sqrt() - 1.0))).normalize()
+        } else {
+            towards
+        };
+        let time_sign = match light {
+            LightSpeed::Finite => -1.0,
+            LightSpeed::Infinite => 0.0,
+        };
+        Geodesic {
+            mass: s.mass,
+            centre: s.centre,
+            x,
+            v,
+            t: origin.t,
+            time_sign,
+            far: reach.min(FAR_FACTOR * r).max(3.0 * s.mass),
+            chords: 0,
+            done: !(r.is_finite() && v.is_finite()),
+        }
+    }
+
+    /// One classical Runge-Kutta step of `h` in lambda from (x, v).
+    fn rk4(&self, h: f64) -> (DVec3, DVec3, f64) {
+        let m = self.mass;
+        let (x, v) = (self.x, self.v);
+        let (k1x, k1v, k1t) = derivative(m, x, v);
+        let (k2x, k2v, k2t) = derivative(m, x + k1x * (h / 2.0), v + k1v * (h / 2.0));
+        let (k3x, k3v, k3t) = derivative(m, x + k2x * (h / 2.0), v + k2v * (h / 2.0));
+        let (k4x, k4v, k4t) = derivative(m, x + k3x * h, v + k3v * h);
+        let dx = (k1x + (k2x + k3x) * 2.0 + k4x) * (h / 6.0);
+        let dv = (k1v + (k2v + k3v) * 2.0 + k4v) * (h / 6.0);
+        let dt = (k1t + 2.0 * (k2t + k3t) + k4t) * (h / 6.0);
+        (x + dx, v + dv, dt)
+    }
+
+    /// The next chord: one step, halved until the chord is within the
+    /// tolerance of the arc it cuts (measured at the least radius it
+    /// passes, less the tolerance itself).
+    fn step(&mut self) -> Leg {
+        let r = self.x.length();
+        let speed = self.v.length();
+        let mut h = 0.95 * longest_chord(self.mass, r) / speed;
+        for _ in 0..40 {
+            let (x, v, dt) = self.rk4(h);
+            let len = (x - self.x).length();
+            let nearest = distance_to_segment(self.x, x) - CHORD_TOLERANCE * self.mass;
+            if len <= longest_chord(self.mass, nearest) && x.is_finite() {
+                let dt = dt * self.time_sign;
+                let ray = Ray {
+                    origin: Event::new(self.t, self.centre + self.x),
+                    direction: FourVector::new(dt / len, (x - self.x) / len),
+                };
+                self.x = x;
+                self.v = v;
+                self.t += dt;
+                return Leg::Chord(ray, len);
+            }
+            h /= 2.0;
+        }
+        Leg::Captured
+    }
+}
+
+impl Iterator for Geodesic {
+    type Item = Leg;
+
+    fn next(&mut self) -> Option<Leg> {
+        if self.done {
+            return None;
+        }
+        let m = self.mass;
+        let r = self.x.length();
+        let outgoing = self.x.dot(self.v) >= 0.0;
+        if r <= 2.0 * m || (r <= 3.0 * m && !outgoing) || self.chords >= MAX_CHORDS {
+            self.done = true;
+            return Some(Leg::Captured);
+        }
+        if r >= self.far && outgoing {
+            // Past every object and moving out: it never turns back (no
+            // turning point of r lies outside the photon sphere on the way out).
+            self.done = true;
+            let (_, _, dt) = derivative(m, self.x, self.v);
+            let n = self.v.normalize();
+            let ray = Ray {
+                origin: Event::new(self.t, self.centre + self.x),
+                direction: FourVector::new(self.time_sign * dt / self.v.length(), n),
+            };
+            return Some(Leg::Chord(ray, f64::INFINITY));
+        }
+        self.chords += 1;
+        let leg = self.step();
+        if leg == Leg::Captured {
+            self.done = true;
+        }
+        Some(leg)
+    }
+}
+
+#[cfg(test)]
+mod tests;
