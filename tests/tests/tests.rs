@@ -38,6 +38,7 @@ mod harness {
     mod grid_line;
     mod independent_models;
     mod mirrors;
+    mod rocket;
     mod shared_worldline;
     mod spinning;
     mod surface_frame;
