@@ -255,3 +255,131 @@ fn a_marker_beyond_the_rindler_horizon_is_never_seen() {
         .iter()
         .any(|&tau| shows(&inside, "far", w.lab_time(tau))));
 }
+
+/// The rocket fixture's text with `edit` applied, parsed: its error.
+fn error_with(edit: impl FnOnce(&mut serde_json::Value)) -> String {
+    let file = workspace_tests::repo().fixtures_dir().join("rocket.json");
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+    edit(&mut v);
+    match Fixture::parse(&v.to_string(), &file) {
+        Ok(_) => panic!("a bad fixture was accepted"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn a_bad_camera_worldline_or_proper_time_is_refused_at_its_field() {
+    for (edit, field, says) in [
+        (
+            (|v: &mut serde_json::Value| {
+                v["camera"]["worldline"]["hyperbolic"]["acceleration"] =
+                    serde_json::json!([0, 0, 0])
+            }) as fn(&mut serde_json::Value),
+            "camera.worldline.hyperbolic.acceleration",
+            "non-zero",
+        ),
+        (
+            |v| v["camera"]["worldline"]["hyperbolic"]["initial_velocity"] = serde_json::json!(1.0),
+            "camera.worldline.hyperbolic.initial_velocity",
+            "slower than light",
+        ),
+        (
+            |v| v["camera"]["worldline"]["hyperbolic"]["duration"] = serde_json::json!(-1.0),
+            "camera.worldline.hyperbolic.duration",
+            "positive",
+        ),
+        (
+            |v| v["camera"]["velocity"] = serde_json::json!([0.1, 0, 0]),
+            "camera.worldline",
+            "not both",
+        ),
+        (
+            |v| v["views"][1]["tau"] = serde_json::json!(30.0),
+            "views[1].tau",
+            "spans proper times [0, 24.9",
+        ),
+        (
+            |v| v["views"][1]["t"] = serde_json::json!(3.0),
+            "views[1].tau",
+            "not both",
+        ),
+        (
+            |v| {
+                v["views"][1].as_object_mut().unwrap().remove("tau");
+                v["views"][1]["t"] = serde_json::json!(100.0)
+            },
+            "views[1].t",
+            "outside its worldline",
+        ),
+        (
+            |v| v["image"]["shutter"] = serde_json::json!(1.0),
+            "camera.worldline.hyperbolic.duration",
+            "lab time -",
+        ),
+    ] {
+        let e = error_with(edit);
+        assert!(e.contains(field) && e.contains(says), "{field}: {e}");
+    }
+    // A proper time without a worldline names the view's tau.
+    let e = error_with(|v| {
+        v["camera"].as_object_mut().unwrap().remove("worldline");
+    });
+    assert!(
+        e.contains("views[0].tau") && e.contains("camera.worldline"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_shutter_integrates_over_the_cameras_proper_time() {
+    let f = workspace_tests::fixture("rocket");
+    let w = worldline(&f);
+    let (tau, shutter) = (8.0, 1.0);
+    let t = w.lab_time(tau);
+    let mut g = f.clone();
+    g.spec.image.shutter = shutter;
+    let view = vstf::run::view(
+        &g,
+        &Overrides {
+            camera_t: Some(t),
+            spp: Some(64),
+            ..Overrides::default()
+        },
+    )
+    .unwrap();
+    let db = vstf::run::database(&g, true, Traversal::Bvh).unwrap();
+    let shader = renderer::shader(&db, &g.scene, view.model, &view.settings);
+    let frame = renderer::Frame {
+        camera: &view.camera,
+        camera_t: view.camera_t,
+        model: view.model,
+        settings: &view.settings,
+    };
+    let mut rec = renderer::Recorder::default();
+    renderer::pixel_traced(&shader, &frame, 48, 36, &mut rec);
+    let times: Vec<f64> = rec
+        .steps
+        .iter()
+        .filter_map(|s| match s {
+            renderer::Step::Sample { camera_t, .. } => Some(*camera_t),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(times.len(), 64);
+    // Every sample's proper time lies within the shutter about tau ...
+    let offsets: Vec<f64> = times.iter().map(|&s| w.proper_time(s) - tau).collect();
+    assert!(
+        offsets.iter().all(|o| o.abs() <= shutter / 2.0 + 1e-9),
+        "{offsets:?}"
+    );
+    assert!(
+        offsets.iter().any(|o| o.abs() > 0.4 * shutter),
+        "{offsets:?}"
+    );
+    // ... so that in lab time they spread gamma times wider, and not
+    // evenly about t: a shutter of lab time would stay within 0.5.
+    let gamma = w.rapidity(tau).cosh();
+    let lab: Vec<f64> = times.iter().map(|&s| s - t).collect();
+    assert!(gamma > 1.3 && lab.iter().any(|d| d.abs() > 0.55), "{lab:?}");
+}
