@@ -317,6 +317,11 @@ fn a_bad_camera_worldline_or_proper_time_is_refused_at_its_field() {
             "camera.worldline.hyperbolic.duration",
             "lab time -",
         ),
+        (
+            |v| v["checks"][0]["measure"]["marker_angle"]["object"] = "nope".into(),
+            "checks[0].measure.marker_angle.object",
+            "no object named",
+        ),
     ] {
         let e = error_with(edit);
         assert!(e.contains(field) && e.contains(says), "{field}: {e}");
@@ -327,6 +332,17 @@ fn a_bad_camera_worldline_or_proper_time_is_refused_at_its_field() {
     });
     assert!(
         e.contains("views[0].tau") && e.contains("camera.worldline"),
+        "{e}"
+    );
+    // marker_angle is for an accelerating camera.
+    let e = error_with(|v| {
+        v["camera"].as_object_mut().unwrap().remove("worldline");
+        v["views"] = serde_json::json!([{"name": "start"}]);
+        let check = serde_json::json!({"marker_angle": {"view": "start", "object": "south"}});
+        v["checks"] = serde_json::json!([{"name": "x", "measure": check}]);
+    });
+    assert!(
+        e.contains("checks[0].measure.marker_angle.view") && e.contains("accelerating camera"),
         "{e}"
     );
 }
@@ -382,4 +398,33 @@ fn a_shutter_integrates_over_the_cameras_proper_time() {
     let gamma = w.rapidity(tau).cosh();
     let lab: Vec<f64> = times.iter().map(|&s| s - t).collect();
     assert!(gamma > 1.3 && lab.iter().any(|d| d.abs() > 0.55), "{lab:?}");
+}
+
+/// The `marker_angle` rows pass; rendered with a camera accelerating 10 %
+/// harder (the velocity of another proper time at each view) or under
+/// the classical model (Galilean aberration), they fail where the camera
+/// moves, and pass at its start, at rest (the control).
+#[test]
+fn the_marker_angle_rows_pass_and_fail_for_a_wrong_rapidity_or_galilean_aberration() {
+    let f = workspace_tests::fixture("rocket");
+    let rows = workspace_tests::declared_rows(&f, &f);
+    assert_eq!(rows.len(), 6);
+    assert!(
+        rows.iter().all(|r| r.pass),
+        "{}",
+        vstf::report::table(&rows)
+    );
+    let harder = workspace_tests::fixture_with("rocket", |v| {
+        let h = &mut v["camera"]["worldline"]["hyperbolic"];
+        (h["acceleration"], h["duration"]) = (serde_json::json!([0, 0, -0.11]), 80.into());
+    });
+    let mut classical = f.clone();
+    classical.spec.model = vstf::fixture::ModelName::Classical;
+    for wrong in [harder, classical] {
+        let rows = workspace_tests::declared_rows(&wrong, &f);
+        for r in &rows {
+            let at_rest = r.quantity.starts_with("start:");
+            assert_eq!(r.pass, at_rest, "{}", vstf::report::table(&rows));
+        }
+    }
 }
