@@ -3,7 +3,7 @@
 //! of static markers (relativistic aberration at its rapidity), and the
 //! Rindler horizon behind it.
 //!
-//! Written from first principles, independently of the renderer's
+//! Written from first principles, independently of the ray tracer's
 //! `Hyperbolic`: proper acceleration integrates to rapidity, phi = phi0 +
 //! a tau; then dt/dtau = cosh(phi) and dx/dtau = sinh(phi).
 
