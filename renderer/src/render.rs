@@ -1,6 +1,8 @@
 //! Rendering an image: one or more light-cone rays per pixel, in parallel,
 //! with 4D anti-aliasing (paper 5): samples jittered over the pixel and over
-//! the shutter interval of the camera's t, which gives motion blur.
+//! the shutter interval of the camera's t, which gives motion blur. A
+//! camera on a worldline takes each sample at its own event and velocity,
+//! the shutter spanning its proper time.
 //!
 //! Each pixel's samples come from a generator seeded by (seed, pixel), and
 //! pixels are independent, so the image is the same bit for bit whatever
@@ -23,7 +25,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 pub struct RenderSettings {
     /// Samples per pixel. 1 samples the pixel centre at the camera's t exactly.
     pub spp: u32,
-    /// Length of the shutter interval of camera time, centred on t_c (t.units).
+    /// Length of the shutter interval of camera time, centred on t_c
+    /// (t.units): lab time for an inertial camera, proper time for a camera
+    /// on a worldline.
     pub shutter: f64,
     /// Seed of the per-pixel sample generators.
     pub seed: u64,
@@ -202,6 +206,7 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
     };
     let mut rngs: [SplitMix64; PACKET] = [rng(0), rng(1), rng(2), rng(3)];
     let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
+    let mut cameras = [*camera; PACKET];
     let mut rays = [camera.ray(0.5, 0.5, camera_t, model.light_speed); PACKET];
     let mut hits = [None; PACKET];
     let mut colors = [DVec3::ZERO; PACKET];
@@ -213,13 +218,14 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
             } else {
                 stratified(&mut rngs[j], (x, y), (k, n), frame)
             };
-            rays[j] = camera.ray(px, py, t, model.light_speed);
+            cameras[j] = camera.at(t);
+            rays[j] = cameras[j].ray(px, py, t, model.light_speed);
         }
         shader
             .db
             .closest_hits(&rays[..m], (0.0, f64::INFINITY), &mut hits[..m]);
         for j in 0..m {
-            let c = shader.observed_found(camera, &rays[j], hits[j]);
+            let c = shader.observed_found(&cameras[j], &rays[j], hits[j]);
             colors[j] = if settings.spp <= 1 { c } else { colors[j] + c };
         }
     }
@@ -241,7 +247,10 @@ fn stratified(
     let (sx, sy) = (k % n, (k / n) % n);
     let px = f64::from(x) + (f64::from(sx) + rng.next_f64()) / f64::from(n);
     let py = f64::from(y) + (f64::from(sy) + rng.next_f64()) / f64::from(n);
-    let t = frame.camera_t + (rng.next_f64() - 0.5) * frame.settings.shutter;
+    let t = frame.camera.sample_time(
+        frame.camera_t,
+        (rng.next_f64() - 0.5) * frame.settings.shutter,
+    );
     (px, py, t)
 }
 
@@ -274,8 +283,9 @@ pub fn pixel_traced<T: Trace>(
                 camera_t: t,
             });
         }
+        let camera = camera.at(t);
         let ray = camera.ray(px, py, t, model.light_speed);
-        shader.observed_traced(camera, &ray, trace)
+        shader.observed_traced(&camera, &ray, trace)
     };
     if settings.spp <= 1 {
         return sample(0, f64::from(x) + 0.5, f64::from(y) + 0.5, camera_t, trace);

@@ -40,6 +40,7 @@ mod harness {
     mod independent_models;
     mod lensing;
     mod mirrors;
+    mod rocket;
     mod shared_worldline;
     mod spinning;
     mod surface_frame;

@@ -1,6 +1,10 @@
 //! Animations (paper 3, item 6): frames differ only by the camera's t; the
 //! 4D database is built once and never touched between frames.
 
+mod clock;
+
+pub use clock::{lab_times, parse_frames, Clock, FrameRange};
+
 use crate::fixture::{Fixture, View};
 use crate::output::video::{self, VideoFormat};
 use crate::output::{write_atomic, write_png};

@@ -7,8 +7,10 @@
 //! check's expectation cannot share a bug with the image it measures.
 
 use crate::fixture::checks::ViewSpec;
+use crate::fixture::CameraSpec;
 use crate::fixture::{Fixture, Overrides};
 use crate::measure::{Kinematics, Pinhole};
+use crate::oracle::rocket::RocketWorldline;
 use crate::oracle::{body_point, PointWorldline};
 use glam::DVec3;
 use renderer::{Event, LightSpeed, Model};
@@ -51,9 +53,12 @@ impl<'a> Observer<'a> {
 impl Observer<'_> {
     /// The camera's position at this setup's time: where the fixture puts
     /// it at its own time, moved on with the camera's velocity (a camera at
-    /// rest stays put).
+    /// rest stays put), or on its worldline.
     pub(crate) fn camera_x(&self) -> DVec3 {
         let c = &self.fixture.spec.camera;
+        if let Some(w) = rocket(c) {
+            return w.position(w.proper_time(self.camera_t));
+        }
         match c.velocity {
             Some(v) if v != DVec3::ZERO => c.position + v * (self.camera_t - c.t),
             _ => c.position,
@@ -91,10 +96,27 @@ impl Observer<'_> {
                 (width, height),
             ),
         };
+        let velocity = match rocket(c) {
+            Some(w) => w.velocity(w.proper_time(self.camera_t)),
+            None => c.velocity.unwrap_or(DVec3::ZERO),
+        };
         still
-            .and_then(|p| p.moving(c.velocity.unwrap_or(DVec3::ZERO), self.kinematics()))
+            .and_then(|p| p.moving(velocity, self.kinematics()))
             .ok_or_else(|| format!("{}: degenerate camera", self.fixture.name))
     }
+}
+
+/// The oracle's worldline of an accelerating camera, read from its
+/// description (its proper time 0 at the camera's `t` and `position`).
+pub(crate) fn rocket(c: &CameraSpec) -> Option<RocketWorldline> {
+    let h = c.worldline?.hyperbolic;
+    Some(RocketWorldline {
+        t0: c.t,
+        x0: c.position,
+        direction: h.acceleration.try_normalize()?,
+        acceleration: h.acceleration.length(),
+        initial_velocity: h.initial_velocity,
+    })
 }
 
 /// Whether a colour is the (flat) background of a probe.

@@ -132,6 +132,32 @@ impl Hyperbolic {
         (math::asinh(a * (t - self.start.t) + math::sinh(phi0)) - phi0) / a
     }
 
+    /// Rapidity at lab time `t`: phi = asinh(a (t - t0) + sinh(phi0)), so
+    /// that sinh(phi) = a T and the lab speed is tanh(phi).
+    pub fn rapidity(&self, t: f64) -> f64 {
+        math::asinh(self.acceleration * (t - self.start.t) + math::sinh(self.initial_rapidity()))
+    }
+
+    /// The lab time at which the reference point's proper time since the
+    /// start is `tau` (the inverse of [`Hyperbolic::proper_time`]):
+    /// t = t0 + (sinh(a tau + phi0) - sinh(phi0)) / a.
+    pub fn lab_time(&self, tau: f64) -> f64 {
+        let a = self.acceleration;
+        let phi0 = self.initial_rapidity();
+        self.start.t + (math::sinh(a * tau + phi0) - math::sinh(phi0)) / a
+    }
+
+    /// The reference point's event and lab velocity at lab time `t`: on
+    /// the hyperbola ([`Hyperbolic::along`] with xi = 0), moving at
+    /// dS/dt = T / sqrt(1/a^2 + T^2) = tanh(phi) along the direction.
+    pub fn event_at(&self, t: f64) -> (Event, DVec3) {
+        let x = self.start.x + self.direction * self.along(0.0, t);
+        let a = self.acceleration;
+        let a_big_t = a * (t - self.start.t) + math::sinh(self.initial_rapidity());
+        let speed = a_big_t / math::hypot(1.0, a_big_t);
+        (Event::new(t, x), self.direction * speed)
+    }
+
     /// Rejects a motion that cannot be generated; the error names the field.
     pub(crate) fn validate(&self) -> Result<(), Fault> {
         let bad = |f: H, k: K| Err(Fault::new(SceneField::Hyperbolic(f), k));

@@ -115,6 +115,12 @@ fn json_rows_have_exactly_the_documented_keys() {
     for o in arr {
         let mut keys: Vec<&str> = o.as_object().unwrap().keys().map(String::as_str).collect();
         keys.sort();
+        // The camera time of a row measured in a view whose time was solved
+        // on loading: only the rocket's views, given by proper time.
+        if keys.contains(&"camera_t") {
+            assert_eq!(o["fixture"], "rocket", "{o}");
+            keys.retain(|k| *k != "camera_t");
+        }
         assert_eq!(
             keys,
             [
@@ -160,7 +166,9 @@ fn the_report_shows_images_markers_and_rows() {
                 v.name
             );
         }
-        for v in &r.views {
+        // Every view a row is measured in marks where first principles put
+        // it (the rocket's horizon views have no rows: tests/tests/harness/rocket.rs).
+        for v in r.views.iter().filter(|v| !v.measured.is_empty()) {
             assert!(
                 !v.markers.is_empty(),
                 "{} {} has no expected points",

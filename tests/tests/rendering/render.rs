@@ -291,11 +291,15 @@ fn bvh_and_brute_force_agree_on_many_moving_boxes() {
 fn a_render_gives_each_pixel_the_colour_it_has_alone() {
     for name in workspace_tests::repo().fixture_names() {
         let f = workspace_tests::fixture(&name);
+        // An accelerating camera (rocket) a while after its worldline's
+        // start, so that the shutter's proper time lies on it.
+        let camera_t = f.spec.camera.worldline.map(|_| f.spec.camera.t + 10.0);
         let mut view = vstf::run::view(
             &f,
             &Overrides {
                 width: Some(23),
                 height: Some(17),
+                camera_t,
                 ..Default::default()
             },
         )

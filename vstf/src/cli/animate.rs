@@ -33,7 +33,7 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), Error> {
             "animate takes its camera times from --frames, not --camera-t",
         ));
     }
-    let times = vstf::animate::frame_times(frames.0, frames.1, step)?;
+    vstf::animate::frame_times(frames.from, frames.to, step)?;
     // What cannot be written (a folder where the file goes, a video
     // without ffmpeg) is refused before anything is rendered or made; a
     // shard's frames need ffmpeg only when merged.
@@ -41,6 +41,7 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), Error> {
     output.preflight(shard == vstf::shard::Shard::WHOLE)?;
     let budget = vstf::Budget::forced(view.force);
     let fixture = vstf::project::load_fixture(root, &fixture, &budget)?;
+    let times = vstf::animate::lab_times(&fixture, frames, step)?;
     // A declared view gives the model, size and samples; the times are the frames'.
     let (fixture, view) = match &view.view {
         Some(declared) => {
@@ -102,11 +103,12 @@ pub fn run(root: Option<&Path>, args: AnimateArgs) -> Result<(), Error> {
     }
     vstf::animate::finish(&output, done, fps)?;
     eprintln!(
-        "animated {} ({} frames, t = {}..{} step {step}, {} model, {}x{}): database built once in {build:.2} s, {:.2} s in all -> {}",
+        "animated {} ({} frames, {} = {}..{} step {step}, {} model, {}x{}): database built once in {build:.2} s, {:.2} s in all -> {}",
         fixture.name,
         done,
-        frames.0,
-        frames.1,
+        clock_name(frames.clock),
+        frames.from,
+        frames.to,
         view.model,
         view.camera.width,
         view.camera.height,
@@ -143,4 +145,12 @@ fn progress_bar(frames: usize) -> indicatif::ProgressBar {
         .expect("a valid template"),
     );
     bar
+}
+
+/// The symbol of the clock the frames step.
+fn clock_name(clock: vstf::animate::Clock) -> &'static str {
+    match clock {
+        vstf::animate::Clock::Lab => "t",
+        vstf::animate::Clock::Proper => "tau",
+    }
 }

@@ -312,10 +312,11 @@ pub struct DebugDiffArgs {
 pub struct AnimateArgs {
     /// A fixture JSON file, or the name of one in fixtures/.
     pub fixture: String,
-    /// Camera times A..B (inclusive).
-    #[arg(long, value_parser = vstf::animate::parse_range, allow_hyphen_values = true)]
-    pub frames: (f64, f64),
-    /// Camera time between frames, t.units.
+    /// Camera times A..B (inclusive): lab times (`A..B` or `t:A..B`), or
+    /// the proper times of a camera with a worldline (`tau:A..B`).
+    #[arg(long, value_parser = vstf::animate::parse_frames, allow_hyphen_values = true)]
+    pub frames: vstf::animate::FrameRange,
+    /// Camera time between frames, t.units (on the clock `--frames` names).
     #[arg(long, default_value_t = 1.0)]
     pub step: f64,
     /// A folder (PNG sequence), FILE.gif (animated GIF), FILE.png (APNG),

@@ -4,9 +4,9 @@
 //! ([`kinematics`]), the quadratic solver both rest on ([`quadratic`]),
 //! extremes over a body's outline or a closed curve ([`extremes`]), the point of an edge
 //! seen at a given place ([`crossing`]), when a point is seen crossing an
-//! azimuth ([`azimuth`]), and light reflected by a moving
-//! mirror ([`mirror`]), and light bent by a mass at rest
-//! ([`schwarzschild`]).
+//! azimuth ([`azimuth`]), light reflected by a moving
+//! mirror ([`mirror`]), light bent by a mass at rest
+//! ([`schwarzschild`]), and what an accelerating camera sees ([`rocket`]).
 //!
 //! Nothing here calls the ray tracer: each formula is written out so that
 //! an error in the tracer's own cannot cancel.
@@ -18,6 +18,7 @@ pub mod kinematics;
 pub mod mirror;
 pub mod quadratic;
 pub mod schwarzschild;
+pub mod rocket;
 pub mod seen;
 
 pub use azimuth::{seen_at_azimuth, AzimuthCrossing, AzimuthMiss};

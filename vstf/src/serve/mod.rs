@@ -238,7 +238,7 @@ impl Site {
                     })
                     .collect();
                 Some(serde_json::json!({"name": name, "views": views, "mover_speed": mover_speed(&f),
-                    "checked": checked.get(&name)}))
+                    "clock": camera_clock(&f), "checked": checked.get(&name)}))
             })
             .collect();
         serde_json::Value::Array(list)
@@ -347,4 +347,23 @@ pub fn serve_with(
     let server = Server::bind(project, port, limits)?;
     ready(&format!("http://{}/", server.addr()));
     server.run()
+}
+
+/// What the page needs to step an accelerating camera's proper time on
+/// its time slider: the worldline's start (lab time `t0`), proper
+/// acceleration `a`, initial speed `v0` and the proper time at its end;
+/// `null` for a camera without a worldline. The page turns a proper time
+/// tau into the lab time it asks for, t = t0 + (sinh(phi0 + a tau) -
+/// sinh(phi0)) / a with phi0 = atanh(v0) (docs/physics.md, "The
+/// accelerated observer").
+fn camera_clock(f: &Fixture) -> serde_json::Value {
+    match crate::fixture::camera_worldline(&f.spec.camera) {
+        Ok(Some(w)) => serde_json::json!({
+            "t0": w.start.t,
+            "a": w.acceleration,
+            "v0": w.initial_velocity,
+            "tau_end": w.proper_time(w.start.t + w.duration),
+        }),
+        _ => serde_json::Value::Null,
+    }
 }

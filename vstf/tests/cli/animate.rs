@@ -149,3 +149,53 @@ fn animate_resume_renders_only_missing_and_broken_frames() {
         "an old frame was left"
     );
 }
+
+/// `--frames tau:A..B` steps an accelerating camera's proper time: its
+/// frames are the views declared at those proper times, bit for bit;
+/// plain `A..B` steps lab time, which the camera's clock lags.
+#[test]
+fn animate_steps_an_accelerating_cameras_proper_time_or_lab_time() {
+    let scratch = Scratch::new("rocket");
+    let animate = |frames: &str, out: &str| {
+        vstf()
+            .args(["animate", "rocket", "--view", "start", "--frames", frames])
+            .args(["--step", "4", "--out"])
+            .arg(scratch.join(out))
+            .run()
+            .succeeds();
+        (0..3)
+            .map(|i| rgb(&scratch.join(out).join(format!("frame-{i:05}.png"))))
+            .collect::<Vec<_>>()
+    };
+    let proper = animate("tau:0..8", "proper");
+    for (i, view) in [(1, "cruise"), (2, "fast")] {
+        let still = scratch.join(format!("{view}.png"));
+        vstf()
+            .args(["render", "rocket", "--view", view, "--out"])
+            .arg(&still)
+            .run()
+            .succeeds();
+        assert_eq!(proper[i].as_raw(), rgb(&still).as_raw(), "{view}");
+    }
+    let lab = animate("0..8", "lab");
+    assert_eq!(
+        lab[0].as_raw(),
+        proper[0].as_raw(),
+        "both start at the start"
+    );
+    assert_ne!(
+        lab[2].as_raw(),
+        proper[2].as_raw(),
+        "lab time 8 is not proper time 8"
+    );
+    vstf()
+        .args(["animate", "rocket", "--frames", "tau:0..100", "--out"])
+        .arg(scratch.join("x"))
+        .run()
+        .fails_with("--frames: proper time 25");
+    vstf()
+        .args(["animate", "teaser", "--frames", "tau:0..1", "--out"])
+        .arg(scratch.join("y"))
+        .run()
+        .fails_with("camera.worldline");
+}

@@ -22,6 +22,7 @@ mod emulated;
 mod grid_line;
 mod lambert;
 mod lensing;
+mod marker_angle;
 mod mirror;
 mod outline;
 mod period;
@@ -32,9 +33,8 @@ use crate::check::probe::Effort;
 use crate::check::row::{difference, Quantity, Reading, Unit};
 use crate::check::views::{own_observer, with_view_effects, OWN_VIEW};
 use crate::error::Error;
-use crate::fixture::checks::{
-    dimensions, CheckSpec, DopplerSpec, MeasureSpec, ToleranceSpec, ViewSpec,
-};
+use crate::fixture::checks::{dimensions, CheckSpec, DopplerSpec, MeasureSpec};
+use crate::fixture::checks::{ToleranceSpec, ViewSpec};
 use crate::fixture::Fixture;
 use crate::measure::Pinhole;
 use crate::observer::Observer;
@@ -54,9 +54,8 @@ struct EarlierRow {
     camera_t: Option<f64>,
 }
 
-/// The declared checks of `f`, rendered from `f` and expected from `f`. A
-/// check that cannot be measured gives its failing row with the reason
-/// (see [`evaluate`]).
+/// The declared checks of `f`, rendered and expected from `f`; a check that
+/// cannot be measured gives its failing row with the reason (see [`evaluate`]).
 pub fn run(f: &Fixture, effort: &Effort) -> Result<CheckOutcome, Error> {
     evaluate(f, f, effort)
 }
@@ -323,6 +322,12 @@ impl<'a> Evaluation<'a> {
                     mirror::measure(&v.measuring, &v.described, r, v.spec, self.effort)?;
                 self.mark(v.index, Some(mark), &c.name);
                 Ok(row(reading))
+            }
+            MeasureSpec::MarkerAngle(m) => {
+                let v = self.view(&m.view)?;
+                let (r, mark) = marker_angle::measure(&v.measuring, &v.described, m, self.effort)?;
+                self.mark(v.index, Some(mark), &c.name);
+                Ok(row(r))
             }
             MeasureSpec::Difference(_)
             | MeasureSpec::Ratio(_)

@@ -108,3 +108,41 @@ fn the_speed_stays_below_light() {
         assert!(said.contains("slower than light"), "{said}");
     }
 }
+
+/// An accelerating camera's fixture gives the page its clock (the
+/// worldline's start, acceleration, initial speed and last proper time),
+/// from which the time slider steps the camera's proper time; a camera
+/// without a worldline gives none (the control). A lab time off the
+/// worldline is refused, naming the field.
+#[test]
+fn an_accelerating_camera_gives_the_slider_its_proper_time() {
+    let s = start("clock", Limits::default());
+    let rocket = include_str!("../../../../fixtures/rocket.json");
+    std::fs::write(s.dir.0.join("fixtures/rocket.json"), rocket).unwrap();
+    let (status, list) = s.get("/api/fixtures");
+    assert_eq!(status, 200);
+    let list: serde_json::Value = serde_json::from_str(&list).unwrap();
+    let clock = |name: &str| {
+        list.as_array()
+            .unwrap()
+            .iter()
+            .find(|f| f["name"] == name)
+            .unwrap()["clock"]
+            .clone()
+    };
+    let c = clock("rocket");
+    assert_eq!(
+        (c["t0"].as_f64(), c["a"].as_f64(), c["v0"].as_f64()),
+        (Some(0.0), Some(0.1), Some(0.0))
+    );
+    let tau_end = c["tau_end"].as_f64().unwrap();
+    assert!((tau_end - 6f64.asinh() / 0.1).abs() < 1e-9, "{c}");
+    assert!(clock("tiny").is_null());
+    assert_eq!(s.get("/api/render?fixture=rocket&view=cruise&t=30").0, 200);
+    let (status, said) = s.get("/api/render?fixture=rocket&view=cruise&t=100");
+    assert_eq!(status, 400, "{said}");
+    assert!(
+        said.contains("camera.worldline.hyperbolic.duration"),
+        "{said}"
+    );
+}
