@@ -17,8 +17,8 @@ pub mod extremes;
 pub mod kinematics;
 pub mod mirror;
 pub mod quadratic;
-pub mod schwarzschild;
 pub mod rocket;
+pub mod schwarzschild;
 pub mod seen;
 
 pub use azimuth::{seen_at_azimuth, AzimuthCrossing, AzimuthMiss};
