@@ -428,3 +428,73 @@ fn the_marker_angle_rows_pass_and_fail_for_a_wrong_rapidity_or_galilean_aberrati
         }
     }
 }
+
+/// The `rocket-doppler` fixture's Doppler rows (static blackbody markers
+/// seen by the accelerating camera, D from the colour) pass; rendered with
+/// a camera accelerating 10 % harder (another rapidity at each view) or
+/// with a camera that stays at rest (its velocity ignored: D = 1), they
+/// fail where the camera moves and pass at its start (the control).
+#[test]
+fn the_doppler_rows_of_static_markers_pass_and_fail_for_a_wrong_or_ignored_velocity() {
+    let f = workspace_tests::fixture("rocket-doppler");
+    let rows = workspace_tests::declared_rows(&f, &f);
+    assert_eq!(rows.len(), 6);
+    assert!(
+        rows.iter().all(|r| r.pass),
+        "{}",
+        vstf::report::table(&rows)
+    );
+    let harder = workspace_tests::fixture_with("rocket-doppler", |v| {
+        let h = &mut v["camera"]["worldline"]["hyperbolic"];
+        (h["acceleration"], h["duration"]) = (serde_json::json!([0, 0, -0.11]), 80.into());
+    });
+    let at_rest = workspace_tests::fixture_with("rocket-doppler", |v| {
+        let h = &mut v["camera"]["worldline"]["hyperbolic"];
+        (h["acceleration"], h["duration"]) = (serde_json::json!([0, 0, -1e-9]), 80.into());
+    });
+    for wrong in [harder, at_rest] {
+        let rows = workspace_tests::declared_rows(&wrong, &f);
+        for r in &rows {
+            let at_start = r.quantity.starts_with("start:");
+            assert_eq!(r.pass, at_start, "{}", vstf::report::table(&rows));
+        }
+    }
+}
+
+/// With an accelerating camera a Doppler check reads a static object at
+/// the centre of its image: a moving object or a `point` is refused at
+/// its field.
+#[test]
+fn a_doppler_check_of_a_moving_marker_or_a_point_is_refused_with_an_accelerating_camera() {
+    let file = workspace_tests::repo()
+        .fixtures_dir()
+        .join("rocket-doppler.json");
+    let text = std::fs::read_to_string(&file).unwrap();
+    for (edit, field, says) in [
+        (
+            (|v: &mut serde_json::Value| {
+                let o = v["objects"][0].as_object_mut().unwrap();
+                o.remove("position");
+                o.insert(
+                    "worldline".into(),
+                    serde_json::json!({"start": [0, 0, -1, 8], "velocity": [0.1, 0, 0], "proper_lifetime": 1000}),
+                );
+            }) as fn(&mut serde_json::Value),
+            "checks[0].measure.doppler.object",
+            "at rest in the lab",
+        ),
+        (
+            |v| v["checks"][1]["measure"]["doppler"]["point"] = serde_json::json!([0, 0, 0.6]),
+            "checks[1].measure.doppler.point",
+            "remove point",
+        ),
+    ] {
+        let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        edit(&mut v);
+        let e = match Fixture::parse(&v.to_string(), &file) {
+            Ok(_) => panic!("a bad fixture was accepted"),
+            Err(e) => e.to_string(),
+        };
+        assert!(e.contains(field) && e.contains(says), "{e}");
+    }
+}

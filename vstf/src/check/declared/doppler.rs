@@ -13,6 +13,10 @@
 //! the pixel's lab direction) arrives with D = 1 / (gamma (1 - u.k)).
 //! Tolerances follow from the 8-bit quantisation of the measured pixels
 //! (half a step on each channel).
+//!
+//! A static object seen by an accelerating camera ([`Panel::accelerating`])
+//! is the same factor in the camera's instantaneous rest frame, where the
+//! source moves with the camera's velocity reversed.
 
 use crate::check::path::BodyPath;
 use crate::check::probe::{Effort, Probe};
@@ -274,6 +278,68 @@ impl Panel {
         })
     }
 
+    /// Measures a static object `name` seen by the fixture's accelerating
+    /// camera (docs/physics.md, "The accelerated observer"): the object
+    /// alone through the fixture's own camera at the view's time, one
+    /// sample per pixel, read at the pixel nearest the centroid of its
+    /// image (it and its eight neighbours must see it). Expected from the
+    /// oracle's worldline at the view's proper time: in the camera's frame
+    /// the source moves with -v (v = tanh(phi) along the acceleration), so
+    /// D = 1 / (gamma (1 - v.n)), n the pixel's line of sight in the
+    /// camera's own frame (towards the source). The sample lies somewhere
+    /// in the pixel: the tolerance adds the largest change of D from the
+    /// pixel's centre to its corners and edge midpoints.
+    pub(super) fn accelerating(
+        measuring: &Observer,
+        described: &Observer,
+        name: &str,
+        effort: &Effort,
+    ) -> Result<Panel, String> {
+        let f = described.fixture;
+        let source = blackbody_of(f, name)?;
+        let w = crate::observer::rocket(&f.spec.camera).ok_or("the camera has no worldline")?;
+        let obj = f.object(name)?;
+        let at = obj.motion.uniform().ok_or("the object moves")?.0.x;
+        let v = w.velocity(w.proper_time(described.camera_t));
+        let size = measuring.size(effort.probe);
+        let bg = measuring.fixture.spec.background;
+        let mut pixels = Vec::new();
+        let mut spot = None;
+        for variant in variants(measuring.fixture) {
+            let s = Observer {
+                fixture: &variant,
+                ..*measuring
+            };
+            let (img, _) = s.measuring_render(&[name], size, 1)?;
+            let (x, y) = match spot {
+                Some(p) => p,
+                None => *spot.insert(inner_centroid(&img, bg).ok_or_else(|| {
+                    format!("{name:?} is not seen over 3 x 3 pixels in the view")
+                })?),
+            };
+            pixels.push(measure::color(&img, x, y));
+        }
+        let (x, y) = spot.expect("four variants were rendered");
+        let pinhole = super::marker_angle::rest_pinhole(measuring, size)?;
+        let factor = |dx: f64, dy: f64| {
+            let n = pinhole.rest_direction(f64::from(x) + dx, f64::from(y) + dy);
+            doppler_factor(-v, -n)
+        };
+        let expected = factor(0.5, 0.5);
+        let slack = [0.0, 0.5, 1.0]
+            .iter()
+            .flat_map(|&dx| [0.0, 0.5, 1.0].map(|dy| (dx, dy)))
+            .map(|(dx, dy)| (factor(dx, dy) - expected).abs())
+            .fold(0.0, f64::max);
+        Ok(Panel {
+            pixels: [pixels[0], pixels[1], pixels[2], pixels[3]],
+            source,
+            expected,
+            slack,
+            mark: Some((at - described.camera_x()).normalize()),
+        })
+    }
+
     /// The factor D read `from` the colour or a searchlight ratio, and the
     /// factor expected.
     /// A pixel with a channel at full scale (clipped) reads no factor: an
@@ -309,4 +375,23 @@ impl Panel {
         };
         Ok((reading, self.expected))
     }
+}
+
+/// The pixel nearest the centroid of the image's non-background pixels,
+/// if it and its eight neighbours all see something.
+fn inner_centroid(img: &RgbImage, bg: DVec3) -> Option<(u32, u32)> {
+    let seen = |x: u32, y: u32| !crate::observer::is_background(measure::color(img, x, y), bg);
+    let (mut sx, mut sy, mut n) = (0.0, 0.0, 0.0);
+    for (x, y, _) in img.enumerate_pixels() {
+        if seen(x, y) {
+            (sx, sy, n) = (sx + f64::from(x), sy + f64::from(y), n + 1.0);
+        }
+    }
+    if n == 0.0 {
+        return None;
+    }
+    let (x, y) = ((sx / n).round() as u32, (sy / n).round() as u32);
+    let inside = x >= 1 && y >= 1 && x + 1 < img.width() && y + 1 < img.height();
+    let all = inside && (x - 1..=x + 1).all(|i| (y - 1..=y + 1).all(|j| seen(i, j)));
+    all.then_some((x, y))
 }

@@ -67,7 +67,7 @@ pub(super) fn measure(
 
 /// The measurements' pinhole of the fixture's camera at rest: lines of
 /// sight in the camera's own frame.
-fn rest_pinhole(setup: &Observer, size: (u32, u32)) -> Result<Pinhole, String> {
+pub(super) fn rest_pinhole(setup: &Observer, size: (u32, u32)) -> Result<Pinhole, String> {
     let c = &setup.fixture.spec.camera;
     let p = match c.look_at {
         Some(look_at) => Pinhole::looking_at(c.position, look_at, c.up, c.vfov_deg, size),

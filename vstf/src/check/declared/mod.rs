@@ -383,7 +383,11 @@ impl<'a> Evaluation<'a> {
         let effort = self.effort;
         let (panel, new) = match d.point {
             None => shared(&mut self.panels, (v.index, &d.object), || {
-                Panel::measure(&v.measuring, &v.described, &d.object, effort)
+                if crate::observer::rocket(&v.described.fixture.spec.camera).is_some() {
+                    Panel::accelerating(&v.measuring, &v.described, &d.object, effort)
+                } else {
+                    Panel::measure(&v.measuring, &v.described, &d.object, effort)
+                }
             })?,
             Some(r) => {
                 let key = format!("{} at {r:?}", d.object);
