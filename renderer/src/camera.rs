@@ -134,6 +134,11 @@ impl Camera {
         })
     }
 
+    /// The same camera (attitude and image) at `event`.
+    pub fn placed(self, event: Event) -> Camera {
+        Camera { event, ..self }
+    }
+
     /// The same camera moving with lab `velocity`, its rays carried into the
     /// lab as `model` says; `None` at or above light speed.
     pub fn moving(self, velocity: DVec3, model: Model) -> Option<Camera> {

@@ -41,6 +41,7 @@ mod harness {
     mod lensing;
     mod mirrors;
     mod rocket;
+    mod rocket_keyframes;
     mod shared_worldline;
     mod spinning;
     mod surface_frame;

@@ -109,7 +109,7 @@ impl Observer<'_> {
 /// The oracle's worldline of an accelerating camera, read from its
 /// description (its proper time 0 at the camera's `t` and `position`).
 pub(crate) fn rocket(c: &CameraSpec) -> Option<RocketWorldline> {
-    let h = c.worldline?.hyperbolic;
+    let h = c.worldline.as_ref()?.hyperbolic?;
     Some(RocketWorldline {
         t0: c.t,
         x0: c.position,

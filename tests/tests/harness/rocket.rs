@@ -18,8 +18,9 @@ fn worldline(f: &Fixture) -> RocketWorldline {
     let c = &f.spec.camera;
     let h = c
         .worldline
-        .expect("the rocket camera has a worldline")
-        .hyperbolic;
+        .as_ref()
+        .and_then(|w| w.hyperbolic)
+        .expect("the rocket camera has a hyperbolic worldline");
     RocketWorldline {
         t0: c.t,
         x0: c.position,

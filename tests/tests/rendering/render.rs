@@ -293,7 +293,12 @@ fn a_render_gives_each_pixel_the_colour_it_has_alone() {
         let f = workspace_tests::fixture(&name);
         // An accelerating camera (rocket) a while after its worldline's
         // start, so that the shutter's proper time lies on it.
-        let camera_t = f.spec.camera.worldline.map(|_| f.spec.camera.t + 10.0);
+        let camera_t = f
+            .spec
+            .camera
+            .worldline
+            .as_ref()
+            .map(|_| f.spec.camera.t + 10.0);
         let mut view = vstf::run::view(
             &f,
             &Overrides {
