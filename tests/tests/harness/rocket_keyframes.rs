@@ -2,7 +2,8 @@
 //! "The accelerated observer"), on the `rocket` scene: a frame at a
 //! keyframe is the inertial camera's at that event and velocity bit for
 //! bit; two keyframes of uniform motion reproduce the inertial moving
-//! camera between them; bad keyframes are refused at their field.
+//! camera between them; views' `tau` and `animate --frames tau:` read the
+//! camera's proper time; bad keyframes are refused at their field.
 
 use glam::DVec3;
 use renderer::{Image, Traversal};
@@ -170,9 +171,9 @@ fn bad_keyframes_are_refused_at_their_field() {
             "instantaneous",
         ),
         (
-            |v| v["views"] = json!([{ "name": "k", "tau": 1.0 }]),
+            |v| v["views"] = json!([{ "name": "k", "tau": 30.0 }]),
             "views[0].tau",
-            "lab times only",
+            "span proper times",
         ),
         (
             |v| {
@@ -201,4 +202,46 @@ fn bad_keyframes_are_refused_at_their_field() {
         "{e}"
     );
     assert_eq!(camera_at(&f, 0.0).velocity, DVec3::new(0.0, 0.0, -0.2));
+}
+
+#[test]
+fn a_views_proper_time_on_keyframes_is_read_on_the_cameras_clock() {
+    // Uniform motion at 0.6c from lab time 2: proper time tau is reached at
+    // lab time 2 + tau / 0.8.
+    let keys = json!([
+        { "t": 2.0, "position": [0, 0, 0], "velocity": [0, 0, -0.6] },
+        { "t": 22.0, "position": [0, 0, -12], "velocity": [0, 0, -0.6] }
+    ]);
+    let f = workspace_tests::fixture_with("rocket", |v| {
+        edit_keyframes(v, keys, 2.0);
+        v["views"] = json!([{ "name": "k", "tau": 4.0 }]);
+    });
+    let t = f.spec.views[0].camera_t(f.spec.camera.t);
+    assert!((t - 7.0).abs() < 1e-12, "{t}");
+    // The control: the lab time is not the proper time.
+    assert!((t - 2.0 - 4.0).abs() > 0.9);
+}
+
+#[test]
+fn animate_steps_the_proper_time_of_a_camera_on_keyframes() {
+    let keys = json!([
+        { "t": 2.0, "position": [0, 0, 0], "velocity": [0, 0, -0.6] },
+        { "t": 22.0, "position": [0, 0, -12], "velocity": [0, 0, -0.6] }
+    ]);
+    let f = workspace_tests::fixture_with("rocket", |v| edit_keyframes(v, keys, 2.0));
+    let tau = vstf::animate::parse_frames("tau:0..8").unwrap();
+    let times = vstf::animate::lab_times(&f, tau, 4.0).unwrap();
+    assert_eq!(times.len(), 3);
+    for (t, want) in times.iter().zip([2.0, 7.0, 12.0]) {
+        assert!((t - want).abs() < 1e-12, "{t} vs {want}");
+    }
+    // Lab time is stepped as given; a proper time past the keyframes'
+    // 16 is refused.
+    let lab = vstf::animate::parse_frames("2..10").unwrap();
+    assert_eq!(
+        vstf::animate::lab_times(&f, lab, 4.0).unwrap(),
+        [2.0, 6.0, 10.0]
+    );
+    let past = vstf::animate::parse_frames("tau:0..20").unwrap();
+    assert!(vstf::animate::lab_times(&f, past, 4.0).is_err());
 }

@@ -45,11 +45,15 @@ pub fn lab_times(f: &Fixture, range: FrameRange, step: f64) -> Result<Vec<f64>, 
     let times = frame_times(range.from, range.to, step)?;
     let w = crate::fixture::camera_worldline(&f.spec.camera)
         .map_err(|e| format!("{}: {e}", f.file.display()))?;
-    if crate::fixture::has_keyframes(&f.spec.camera) && range.clock == Clock::Proper {
-        return Err(format!(
-            "--frames tau:{}..{}: a camera on keyframes (camera.worldline.keyframes) takes lab times only (A..B)",
-            range.from, range.to
-        ));
+    if range.clock == Clock::Proper {
+        let keys = crate::fixture::camera_keyframes(&f.spec.camera)
+            .map_err(|e| format!("{}: {e}", f.file.display()))?;
+        if let Some(k) = keys {
+            return times
+                .iter()
+                .map(|&tau| k.lab_time(tau, "--frames").map_err(|e| e.to_string()))
+                .collect();
+        }
     }
     if range.clock == Clock::Lab {
         // A camera on a worldline is asked only for times on it.
