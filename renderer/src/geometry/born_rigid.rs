@@ -268,7 +268,7 @@ fn added(levels: &Levels, places: &[Place], mesh: &Mesh) -> u64 {
 impl Hyperbolic {
     /// How many triangles `mesh` (rest frame) is extruded as when
     /// Born-rigid under this motion on its own: the cut of
-    /// [`Hyperbolic::born_rigid_pieces`] within half the tolerance,
+    /// `Hyperbolic::born_rigid_pieces` within half the tolerance,
     /// counted without being made (for an estimate of the work; objects
     /// sharing the worldline may cut finer). A mesh that cannot be cut
     /// (a vertex at or behind the first level) counts as it is: inserting
