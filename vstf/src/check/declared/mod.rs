@@ -38,21 +38,11 @@ use crate::fixture::checks::{ToleranceSpec, ViewSpec};
 use crate::fixture::Fixture;
 use crate::measure::Pinhole;
 use crate::observer::Observer;
-use combine::{atan_degrees, ratio};
+use combine::{atan_degrees, ratio, same_unit, velocity, EarlierRow};
 use doppler::Panel;
 use glam::DVec3;
 use image::RgbImage;
 use outline::Outline;
-
-/// A declared check's row, kept for the checks that combine it.
-struct EarlierRow {
-    name: String,
-    measured: Reading,
-    expected: f64,
-    unit: Unit,
-    /// The camera time of the view measured in (edges and corners).
-    camera_t: Option<f64>,
-}
 
 /// The declared checks of `f`, rendered and expected from `f`; a check that
 /// cannot be measured gives its failing row with the reason (see [`evaluate`]).
@@ -465,41 +455,4 @@ fn shared<'c, T>(
         }
     };
     Ok((&cache[k].2, new))
-}
-
-fn same_unit(a: &EarlierRow, b: &EarlierRow) -> Result<(), String> {
-    if a.unit == b.unit {
-        Ok(())
-    } else {
-        Err(format!(
-            "{:?} is in {} and {:?} in {}",
-            a.name, a.unit, b.name, b.unit
-        ))
-    }
-}
-
-/// (b - a) / (t_b - t_a) of two positions measured in views at camera times
-/// t_a and t_b: an apparent velocity, on a plane or in the image.
-fn velocity(a: &EarlierRow, b: &EarlierRow) -> Result<(Reading, f64, Unit), String> {
-    same_unit(a, b)?;
-    let unit = match a.unit {
-        Unit::LUnits => Unit::LUnitsPerTUnit,
-        Unit::Pixels => Unit::PixelsPerTUnit,
-        other => {
-            return Err(format!(
-                "a velocity needs positions in l.units or px, not {other}"
-            ))
-        }
-    };
-    let dt = b
-        .camera_t
-        .zip(a.camera_t)
-        .map(|(tb, ta)| tb - ta)
-        .ok_or("a velocity needs two edge or corner checks")?;
-    let d = difference(&b.measured, &a.measured);
-    let measured = Reading {
-        value: d.value / dt,
-        tolerance: d.tolerance / dt.abs(),
-    };
-    Ok((measured, (b.expected - a.expected) / dt, unit))
 }
