@@ -89,7 +89,7 @@ mod shading;
 mod spacetime;
 mod trace;
 
-pub use camera::{Attitude, Camera, Kinematics, Model};
+pub use camera::{Attitude, Camera, CameraWorldline, Kinematics, Model};
 pub use color::{
     band_nm, chromaticity, cmf, xyz, xyz_to_rgb, Spectrum, SpectrumError, SpectrumErrorKind,
     SpectrumField, BAND_LEN,
@@ -107,7 +107,7 @@ pub use scene::{
 };
 pub use shading::{Effects, Shader};
 pub use spacetime::{
-    Boost, Event, FourVector, Geodesic, Leg, LightSpeed, Ray, Schwarzschild, Spacetime,
-    CHORD_TOLERANCE, MAX_CHORDS,
+    Boost, Event, FourVector, Geodesic, Leg, LightSpeed, Ray, Schwarzschild, Spacetime, Waypoint,
+    WaypointWindow, CHORD_TOLERANCE, MAX_CHORDS, MAX_WINDOW_WAYPOINTS,
 };
 pub use trace::{Outcome, RayKind, Recorder, Step, Trace};

@@ -41,10 +41,10 @@ pub fn render_until(
     view: &View,
     stop: &AtomicBool,
 ) -> Result<Image, Error> {
-    if let Some(w) = view.camera.worldline {
-        crate::fixture::camera_frame_within(&w, view.camera_t, view.settings.shutter)
-            .map_err(|e| Error::Fixture(e.in_file(&fixture.file)))?;
-    }
+    let view = &fixture
+        .spec
+        .retimed(view)
+        .map_err(|e| Error::Fixture(e.in_file(&fixture.file)))?;
     let frame = renderer::Frame {
         camera: &view.camera,
         camera_t: view.camera_t,

@@ -166,11 +166,6 @@ fn bad_keyframes_are_refused_at_their_field() {
             "exactly one",
         ),
         (
-            |v| v["image"]["shutter"] = json!(0.5),
-            "image.shutter",
-            "instantaneous",
-        ),
-        (
             |v| v["views"] = json!([{ "name": "k", "tau": 30.0 }]),
             "views[0].tau",
             "span proper times",
