@@ -3,7 +3,7 @@
 //! rendered at the lab time where the camera's clock reads its value.
 
 use super::{frame_times, parse_range};
-use crate::fixture::Fixture;
+use crate::fixture::{CameraClock, Fixture};
 
 /// The clock `--frames` counts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,39 +43,31 @@ pub fn parse_frames(s: &str) -> Result<FrameRange, String> {
 /// without one, or beyond its duration).
 pub fn lab_times(f: &Fixture, range: FrameRange, step: f64) -> Result<Vec<f64>, String> {
     let times = frame_times(range.from, range.to, step)?;
-    let w = crate::fixture::camera_worldline(&f.spec.camera)
+    let clock = crate::fixture::camera_clock(&f.spec.camera)
         .map_err(|e| format!("{}: {e}", f.file.display()))?;
-    if range.clock == Clock::Proper {
-        let keys = crate::fixture::camera_keyframes(&f.spec.camera)
-            .map_err(|e| format!("{}: {e}", f.file.display()))?;
-        if let Some(k) = keys {
-            return times
-                .iter()
-                .map(|&tau| k.lab_time(tau, "--frames").map_err(|e| e.to_string()))
-                .collect();
-        }
-    }
     if range.clock == Clock::Lab {
         // A camera on a worldline is asked only for times on it.
-        if let Some(w) = w {
-            for &t in &times {
-                crate::fixture::camera_frame_within(&w, t, 0.0)
-                    .map_err(|e| format!("--frames {}..{}: {e}", range.from, range.to))?;
-            }
+        for &t in &times {
+            let on = match &clock {
+                Some(CameraClock::Hyperbolic(w)) => crate::fixture::camera_frame_within(w, t, 0.0),
+                Some(CameraClock::Keyframes(k)) => k.event_at(t).map(|_| ()),
+                None => Ok(()),
+            };
+            on.map_err(|e| format!("--frames {}..{}: {e}", range.from, range.to))?;
         }
         return Ok(times);
     }
-    let w = w.ok_or_else(|| {
-            format!(
-                "--frames tau:{}..{}: proper time is for a camera with camera.worldline; {} has none (give lab times, A..B)",
-                range.from,
-                range.to,
-                f.file.display()
-            )
-        })?;
+    let clock = clock.ok_or_else(|| {
+        format!(
+            "--frames tau:{}..{}: proper time is for a camera with camera.worldline; {} has none (give lab times, A..B)",
+            range.from,
+            range.to,
+            f.file.display()
+        )
+    })?;
     times
         .iter()
-        .map(|&tau| crate::fixture::camera_lab_time(&w, tau, "--frames").map_err(|e| e.to_string()))
+        .map(|&tau| clock.lab_time(tau, "--frames").map_err(|e| e.to_string()))
         .collect()
 }
 

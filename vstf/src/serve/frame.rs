@@ -11,6 +11,8 @@ pub(super) struct Frame {
     pub(super) fixture: String,
     pub(super) view: String,
     pub(super) t: Option<f64>,
+    /// The camera's proper time instead of `t` (a camera on a worldline).
+    pub(super) tau: Option<f64>,
     pub(super) model: Option<Model>,
     pub(super) speed: f64,
 }
@@ -77,10 +79,17 @@ impl Frame {
                     .ok_or_else(|| format!("model={m}: infinite, classical or relativistic"))?,
             ),
         };
+        let (t, tau) = (number("t")?, number("tau")?);
+        if t.is_some() && tau.is_some() {
+            return Err(
+                "give the camera time as t (lab time) or tau (proper time), not both".into(),
+            );
+        }
         Ok(Frame {
             fixture: get("fixture")?.clone(),
             view: get("view")?.clone(),
-            t: number("t")?,
+            t,
+            tau,
             model,
             speed: number("speed")?.unwrap_or(1.0),
         })
@@ -101,6 +110,9 @@ mod tests {
             (Some(1171.5), Some(Model::CLASSICAL), 1.0)
         );
         assert!(Frame::of(&query("/x?fixture=a&view=b&t=soon")).is_err());
+        let tau = Frame::of(&query("/x?fixture=a&view=b&tau=2.5")).unwrap();
+        assert_eq!((tau.t, tau.tau), (None, Some(2.5)));
+        assert!(Frame::of(&query("/x?fixture=a&view=b&t=1&tau=2")).is_err());
         assert_eq!(decode("a+b%2Cc%zz"), "a b,c%zz");
     }
 }

@@ -140,9 +140,13 @@ impl Site {
         let (fixture, golden) = crate::check::golden_view(loaded, &fr.view)?;
         let fixture = with_speed(&fixture, fr.speed)?;
         let model = fr.model.unwrap_or(golden.model);
+        let camera_t = match fr.tau {
+            Some(tau) => lab_time_of(&fixture, tau)?,
+            None => fr.t.unwrap_or(golden.camera_t),
+        };
         let overrides = Overrides {
             model: Some(model),
-            camera_t: Some(fr.t.unwrap_or(golden.camera_t)),
+            camera_t: Some(camera_t),
             width: Some(golden.camera.width),
             height: Some(golden.camera.height),
             spp: Some(golden.settings.spp),
@@ -159,13 +163,15 @@ impl Site {
         Ok((self.database(key, fixture)?, view))
     }
 
-    fn render(&self, fr: &Frame, loaded: &Fixture) -> Result<Vec<u8>, String> {
+    /// The frame as PNG bytes, and the camera's lab time it was rendered
+    /// at.
+    fn render(&self, fr: &Frame, loaded: &Fixture) -> Result<(Vec<u8>, f64), String> {
         let (entry, view) = self.prepare(fr, loaded)?;
         let img = crate::output::rgb8(&crate::run::render_with(&entry.1, &entry.0, &view)?);
         let mut png = Vec::new();
         img.write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png)
             .map_err(|e| e.to_string())?;
-        Ok(png)
+        Ok((png, view.camera_t))
     }
 
     fn debug(&self, fr: &Frame, loaded: &Fixture, (x, y): (u32, u32)) -> Result<String, String> {
@@ -225,12 +231,14 @@ impl Site {
             .into_iter()
             .filter_map(|name| {
                 let f = self.load(&name).ok()?;
+                let clock = camera_clock(&f);
                 let views: Vec<serde_json::Value> = crate::check::views_of(&f)
                     .iter()
                     .map(|v| {
                         serde_json::json!({
                             "name": v.name,
                             "t": v.camera_t,
+                            "tau": clock.as_ref().map(|c| c.proper_time(v.camera_t)),
                             "model": v.model.to_string(),
                             "golden": store.golden_path(&name, &v.name).is_file(),
                             "pending": store.pending_dir(&name, &v.name).join("actual.png").is_file(),
@@ -238,7 +246,8 @@ impl Site {
                     })
                     .collect();
                 Some(serde_json::json!({"name": name, "views": views, "mover_speed": mover_speed(&f),
-                    "clock": camera_clock(&f), "checked": checked.get(&name)}))
+                    "clock": clock.map(|c| serde_json::json!({"tau_end": c.proper_end()})),
+                    "checked": checked.get(&name)}))
             })
             .collect();
         serde_json::Value::Array(list)
@@ -350,20 +359,21 @@ pub fn serve_with(
 }
 
 /// What the page needs to step an accelerating camera's proper time on
-/// its time slider: the worldline's start (lab time `t0`), proper
-/// acceleration `a`, initial speed `v0` and the proper time at its end;
-/// `null` for a camera without a worldline. The page turns a proper time
-/// tau into the lab time it asks for, t = t0 + (sinh(phi0 + a tau) -
-/// sinh(phi0)) / a with phi0 = atanh(v0) (docs/physics.md, "The
-/// accelerated observer").
-fn camera_clock(f: &Fixture) -> serde_json::Value {
-    match crate::fixture::camera_worldline(&f.spec.camera) {
-        Ok(Some(w)) => serde_json::json!({
-            "t0": w.start.t,
-            "a": w.acceleration,
-            "v0": w.initial_velocity,
-            "tau_end": w.proper_time(w.start.t + w.duration),
-        }),
-        _ => serde_json::Value::Null,
-    }
+/// its time slider: the proper time at its worldline's end (`tau_end`;
+/// each view gives its own `tau`); `null` for a camera without a
+/// worldline. The page asks for a frame by its proper time (`tau=`), and
+/// the server reads the lab time on the camera's clock, as views and
+/// `animate --frames tau:` do ([`crate::fixture::CameraClock`]).
+fn camera_clock(f: &Fixture) -> Option<crate::fixture::CameraClock> {
+    crate::fixture::camera_clock(&f.spec.camera).ok().flatten()
+}
+
+/// The lab time where the camera of `f` reads proper time `tau`.
+fn lab_time_of(f: &Fixture, tau: f64) -> Result<f64, String> {
+    let clock = crate::fixture::camera_clock(&f.spec.camera)
+        .map_err(|e| e.to_string())?
+        .ok_or_else(|| {
+            format!("tau={tau}: a proper time is for a camera with camera.worldline; give the lab time as t")
+        })?;
+    clock.lab_time(tau, "tau").map_err(|e| e.to_string())
 }

@@ -203,7 +203,10 @@ impl Site {
         let fr = Frame::of(q).map_err(failed)?;
         let loaded = self.view_named(&fr.fixture, &fr.view)?;
         match route {
-            Route::Render => self.render(&fr, &loaded).map(png).map_err(failed),
+            Route::Render => self
+                .render(&fr, &loaded)
+                .map(|(bytes, t)| png(bytes).with("X-Vstf-Camera-T", t.to_string()))
+                .map_err(failed),
             Route::Debug => {
                 let at = |k: &str| {
                     q.get(k)

@@ -296,3 +296,58 @@ fn model_after_a_check(d: &Driver) {
     });
     assert!(caption(d, "diff").contains("no golden yet"), "{images}");
 }
+
+/// The `rocket` scene with its camera on keyframes of uniform motion at
+/// 0.6c from lab time 2 (its clock runs at 0.8 of lab time), one view at
+/// proper time 4 (lab time 7).
+fn coasting_rocket() -> String {
+    let mut v: serde_json::Value =
+        serde_json::from_str(include_str!("../../../fixtures/rocket.json")).unwrap();
+    v["camera"]["worldline"] = json!({"keyframes": [
+        { "t": 2.0, "position": [0, 0, 0], "velocity": [0, 0, -0.6] },
+        { "t": 22.0, "position": [0, 0, -12], "velocity": [0, 0, -0.6] }
+    ]});
+    v["camera"]["t"] = json!(2.0);
+    v["views"] = json!([{ "name": "k", "tau": 4.0 }]);
+    v["checks"] = json!([]);
+    v.to_string()
+}
+
+/// The time slider of a camera on keyframes steps its proper time: moved
+/// by 4 from the view's tau = 4, the page shows tau = 8 at the lab time
+/// the server read on the camera's clock, 2 + 8 / 0.8 = 12 (the control:
+/// not lab time 11, the view's 7 plus 4); the slider stops at the
+/// keyframes' last proper time, 16.
+#[test]
+fn the_time_slider_steps_a_keyframed_cameras_proper_time_in_a_real_browser() {
+    let Some((driver, browser)) = browser_tools() else {
+        return;
+    };
+    let dir = Scratch::new("browser-keyframes");
+    std::fs::create_dir_all(dir.join("fixtures")).unwrap();
+    std::fs::write(dir.join("fixtures/coast.json"), coasting_rocket()).unwrap();
+    let (server, page) = start_server(&dir);
+    let (_chromedriver, d) = start_browser(&driver, &browser);
+    d.call("POST", "/url", Some(json!({"url": page})));
+    choose(&d, "coast", "k");
+    let said = d.wait_for("the view's render", RENDER_CAPTION, |v| {
+        v.as_str().is_some_and(|s| s.contains("τ = 4 (t = 7)"))
+    });
+    let max = d.script("return Number(document.getElementById('t').max)");
+    assert!((max.as_f64().unwrap() - 12.0).abs() < 1e-9, "{max} {said}");
+    d.script(
+        "const s = document.getElementById('t'); s.value = 4; s.dispatchEvent(new Event('input'));",
+    );
+    let said = d.wait_for("the later render", RENDER_CAPTION, |v| {
+        v.as_str().is_some_and(|s| s.contains("τ = 8"))
+    });
+    let said = said.as_str().unwrap();
+    assert!(
+        said.contains("τ = 8 (t = 12)") && !said.contains("t = 11"),
+        "{said}"
+    );
+    let status = d.script("return document.getElementById('status').textContent");
+    assert_eq!(status, json!(""));
+    let _ = http(&d.addr, "DELETE", &format!("/session/{}", d.session), None);
+    drop(server);
+}

@@ -111,6 +111,26 @@ impl Running {
         exchange(self.addr, raw.as_bytes())
     }
 
+    /// A GET with the token: the answer's header `name`, if sent.
+    fn get_header(&self, target: &str, name: &str) -> Option<String> {
+        let raw = format!(
+            "GET {target} HTTP/1.1\r\nHost: {}\r\nX-Vstf-Token: {}\r\nContent-Length: 0\r\n\r\n",
+            self.host(),
+            self.site.token()
+        );
+        let mut s = TcpStream::connect(self.addr).unwrap();
+        s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
+        s.write_all(raw.as_bytes()).unwrap();
+        let mut answer = Vec::new();
+        let _ = s.read_to_end(&mut answer);
+        let text = String::from_utf8_lossy(&answer);
+        let head = text.split_once("\r\n\r\n").map_or("", |(h, _)| h);
+        head.lines()
+            .filter_map(|l| l.split_once(':'))
+            .find(|(k, _)| k.trim().eq_ignore_ascii_case(name))
+            .map(|(_, v)| v.trim().to_string())
+    }
+
     /// A GET with the token.
     fn get(&self, target: &str) -> (u16, String) {
         self.send("GET", target, &[("X-Vstf-Token", self.site.token())], "")

@@ -109,35 +109,59 @@ fn the_speed_stays_below_light() {
     }
 }
 
-/// An accelerating camera's fixture gives the page its clock (the
-/// worldline's start, acceleration, initial speed and last proper time),
-/// from which the time slider steps the camera's proper time; a camera
-/// without a worldline gives none (the control). A lab time off the
-/// worldline is refused, naming the field.
+/// The fixture list entry of `name`.
+fn entry(s: &Running, name: &str) -> serde_json::Value {
+    let (status, list) = s.get("/api/fixtures");
+    assert_eq!(status, 200);
+    let list: serde_json::Value = serde_json::from_str(&list).unwrap();
+    list.as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["name"] == name)
+        .unwrap()
+        .clone()
+}
+
+/// The lab time a render of `query` was made at, as the server says it.
+fn rendered_at(s: &Running, query: &str) -> f64 {
+    let t = s.get_header(&format!("/api/render?{query}"), "X-Vstf-Camera-T");
+    t.and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("{query}: no camera time"))
+}
+
+/// An accelerating camera's fixture gives the page its clock (the proper
+/// time at the worldline's end, and each view's proper time); the page
+/// asks for a proper time (`tau=`) and the server reads the lab time on
+/// the camera's hyperbola, t = sinh(a tau) / a from rest at t = 0; a
+/// camera without a worldline gives none (the control). A lab time off
+/// the worldline is refused, naming the field.
 #[test]
 fn an_accelerating_camera_gives_the_slider_its_proper_time() {
     let s = start("clock", Limits::default());
     let rocket = include_str!("../../../../fixtures/rocket.json");
     std::fs::write(s.dir.0.join("fixtures/rocket.json"), rocket).unwrap();
-    let (status, list) = s.get("/api/fixtures");
-    assert_eq!(status, 200);
-    let list: serde_json::Value = serde_json::from_str(&list).unwrap();
-    let clock = |name: &str| {
-        list.as_array()
-            .unwrap()
-            .iter()
-            .find(|f| f["name"] == name)
-            .unwrap()["clock"]
-            .clone()
-    };
-    let c = clock("rocket");
-    assert_eq!(
-        (c["t0"].as_f64(), c["a"].as_f64(), c["v0"].as_f64()),
-        (Some(0.0), Some(0.1), Some(0.0))
+    let f = entry(&s, "rocket");
+    let tau_end = f["clock"]["tau_end"].as_f64().unwrap();
+    assert!((tau_end - 6f64.asinh() / 0.1).abs() < 1e-9, "{f}");
+    let cruise = f["views"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|v| v["name"] == "cruise")
+        .unwrap();
+    assert!(
+        (cruise["tau"].as_f64().unwrap() - 4.0).abs() < 1e-12,
+        "{cruise}"
     );
-    let tau_end = c["tau_end"].as_f64().unwrap();
-    assert!((tau_end - 6f64.asinh() / 0.1).abs() < 1e-9, "{c}");
-    assert!(clock("tiny").is_null());
+    assert!(entry(&s, "tiny")["clock"].is_null());
+    let t = rendered_at(&s, "fixture=rocket&view=cruise&tau=8");
+    assert!((t - 0.8f64.sinh() / 0.1).abs() < 1e-12, "{t}");
+    // The control: the proper time is not taken as a lab time.
+    assert!((t - 8.0).abs() > 0.8);
+    assert_eq!(
+        s.get("/api/render?fixture=rocket&view=cruise&tau=8"),
+        s.get(&format!("/api/render?fixture=rocket&view=cruise&t={t}"))
+    );
     assert_eq!(s.get("/api/render?fixture=rocket&view=cruise&t=30").0, 200);
     let (status, said) = s.get("/api/render?fixture=rocket&view=cruise&t=100");
     assert_eq!(status, 400, "{said}");
@@ -145,4 +169,63 @@ fn an_accelerating_camera_gives_the_slider_its_proper_time() {
         said.contains("camera.worldline.hyperbolic.duration"),
         "{said}"
     );
+}
+
+/// A camera on keyframes: uniform motion at 0.6c from lab time 2, whose
+/// clock runs at 0.8 of lab time, so proper time tau is at lab time 2 +
+/// tau / 0.8 and the keyframes end at tau = 16. The page's `tau=` is read
+/// there, as `animate --frames tau:` reads it; a proper time past the end,
+/// one for a camera without a worldline, and both t and tau are refused.
+#[test]
+fn a_camera_on_keyframes_gives_the_slider_its_proper_time() {
+    let s = start("clock-keyframes", Limits::default());
+    let mut v: serde_json::Value =
+        serde_json::from_str(include_str!("../../../../fixtures/rocket.json")).unwrap();
+    v["camera"]["worldline"] = serde_json::json!({"keyframes": [
+        { "t": 2.0, "position": [0, 0, 0], "velocity": [0, 0, -0.6] },
+        { "t": 22.0, "position": [0, 0, -12], "velocity": [0, 0, -0.6] }
+    ]});
+    v["camera"]["t"] = serde_json::json!(2.0);
+    v["views"] = serde_json::json!([{ "name": "k", "tau": 4.0 }]);
+    v["checks"] = serde_json::json!([]);
+    let file = s.dir.0.join("fixtures/coast.json");
+    std::fs::write(&file, v.to_string()).unwrap();
+    let f = entry(&s, "coast");
+    assert!(
+        (f["clock"]["tau_end"].as_f64().unwrap() - 16.0).abs() < 1e-12,
+        "{f}"
+    );
+    let k = &f["views"][0];
+    assert!((k["t"].as_f64().unwrap() - 7.0).abs() < 1e-12, "{k}");
+    assert!((k["tau"].as_f64().unwrap() - 4.0).abs() < 1e-12, "{k}");
+    let t = rendered_at(&s, "fixture=coast&view=k&tau=8");
+    assert!((t - 12.0).abs() < 1e-12, "{t}");
+    let loaded = crate::Fixture::load(&file).unwrap();
+    let cli = crate::animate::lab_times(
+        &loaded,
+        crate::animate::parse_frames("tau:8..8").unwrap(),
+        1.0,
+    )
+    .unwrap();
+    assert_eq!(cli, [t]);
+    assert_eq!(
+        s.get("/api/render?fixture=coast&view=k&tau=8"),
+        s.get("/api/render?fixture=coast&view=k&t=12")
+    );
+    // The control: the frame at lab time 8 is another picture.
+    assert_ne!(
+        s.get("/api/render?fixture=coast&view=k&tau=8"),
+        s.get("/api/render?fixture=coast&view=k&t=8")
+    );
+    for (query, says) in [
+        ("fixture=coast&view=k&tau=17", "span proper times"),
+        ("fixture=tiny&view=t%20%3D%2010&tau=1", "camera.worldline"),
+        ("fixture=coast&view=k&tau=1&t=3", "not both"),
+    ] {
+        let (status, said) = s.get(&format!("/api/render?{query}"));
+        assert!(
+            status == 400 && said.contains(says),
+            "{query}: {status} {said}"
+        );
+    }
 }
