@@ -42,6 +42,7 @@ mod harness {
     mod mirrors;
     mod rocket;
     mod rocket_keyframes;
+    mod rocket_keyframes_checks;
     mod rocket_keyframes_shutter;
     mod shared_worldline;
     mod spinning;

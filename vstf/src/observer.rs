@@ -10,6 +10,7 @@ use crate::fixture::checks::ViewSpec;
 use crate::fixture::CameraSpec;
 use crate::fixture::{Fixture, Overrides};
 use crate::measure::{Kinematics, Pinhole};
+use crate::oracle::keyframed::{CameraKey, KeyframedCamera};
 use crate::oracle::rocket::RocketWorldline;
 use crate::oracle::{body_point, PointWorldline};
 use glam::DVec3;
@@ -56,8 +57,8 @@ impl Observer<'_> {
     /// rest stays put), or on its worldline.
     pub(crate) fn camera_x(&self) -> DVec3 {
         let c = &self.fixture.spec.camera;
-        if let Some(w) = rocket(c) {
-            return w.position(w.proper_time(self.camera_t));
+        if let Some((x, _)) = camera_path(c).and_then(|p| p.at(self.camera_t)) {
+            return x;
         }
         match c.velocity {
             Some(v) if v != DVec3::ZERO => c.position + v * (self.camera_t - c.t),
@@ -96,8 +97,8 @@ impl Observer<'_> {
                 (width, height),
             ),
         };
-        let velocity = match rocket(c) {
-            Some(w) => w.velocity(w.proper_time(self.camera_t)),
+        let velocity = match camera_path(c).and_then(|p| p.at(self.camera_t)) {
+            Some((_, v)) => v,
             None => c.velocity.unwrap_or(DVec3::ZERO),
         };
         still
@@ -117,6 +118,48 @@ pub(crate) fn rocket(c: &CameraSpec) -> Option<RocketWorldline> {
         acceleration: h.acceleration.length(),
         initial_velocity: h.initial_velocity,
     })
+}
+
+/// The oracle's worldline of an accelerating camera: hyperbolic, or
+/// through keyframes.
+pub(crate) enum CameraPath {
+    /// Constant proper acceleration.
+    Rocket(RocketWorldline),
+    /// Through keyframes.
+    Keyframed(KeyframedCamera),
+}
+
+impl CameraPath {
+    /// The camera's lab position and velocity at lab time `t`; `None`
+    /// outside its keyframes.
+    pub(crate) fn at(&self, t: f64) -> Option<(DVec3, DVec3)> {
+        match self {
+            CameraPath::Rocket(w) => {
+                let tau = w.proper_time(t);
+                Some((w.position(tau), w.velocity(tau)))
+            }
+            CameraPath::Keyframed(k) => k.at(t),
+        }
+    }
+}
+
+/// The oracle's worldline of camera `c`, read from its description, if
+/// it accelerates.
+pub(crate) fn camera_path(c: &CameraSpec) -> Option<CameraPath> {
+    if let Some(w) = rocket(c) {
+        return Some(CameraPath::Rocket(w));
+    }
+    let keys = c.worldline.as_ref()?.keyframes.as_ref()?;
+    Some(CameraPath::Keyframed(KeyframedCamera {
+        keys: keys
+            .iter()
+            .map(|k| CameraKey {
+                t: k.t,
+                position: k.position,
+                velocity: k.velocity,
+            })
+            .collect(),
+    }))
 }
 
 /// Whether a colour is the (flat) background of a probe.

@@ -120,7 +120,13 @@ fn json_rows_have_exactly_the_documented_keys() {
         // proper time.
         if keys.contains(&"camera_t") {
             let fixture = o["fixture"].as_str();
-            assert!(matches!(fixture, Some("rocket" | "rocket-doppler")), "{o}");
+            assert!(
+                matches!(
+                    fixture,
+                    Some("rocket" | "rocket-doppler" | "rocket-keyframes")
+                ),
+                "{o}"
+            );
             keys.retain(|k| *k != "camera_t");
         }
         assert_eq!(

@@ -6,7 +6,8 @@
 //! seen at a given place ([`crossing`]), when a point is seen crossing an
 //! azimuth ([`azimuth`]), light reflected by a moving
 //! mirror ([`mirror`]), light bent by a mass at rest
-//! ([`schwarzschild`]), and what an accelerating camera sees ([`rocket`]).
+//! ([`schwarzschild`]), and what an accelerating camera sees ([`rocket`],
+//! and its worldline through keyframes, [`keyframed`]).
 //!
 //! Nothing here calls the ray tracer: each formula is written out so that
 //! an error in the tracer's own cannot cancel.
@@ -14,6 +15,7 @@
 pub mod azimuth;
 pub mod crossing;
 pub mod extremes;
+pub mod keyframed;
 pub mod kinematics;
 pub mod mirror;
 pub mod quadratic;

@@ -283,7 +283,8 @@ impl Panel {
     /// alone through the fixture's own camera at the view's time, one
     /// sample per pixel, read at the pixel nearest the centroid of its
     /// image (it and its eight neighbours must see it). Expected from the
-    /// oracle's worldline at the view's proper time: in the camera's frame
+    /// oracle's worldline at the view's proper time (on keyframes, the
+    /// oracle's own cubic at the view's lab time): in the camera's frame
     /// the source moves with -v (v = tanh(phi) along the acceleration), so
     /// D = 1 / (gamma (1 - v.n)), n the pixel's line of sight in the
     /// camera's own frame (towards the source). The sample lies somewhere
@@ -297,10 +298,13 @@ impl Panel {
     ) -> Result<Panel, String> {
         let f = described.fixture;
         let source = blackbody_of(f, name)?;
-        let w = crate::observer::rocket(&f.spec.camera).ok_or("the camera has no worldline")?;
+        let path =
+            crate::observer::camera_path(&f.spec.camera).ok_or("the camera has no worldline")?;
         let obj = f.object(name)?;
         let at = obj.motion.uniform().ok_or("the object moves")?.0.x;
-        let v = w.velocity(w.proper_time(described.camera_t));
+        let (_, v) = path
+            .at(described.camera_t)
+            .ok_or("the view is outside the camera's keyframes")?;
         let size = measuring.size(effort.probe);
         let bg = measuring.fixture.spec.background;
         let mut pixels = Vec::new();

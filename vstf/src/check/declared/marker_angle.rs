@@ -4,17 +4,19 @@
 //! into a direction in the camera's own frame by the measurements'
 //! pinhole at rest with the camera's attitude (a boost along the
 //! acceleration keeps the camera's axes), fitted by a circle on the sky;
-//! read: the angle between the circle's centre and the acceleration.
-//! Expected: the oracle's worldline at the view's proper time (rapidity
-//! phi0 + a tau, position), the marker's lab cone about angle theta of
-//! half-angle asin(R / d), aberrated at beta = tanh(phi): the centre of the
+//! read: the angle between the circle's centre and the acceleration (a
+//! camera on keyframes: its velocity at the view). Expected: the oracle's
+//! worldline at the view's proper time (rapidity phi0 + a tau, position;
+//! on keyframes, the oracle's own cubic at the view's lab time), the
+//! marker's lab cone about angle theta of half-angle asin(R / d),
+//! aberrated at beta = tanh(phi) (on keyframes |v|): the centre of the
 //! seen circle ([`seen_circle`]).
 
 use crate::check::probe::Effort;
 use crate::check::row::{Reading, Unit};
 use crate::fixture::checks::MarkerAngleSpec;
 use crate::measure::{edge, Pinhole, Scan, SkyCircle};
-use crate::observer::{rocket, Observer};
+use crate::observer::{camera_path, CameraPath, Observer};
 use crate::oracle::rocket::seen_circle;
 use glam::DVec3;
 use image::RgbImage;
@@ -29,18 +31,33 @@ pub(super) fn measure(
     effort: &Effort,
 ) -> Result<((Reading, f64, Unit), DVec3), String> {
     let f = described.fixture;
-    let w = rocket(&f.spec.camera).ok_or("marker_angle: the camera has no worldline")?;
+    let path = camera_path(&f.spec.camera).ok_or("marker_angle: the camera has no worldline")?;
+    let (at, v) = path
+        .at(described.camera_t)
+        .ok_or("marker_angle: the view is outside the camera's keyframes")?;
+    // Angles from the acceleration (hyperbolic) or the velocity (keyframes).
+    let (axis, beta) = match &path {
+        CameraPath::Rocket(w) => (
+            w.direction,
+            w.rapidity(w.proper_time(described.camera_t)).tanh(),
+        ),
+        CameraPath::Keyframed(_) => (
+            v.try_normalize().ok_or(
+                "marker_angle: the camera on keyframes is at rest at this view, so no velocity to measure from",
+            )?,
+            v.length(),
+        ),
+    };
     let obj = f.object(&m.object)?;
     let Shape::Sphere { radius } = obj.shape else {
         return Err(format!("{:?} is not an analytic sphere", m.object));
     };
     let centre = obj.motion.uniform().ok_or("the marker moves")?.0.x;
-    let tau = w.proper_time(described.camera_t);
-    let to = centre - w.position(tau);
-    let theta = w.direction.angle_between(to);
+    let to = centre - at;
+    let theta = axis.angle_between(to);
     let alpha = (radius / to.length()).asin();
-    let (expected, _) = seen_circle(theta, alpha, w.rapidity(tau).tanh())
-        .ok_or("the marker's outline holds the line of the acceleration")?;
+    let (expected, _) = seen_circle(theta, alpha, beta)
+        .ok_or("the marker's outline holds the line of the camera's motion")?;
     let size = measuring.size(2 * effort.probe);
     let (img, _) = measuring.measuring_render(&[&m.object], size, effort.spp)?;
     let pinhole = rest_pinhole(measuring, size)?;
@@ -56,7 +73,7 @@ pub(super) fn measure(
         .angle_between(pinhole.rest_direction(cx + 1.0, cy));
     let sigma = px / effort.strata() / 12f64.sqrt() * (2.0 / dirs.len() as f64).sqrt();
     let reading = Reading {
-        value: w.direction.angle_between(fit.centre).to_degrees(),
+        value: axis.angle_between(fit.centre).to_degrees(),
         tolerance: 3.0 * sigma.to_degrees(),
     };
     Ok((

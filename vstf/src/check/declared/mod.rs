@@ -373,7 +373,7 @@ impl<'a> Evaluation<'a> {
         let effort = self.effort;
         let (panel, new) = match d.point {
             None => shared(&mut self.panels, (v.index, &d.object), || {
-                if crate::observer::rocket(&v.described.fixture.spec.camera).is_some() {
+                if crate::observer::camera_path(&v.described.fixture.spec.camera).is_some() {
                     Panel::accelerating(&v.measuring, &v.described, &d.object, effort)
                 } else {
                     Panel::measure(&v.measuring, &v.described, &d.object, effort)
