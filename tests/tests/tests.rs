@@ -40,6 +40,7 @@ mod harness {
     mod independent_models;
     mod lensing;
     mod mirrors;
+    mod redshift;
     mod rocket;
     mod rocket_keyframes;
     mod shared_worldline;

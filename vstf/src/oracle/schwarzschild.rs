@@ -31,6 +31,24 @@ pub fn shadow_radius(m: f64, r: f64) -> f64 {
     (3.0 * 3f64.sqrt() * m / r * (1.0 - 2.0 * m / r).sqrt()).asin()
 }
 
+/// nu_o / nu_e for light from an emitter at rest at radius `r_e` to an
+/// observer at rest at radius `r_o`: sqrt((1 - 2M/r_e) / (1 - 2M/r_o)).
+/// The metric's g_tt = -(1 - 2M/r) does not depend on t, so E = -k.(d/dt)
+/// is conserved along the light's geodesic, whatever its path; a static
+/// observer's 4-velocity is u = (d/dt) / sqrt(1 - 2M/r), and the frequency
+/// it measures is -k.u = E / sqrt(1 - 2M/r).
+pub fn static_redshift(m: f64, r_e: f64, r_o: f64) -> f64 {
+    ((1.0 - 2.0 * m / r_e) / (1.0 - 2.0 * m / r_o)).sqrt()
+}
+
+/// The same ratio with the Newtonian potential's clock rates, 1 - M/r
+/// (the weak-field limit of sqrt(1 - 2M/r)): (1 - M/r_e) / (1 - M/r_o).
+/// Near the mass it differs from [`static_redshift`] at second order in
+/// M/r, enough to tell the two apart from the colour at r = 4M.
+pub fn newtonian_redshift(m: f64, r_e: f64, r_o: f64) -> f64 {
+    (1.0 - m / r_e) / (1.0 - m / r_o)
+}
+
 /// The impact parameter of light reaching an observer at rest at radius r
 /// at angle `theta` from the direction of the centre:
 /// b = r sin(theta) / sqrt(1 - 2M/r).

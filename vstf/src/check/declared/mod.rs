@@ -373,7 +373,9 @@ impl<'a> Evaluation<'a> {
         let effort = self.effort;
         let (panel, new) = match d.point {
             None => shared(&mut self.panels, (v.index, &d.object), || {
-                if crate::observer::rocket(&v.described.fixture.spec.camera).is_some() {
+                if let renderer::Spacetime::Schwarzschild(s) = v.described.fixture.scene.spacetime {
+                    Panel::in_field(&v.measuring, &v.described, &d.object, (s.mass, s.centre))
+                } else if crate::observer::rocket(&v.described.fixture.spec.camera).is_some() {
                     Panel::accelerating(&v.measuring, &v.described, &d.object, effort)
                 } else {
                     Panel::measure(&v.measuring, &v.described, &d.object, effort)
