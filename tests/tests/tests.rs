@@ -43,6 +43,7 @@ mod harness {
     mod redshift;
     mod rocket;
     mod rocket_keyframes;
+    mod shapiro;
     mod shared_worldline;
     mod spinning;
     mod surface_frame;

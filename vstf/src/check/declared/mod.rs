@@ -17,6 +17,7 @@
 mod edge;
 
 mod combine;
+mod delay;
 mod doppler;
 mod emulated;
 mod grid_line;
@@ -33,7 +34,7 @@ use crate::check::probe::Effort;
 use crate::check::row::{difference, Quantity, Reading, Unit};
 use crate::check::views::{own_observer, with_view_effects, OWN_VIEW};
 use crate::error::Error;
-use crate::fixture::checks::{dimensions, CheckSpec, DopplerSpec, MeasureSpec};
+use crate::fixture::checks::{dimensions, CheckSpec, DopplerSpec, LensRead, MeasureSpec};
 use crate::fixture::checks::{ToleranceSpec, ViewSpec};
 use crate::fixture::Fixture;
 use crate::measure::Pinhole;
@@ -285,6 +286,12 @@ impl<'a> Evaluation<'a> {
             MeasureSpec::Lambert(l) => {
                 let v = self.view(&l.view)?;
                 let (reading, mark) = lambert::measure(&v.measuring, &v.described, l)?;
+                self.mark(v.index, Some(mark), &c.name);
+                Ok(row(reading))
+            }
+            MeasureSpec::Lensing(l) if l.read == LensRead::Delay => {
+                let v = self.view(&l.view)?;
+                let (reading, mark) = delay::measure(&v.measuring, &v.described, l, self.effort)?;
                 self.mark(v.index, Some(mark), &c.name);
                 Ok(row(reading))
             }
