@@ -244,8 +244,8 @@ mod tests {
     use super::*;
 
     /// Flat space gives the straight line's time; far out the light time is
-    /// Weinberg's first-order d1 + d2 + 2M ln((r1 + d1)(r2 + d2) / r0^2)
-    /// + M (sqrt((r1 - r0)/(r1 + r0)) + sqrt((r2 - r0)/(r2 + r0))),
+    /// Weinberg's first-order d1 + d2 + 2M ln((r1 + d1)(r2 + d2) / r0^2) +
+    /// M (sqrt((r1 - r0)/(r1 + r0)) + sqrt((r2 - r0)/(r2 + r0))),
     /// d = sqrt(r^2 - r0^2), r0 the turning point, and what is left is of
     /// the second order: it is quartered when M is halved (b held).
     #[test]
