@@ -228,6 +228,18 @@ pub enum Step {
         /// and the outgoing and incident directions.
         rest_frame: Option<[DVec3; 3]>,
     },
+    /// The gravitational shift of the light a bent primary ray brings to
+    /// the camera (with `--doppler` or `--searchlight` in a mass's field).
+    Gravitational {
+        /// Distance from the mass of the static emitter (infinite for the
+        /// background), and of the camera, l.units.
+        emitter_r: f64,
+        /// Distance from the mass of the camera.
+        observer_r: f64,
+        /// nu at the camera's static observer / nu at the emitter's:
+        /// sqrt((1 - 2M/r_e) / (1 - 2M/r_o)).
+        factor: f64,
+    },
     /// What the camera records for the sample (with `--doppler` or
     /// `--searchlight`).
     Observed {

@@ -40,10 +40,12 @@ mod harness {
     mod independent_models;
     mod lensing;
     mod mirrors;
+    mod redshift;
     mod rocket;
     mod rocket_keyframes;
     mod rocket_keyframes_checks;
     mod rocket_keyframes_shutter;
+    mod shapiro;
     mod shared_worldline;
     mod spinning;
     mod surface_frame;

@@ -4,10 +4,18 @@
 //! the camera, so the first chord with a hit gives the most recent event
 //! the light met, as one straight ray does in flat spacetime. Shadow and
 //! mirror rays leaving the hit stay straight.
+//!
+//! With the colour effects on, the light climbing from the hit (or the
+//! background, at infinity) to the camera is shifted by the ratio of the
+//! static observers' frequencies there, sqrt(f(r_e) / f(r_o)): the
+//! spectrum is evaluated at the wavelengths the static observer at the
+//! hit saw, and its radiance scaled with the searchlight, as across any
+//! other leg (docs/physics.md, "Gravitational redshift").
 
 use super::carried::Carried;
+use super::doppler::Leg;
 use super::shader::{ray_step, Shader};
-use crate::spacetime::{Geodesic, Leg, Ray, Schwarzschild};
+use crate::spacetime::{Geodesic, Leg as Piece, LightSpeed, Ray, Schwarzschild};
 use crate::trace::{RayKind, Step, Trace};
 use glam::DVec3;
 
@@ -27,7 +35,7 @@ impl Shader<'_> {
         let geodesic =
             Geodesic::backwards(hole, ray.origin, ray.direction.x, self.light_speed, reach);
         for leg in geodesic {
-            let Leg::Chord(chord, length) = leg else {
+            let Piece::Chord(chord, length) = leg else {
                 break;
             };
             let range = (0.0, length);
@@ -36,7 +44,11 @@ impl Shader<'_> {
             }
             let hit = self.db.closest_hit_traced(&chord, range, trace);
             if hit.is_some() || length == f64::INFINITY {
-                return self.carry_hit(&chord, hit, 0, RayKind::Primary, band, trace);
+                let g = self.climb(hole, ray, hit.map(|h| h.event.x), trace);
+                let at = C::emitted_band(band, g);
+                let seen: C = self.carry_hit(&chord, hit, 0, RayKind::Primary, &at, trace);
+                let factors = C::carries_factors(self.effects);
+                return seen.with_gain(factors.then(|| self.effects.intensity(g, Leg::Radiance)));
             }
         }
         if T::ENABLED {
@@ -46,5 +58,35 @@ impl Shader<'_> {
             });
         }
         C::ZERO
+    }
+
+    /// nu_camera_static / nu_emitter_static for light reaching the camera's
+    /// event along `ray` from a static emitter at `from` (the background at
+    /// infinity when `None`): sqrt(f(r_e) / f(r_o)), f = 1 - 2M/r
+    /// ([`Schwarzschild::static_shift`]); 1 when the colour effects are off
+    /// or light is instantaneous (as every Doppler factor is).
+    fn climb<T: Trace>(
+        &self,
+        hole: &Schwarzschild,
+        ray: &Ray,
+        from: Option<DVec3>,
+        trace: &mut T,
+    ) -> f64 {
+        if !self.effects.any() || self.light_speed == LightSpeed::Infinite {
+            return 1.0;
+        }
+        let observer = ray.origin.x;
+        let g = match from {
+            Some(x) => hole.static_shift(x, observer),
+            None => 1.0 / hole.lapse_squared(observer).sqrt(),
+        };
+        if T::ENABLED {
+            trace.record(Step::Gravitational {
+                emitter_r: from.map_or(f64::INFINITY, |x| (x - hole.centre).length()),
+                observer_r: (observer - hole.centre).length(),
+                factor: g,
+            });
+        }
+        g
     }
 }

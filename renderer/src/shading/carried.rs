@@ -43,6 +43,10 @@ pub(super) trait Carried: Copy {
     /// Where the mirror ray's colour is evaluated, for light whose
     /// frequency the surface sees scaled by `f` (nu_surface / nu_lab).
     fn mirror_band(local: &Self::Local, f: f64) -> Self::At;
+    /// Where the colour is evaluated at its emitter, for light whose
+    /// frequency its observer sees scaled by `f` (nu_observer / nu_emitter):
+    /// wavelengths times `f`.
+    fn emitted_band(band: &Self::At, f: f64) -> Self::At;
     /// The colour scaled by `gain`.
     fn times(self, gain: f64) -> Self;
     /// `self * (1 - mirror) + seen * mirror`.
@@ -125,6 +129,7 @@ impl Carried for DVec3 {
         (local, terms)
     }
     fn mirror_band(_: &RgbLocal, _: f64) {}
+    fn emitted_band(_: &(), _: f64) {}
     fn times(self, gain: f64) -> DVec3 {
         self * gain
     }
@@ -198,6 +203,9 @@ impl Carried for Band {
     }
     fn mirror_band(surface_nm: &Band, f: f64) -> Band {
         scaled(surface_nm, f)
+    }
+    fn emitted_band(nm: &Band, f: f64) -> Band {
+        scaled(nm, f)
     }
     fn times(self, gain: f64) -> Band {
         self.map(|l| l * gain)

@@ -8,7 +8,7 @@ use super::frame::SurfaceFrame;
 use super::shader::{ray_step, self_hit_margin, Shader};
 use crate::geometry::Hit;
 use crate::math;
-use crate::spacetime::{Event, LightSpeed, Ray};
+use crate::spacetime::{lorentz_factor, Event, LightSpeed, Ray, Spacetime};
 use crate::trace::{NoTrace, RayKind, Trace};
 use glam::DVec3;
 
@@ -83,14 +83,30 @@ impl Shader<'_> {
     }
 
     /// The frequency ratio between the lab and the frame of a surface
-    /// moving with `velocity` (clock `gamma`) for light propagating along
-    /// `k`: nu_surface / nu_lab; 1 when light is instantaneous or the
-    /// effects are off.
-    pub(super) fn to_surface(&self, velocity: DVec3, gamma: f64, k: DVec3) -> f64 {
+    /// at `at` moving with `velocity` (clock `gamma`) for light
+    /// propagating along `k`: nu_surface / nu_lab; 1 when light is
+    /// instantaneous or the effects are off. In a mass's field "the lab" is
+    /// the observer at rest at `at`: the velocity and the light's direction
+    /// are first taken into its frame ([`Schwarzschild::static_frame`]),
+    /// and a Lorentz-transformed surface moving at light speed or faster
+    /// there has no frame (0).
+    ///
+    /// [`Schwarzschild::static_frame`]: crate::Schwarzschild::static_frame
+    pub(super) fn to_surface(&self, at: DVec3, velocity: DVec3, gamma: f64, k: DVec3) -> f64 {
         if !self.effects.any() || self.light_speed == LightSpeed::Infinite {
             return 1.0;
         }
-        doppler::to_frame(velocity, gamma, k)
+        let Spacetime::Schwarzschild(hole) = &self.spacetime else {
+            return doppler::to_frame(velocity, gamma, k);
+        };
+        let (u, k) = hole.static_frame(at, velocity, k);
+        let b2 = u.length_squared();
+        let lorentzian = gamma != 1.0;
+        if lorentzian && b2 >= 1.0 {
+            return 0.0;
+        }
+        let gamma = if lorentzian { lorentz_factor(b2) } else { 1.0 };
+        doppler::to_frame(u, gamma, k)
     }
 
     /// The side of the surface hit that the ray's origin sees: its unit
@@ -159,8 +175,9 @@ impl Shader<'_> {
                 specular = m.specular * math::powf(if cos < 0.0 { 0.0 } else { cos }, m.shininess);
             }
         }
-        let from_light = self.to_surface(velocity, gamma, -l);
-        let out = 1.0 / self.to_surface(velocity, gamma, view.normalize());
+        let at = hit.event.x;
+        let from_light = self.to_surface(at, velocity, gamma, -l);
+        let out = 1.0 / self.to_surface(at, velocity, gamma, view.normalize());
         Lit {
             object: surface.object,
             triangle: surface.triangle,

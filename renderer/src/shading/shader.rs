@@ -186,7 +186,12 @@ impl Shader<'_> {
             -r.k_in
         };
         let reflected = Ray::backwards(hit.event, towards, self.light_speed);
-        let f = self.to_surface(lit.velocity, lit.gamma, -reflected.direction.x.normalize());
+        let f = self.to_surface(
+            hit.event.x,
+            lit.velocity,
+            lit.gamma,
+            -reflected.direction.x.normalize(),
+        );
         Some((reflected, f))
     }
 

@@ -48,6 +48,47 @@ pub struct Schwarzschild {
     pub centre: DVec3,
 }
 
+impl Schwarzschild {
+    /// f(r) = 1 - 2M/r = -g_tt at the lab point `x`: the square of the rate
+    /// of a static clock there against coordinate time.
+    pub fn lapse_squared(&self, x: DVec3) -> f64 {
+        1.0 - 2.0 * self.mass / (x - self.centre).length()
+    }
+
+    /// nu_observer / nu_emitter for light from an emitter at rest at
+    /// `emitter` to an observer at rest at `observer` (gravitational
+    /// redshift): sqrt(f(r_e) / f(r_o)), whatever path the light took, as
+    /// E = -k_t is conserved along every geodesic and a static observer
+    /// measures E / sqrt(f). 0 for an emitter on or inside the horizon.
+    pub fn static_shift(&self, emitter: DVec3, observer: DVec3) -> f64 {
+        let (fe, fo) = (self.lapse_squared(emitter), self.lapse_squared(observer));
+        if fe <= 0.0 {
+            return 0.0;
+        }
+        (fe / fo).sqrt()
+    }
+
+    /// A point's coordinate velocity `velocity` (dx/dt) and light's
+    /// coordinate direction `k` at the lab point `x`, as the observer at
+    /// rest there measures them in its orthonormal frame (proper length
+    /// dr / sqrt(f) radially, r dOmega across; proper time sqrt(f) dt):
+    /// the velocity's radial part divided by f and its transverse part by
+    /// sqrt(f); the light's radial part divided by sqrt(f), the direction
+    /// then normalised.
+    pub fn static_frame(&self, x: DVec3, velocity: DVec3, k: DVec3) -> (DVec3, DVec3) {
+        let radial = (x - self.centre).normalize();
+        let f = self.lapse_squared(x);
+        let rs = f.sqrt();
+        let split = |w: DVec3| {
+            let along = radial * w.dot(radial);
+            (along, w - along)
+        };
+        let (vr, vt) = split(velocity);
+        let (kr, kt) = split(k);
+        (vr / f + vt / rs, (kr / rs + kt).normalize())
+    }
+}
+
 /// The most a chord strays from its geodesic, in units of M: no point of a
 /// chord is farther than `CHORD_TOLERANCE * M` in space, nor in coordinate
 /// time, from the geodesic's point at the same fraction of its arc.

@@ -442,3 +442,108 @@ fn the_printout_is_indented_by_depth() {
         "{text}"
     );
 }
+
+/// The primary `Step::Ray`s of a log (a bent ray's chords): origin,
+/// direction and searched range.
+fn chords(log: &vstf::debug::PixelLog) -> Vec<(renderer::Event, renderer::FourVector, f64)> {
+    log.steps
+        .iter()
+        .filter_map(|s| match s {
+            Step::Ray {
+                kind: RayKind::Primary,
+                origin,
+                direction,
+                range,
+                ..
+            } => Some((*origin, *direction, range.1)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// A bent ray's log shows its chords, each starting where the one before
+/// ended (in space and coordinate time), and the hit found on the last
+/// one searched, within its length; printed, every chord is a line before
+/// the hit. A ray into the shadow logs chords and then the black of the
+/// hole. The debugged colour is the rendered one, bit for bit.
+#[test]
+fn a_bent_rays_chords_and_its_hit_are_logged() {
+    let (f, view) = setup("black-hole", 240, 180);
+    let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+    let image = vstf::run::render_with(&db, &f, &view).unwrap();
+    // On the Einstein ring (columns 196..=204 of the middle row).
+    let (x, y) = (200, 90);
+    let log = trace_pixel(&f, &view, &db, x, y).unwrap();
+    let rendered = image.pixels[(y * 240 + x) as usize];
+    assert_eq!(log.color.to_array(), rendered.to_array());
+    let c = chords(&log);
+    assert!(c.len() > 10, "{} chords", c.len());
+    for w in c.windows(2) {
+        let ((a, d, len), (b, _, _)) = (w[0], w[1]);
+        let end = a.x + d.x * len;
+        assert!(
+            (end - b.x).length() < 1e-9 * (1.0 + a.x.length()),
+            "{a:?} {b:?}"
+        );
+        assert!((a.t + d.t * len - b.t).abs() < 1e-9 * (1.0 + a.t.abs()));
+    }
+    let hit = log.steps.iter().position(|s| {
+        matches!(
+            s,
+            Step::Hit {
+                kind: RayKind::Primary,
+                ..
+            }
+        )
+    });
+    let Some(Step::Hit { object, event, .. }) = hit.map(|i| &log.steps[i]) else {
+        panic!("no hit on the ring: {:?}", log.steps);
+    };
+    assert_eq!(object, "disc");
+    let (origin, d, len) = *c.last().unwrap();
+    let s = (event.x - origin.x).dot(d.x);
+    assert!(s > 0.0 && s <= len, "hit at {s} on a chord of {len}");
+    assert!((origin.x + d.x * s - event.x).length() < 1e-6);
+    assert!((origin.t + d.t * s - event.t).abs() < 1e-6);
+    let text = vstf::debug::describe(&log);
+    let printed_chords = text.lines().filter(|l| l.contains("Primary ray")).count();
+    assert_eq!(printed_chords, c.len(), "{text}");
+    // The centre of the shadow: chords down to the photon sphere, then black.
+    let log = trace_pixel(&f, &view, &db, 120, 90).unwrap();
+    assert!(!chords(&log).is_empty());
+    assert!(matches!(
+        log.steps.last(),
+        Some(Step::Miss { background, .. }) if *background == glam::DVec3::ZERO
+    ));
+    assert_eq!(log.color, glam::DVec3::ZERO);
+}
+
+/// With the colour effects on, a bent ray's log holds the gravitational
+/// shift between the static observers at the hit and at the camera, the
+/// closed form at the hit's radius.
+#[test]
+fn the_gravitational_shift_is_logged() {
+    let (f, view) = setup("redshift-panel", 160, 120);
+    let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+    let log = trace_pixel(&f, &view, &db, 80, 60).unwrap();
+    let Some(Step::Hit { event, .. }) = log.steps.iter().find(|s| matches!(s, Step::Hit { .. }))
+    else {
+        panic!("the centre pixel sees the panel");
+    };
+    let Some(Step::Gravitational {
+        emitter_r,
+        observer_r,
+        factor,
+    }) = log
+        .steps
+        .iter()
+        .find(|s| matches!(s, Step::Gravitational { .. }))
+    else {
+        panic!("no gravitational shift logged: {:?}", log.steps);
+    };
+    assert!((emitter_r - event.x.length()).abs() < 1e-12);
+    assert!((observer_r - 100.0).abs() < 1e-12);
+    let expected = vstf::oracle::schwarzschild::static_redshift(1.0, *emitter_r, 100.0);
+    assert!((factor - expected).abs() < 1e-12, "{factor} {expected}");
+    assert!(vstf::debug::describe(&log).contains("gravitational shift"));
+}

@@ -5,7 +5,7 @@ use serde_json::Value;
 
 /// The kinds of steps a log holds (the `step` tag of each), which
 /// `debug-diff --ignore` may skip.
-pub const STEP_KINDS: [&str; 9] = [
+pub const STEP_KINDS: [&str; 10] = [
     "sample",
     "ray",
     "candidate",
@@ -14,6 +14,7 @@ pub const STEP_KINDS: [&str; 9] = [
     "shading",
     "doppler",
     "reflection",
+    "gravitational",
     "observed",
 ];
 

@@ -189,6 +189,9 @@ pub fn describe(log: &PixelLog) -> String {
                 line
             }
             Step::Reflection { .. } => reflection_line(step),
+            Step::Gravitational { emitter_r, observer_r, factor } => format!(
+                "gravitational shift: static emitter at r = {emitter_r:.6}, static camera at r = {observer_r:.6}; nu_o/nu_e = sqrt(f(r_e)/f(r_o)) = {factor:.9}"
+            ),
             Step::Observed { doppler, lab_nm, xyz, color } => {
                 let mut line = format!("observed: nu_cam/nu_lab {doppler:.9}; colour {}", v3(*color));
                 if let (Some(nm), Some(xyz)) = (lab_nm, xyz) {

@@ -130,3 +130,36 @@ fn a_zero_mass_is_flat() {
         Spacetime::Schwarzschild(_)
     ));
 }
+
+/// Static clocks at r = 4M run at sqrt(1/2) of coordinate time and at
+/// r = 100M at sqrt(0.98): light between them is shifted by the ratio,
+/// either way; an emitter on the horizon sends nothing.
+#[test]
+fn static_observers_see_the_ratio_of_their_clock_rates() {
+    let s = hole();
+    let at = |r: f64| s.centre + DVec3::new(0.6, 0.0, 0.8) * r;
+    let up = s.static_shift(at(4.0), at(100.0));
+    assert!((up - (0.5f64 / 0.98).sqrt()).abs() < 1e-15, "{up}");
+    assert!((s.static_shift(at(100.0), at(4.0)) * up - 1.0).abs() < 1e-15);
+    assert_eq!(s.static_shift(at(2.0), at(100.0)), 0.0);
+    assert!((s.lapse_squared(at(4.0)) - 0.5).abs() < 1e-15);
+}
+
+/// Light moves at 1 in every static frame: a radial null ray has
+/// dr/dt = f and a transverse one r dphi/dt = sqrt(f), both unit speed
+/// once taken into the static observer's frame, and a light direction
+/// keeps its transverse part and loses none of its length.
+#[test]
+fn light_moves_at_one_in_the_static_frame() {
+    let s = hole();
+    let n = DVec3::new(0.0, 0.6, 0.8);
+    let x = s.centre + n * 3.0;
+    let f = 1.0 - 2.0 / 3.0;
+    let t = DVec3::X;
+    let (radial, _) = s.static_frame(x, n * f, n);
+    let (across, _) = s.static_frame(x, t * f.sqrt(), t);
+    assert!((radial.length() - 1.0).abs() < 1e-15, "{radial}");
+    assert!((across.length() - 1.0).abs() < 1e-15, "{across}");
+    let (_, k) = s.static_frame(x, DVec3::ZERO, (n * f.sqrt() + t).normalize());
+    assert!((k - (n + t).normalize()).length() < 1e-15, "{k}");
+}

@@ -26,10 +26,11 @@ use crate::fixture::Fixture;
 use crate::measure::colorimetry::{xyz_of_rgb, Blackbody, Chromaticity};
 use crate::measure::{self, Pinhole};
 use crate::observer::Observer;
+use crate::oracle::schwarzschild as gr;
 use crate::oracle::{body_point, doppler_factor, gamma_of_squared, retarded};
 use glam::DVec3;
 use image::RgbImage;
-use renderer::Spectrum;
+use renderer::{Shape, Spectrum};
 
 /// The fixture with the colour effects set.
 fn with_effects(f: &Fixture, doppler: bool, searchlight: bool) -> Fixture {
@@ -344,6 +345,71 @@ impl Panel {
         })
     }
 
+    /// Measures a static object `name` in the field of the fixture's mass
+    /// (`m` at `centre`): the gravitational redshift of its light climbing
+    /// to the camera at rest (docs/physics.md, "Gravitational redshift").
+    /// The object must lie on the line from the camera to the mass, its
+    /// centre (the mean of its vertices) in front of the mass: light from
+    /// there runs radially and is not bent, so a probe of [`POINT_PROBE`]
+    /// pixels across [`POINT_PROBE_FOV`] aimed at that centre sees the
+    /// object at its centre pixel. Expected: D = sqrt((1 - 2M/r) / (1 -
+    /// 2M/r_o)), r_o the camera's radius and r the radius of the point
+    /// seen, which lies somewhere on the object: D is taken at the middle
+    /// of its range over the object's radii (from the least distance of
+    /// the mass to the planes of its triangles, or to a sphere's surface,
+    /// to the farthest vertex), and half that range is the slack added to
+    /// every reading's tolerance.
+    pub(super) fn in_field(
+        measuring: &Observer,
+        described: &Observer,
+        name: &str,
+        (m, centre): (f64, DVec3),
+    ) -> Result<Panel, String> {
+        let f = described.fixture;
+        let source = blackbody_of(f, name)?;
+        let obj = f.object(name)?;
+        let at = match obj.motion.uniform() {
+            Some((start, v)) if v == DVec3::ZERO => start.x,
+            _ => {
+                return Err(format!(
+                    "{name:?} moves: in a mass's field only a static object's redshift is expected"
+                ))
+            }
+        };
+        let (middle, r_lo, r_hi) = radii(&obj.shape, at, centre);
+        let camera = described.camera_x();
+        let (to_mass, to_object) = (centre - camera, middle - camera);
+        let radial = to_object.normalize().dot(to_mass.normalize()) > 1.0 - 1e-12;
+        if !radial || to_object.length() >= to_mass.length() {
+            return Err(format!(
+                "{name:?} must be centred on the line from the camera to the mass, in front of it, \
+                 so that its light runs radially (unbent) to the camera"
+            ));
+        }
+        if r_lo <= 2.0 * m {
+            return Err(format!("{name:?} reaches the horizon r = 2M"));
+        }
+        let r_o = (camera - centre).length();
+        let (lo, hi) = (
+            gr::static_redshift(m, r_lo, r_o),
+            gr::static_redshift(m, r_hi, r_o),
+        );
+        let (pixels, _) = panel_pixels(
+            measuring,
+            &variants(measuring.fixture),
+            name,
+            (middle, POINT_PROBE_FOV),
+            POINT_PROBE,
+        )?;
+        Ok(Panel {
+            pixels: [pixels[0], pixels[1], pixels[2], pixels[3]],
+            source,
+            expected: 0.5 * (lo + hi),
+            slack: 0.5 * (hi - lo).abs(),
+            mark: Some(to_object.normalize()),
+        })
+    }
+
     /// The factor D read `from` the colour or a searchlight ratio, and the
     /// factor expected.
     /// A pixel with a channel at full scale (clipped) reads no factor: an
@@ -398,4 +464,35 @@ fn inner_centroid(img: &RgbImage, bg: DVec3) -> Option<(u32, u32)> {
     let inside = x >= 1 && y >= 1 && x + 1 < img.width() && y + 1 < img.height();
     let all = inside && (x - 1..=x + 1).all(|i| (y - 1..=y + 1).all(|j| seen(i, j)));
     all.then_some((x, y))
+}
+
+/// The lab centre of an object at rest at `at` (the mean of its vertices,
+/// or a sphere's centre) and bounds on the distance of its surface from
+/// `mass`: below, the least distance to its triangles' planes (or to the
+/// sphere); above, the farthest vertex (or the sphere's far side).
+fn radii(shape: &Shape, at: DVec3, mass: DVec3) -> (DVec3, f64, f64) {
+    match shape {
+        Shape::Sphere { radius } => {
+            let d = (at - mass).length();
+            (at, d - radius, d + radius)
+        }
+        Shape::Mesh(mesh) => {
+            let lab = |v: DVec3| at + v;
+            let n = mesh.vertices.len() as f64;
+            let middle = mesh.vertices.iter().map(|v| lab(*v)).sum::<DVec3>() / n;
+            let hi = mesh
+                .vertices
+                .iter()
+                .map(|v| (lab(*v) - mass).length())
+                .fold(0.0, f64::max);
+            let lo = (0..mesh.triangles.len())
+                .map(|t| {
+                    let [a, b, c] = mesh.corners(t).map(lab);
+                    let normal = (b - a).cross(c - a).normalize();
+                    (mass - a).dot(normal).abs()
+                })
+                .fold(f64::INFINITY, f64::min);
+            (middle, lo, hi)
+        }
+    }
 }

@@ -33,10 +33,10 @@ use image::RgbImage;
 use renderer::{Shape, Spacetime};
 
 /// A row's reading, its expectation and unit, and the lab direction to mark.
-type Found = ((Reading, f64, Unit), DVec3);
+pub(super) type Found = ((Reading, f64, Unit), DVec3);
 
 /// The mass and centre of the fixture's spacetime.
-fn hole(o: &Observer) -> Result<(f64, DVec3), String> {
+pub(super) fn hole(o: &Observer) -> Result<(f64, DVec3), String> {
     match o.fixture.scene.spacetime {
         Spacetime::Schwarzschild(s) => Ok((s.mass, s.centre)),
         Spacetime::Flat => Err("the fixture has no mass".into()),

@@ -17,6 +17,7 @@
 mod edge;
 
 mod combine;
+mod delay;
 mod doppler;
 mod emulated;
 mod grid_line;
@@ -33,7 +34,9 @@ use crate::check::probe::Effort;
 use crate::check::row::{difference, Quantity, Reading, Unit};
 use crate::check::views::{own_observer, with_view_effects, OWN_VIEW};
 use crate::error::Error;
-use crate::fixture::checks::{dimensions, CheckSpec, DopplerSpec, MeasureSpec};
+use crate::fixture::checks::{
+    dimensions, CheckSpec, DopplerSpec, LensRead, LensingSpec, MeasureSpec,
+};
 use crate::fixture::checks::{ToleranceSpec, ViewSpec};
 use crate::fixture::Fixture;
 use crate::measure::Pinhole;
@@ -288,17 +291,7 @@ impl<'a> Evaluation<'a> {
                 self.mark(v.index, Some(mark), &c.name);
                 Ok(row(reading))
             }
-            MeasureSpec::Lensing(l) => {
-                let v = self.view(&l.view)?;
-                let effort = self.effort;
-                let key = l.marker.clone().unwrap_or_default();
-                let (rendered, _) = shared(&mut self.lensed, (v.index, &key), || {
-                    lensing::render(&v.measuring, l, effort)
-                })?;
-                let (reading, mark) = lensing::measure(&v.measuring, &v.described, l, rendered)?;
-                self.mark(v.index, Some(mark), &c.name);
-                Ok(row(reading))
-            }
+            MeasureSpec::Lensing(l) => Ok(row(self.lensing(l, &c.name)?)),
             MeasureSpec::GridLine(g) => {
                 let v = self.view(&g.view)?;
                 let (reading, mark) =
@@ -366,6 +359,24 @@ impl<'a> Evaluation<'a> {
         }
     }
 
+    /// A lensing check's reading: the delay by its own renders; the
+    /// angles from the render shared by the checks of one view and marker.
+    fn lensing(&mut self, l: &LensingSpec, row: &str) -> Result<(Reading, f64, Unit), String> {
+        let v = self.view(&l.view)?;
+        let effort = self.effort;
+        let (reading, mark) = if l.read == LensRead::Delay {
+            delay::measure(&v.measuring, &v.described, l, effort)?
+        } else {
+            let key = l.marker.clone().unwrap_or_default();
+            let (rendered, _) = shared(&mut self.lensed, (v.index, &key), || {
+                lensing::render(&v.measuring, l, effort)
+            })?;
+            lensing::measure(&v.measuring, &v.described, l, rendered)?
+        };
+        self.mark(v.index, Some(mark), row);
+        Ok(reading)
+    }
+
     /// A Doppler check's row: the object's panel (or the panel of one
     /// point of it), measured once per view and read by every check of it.
     fn doppler(&mut self, d: &DopplerSpec, row: &str) -> Result<(Reading, f64, Unit), String> {
@@ -373,7 +384,9 @@ impl<'a> Evaluation<'a> {
         let effort = self.effort;
         let (panel, new) = match d.point {
             None => shared(&mut self.panels, (v.index, &d.object), || {
-                if crate::observer::camera_path(&v.described.fixture.spec.camera).is_some() {
+                if let renderer::Spacetime::Schwarzschild(s) = v.described.fixture.scene.spacetime {
+                    Panel::in_field(&v.measuring, &v.described, &d.object, (s.mass, s.centre))
+                } else if crate::observer::camera_path(&v.described.fixture.spec.camera).is_some() {
                     Panel::accelerating(&v.measuring, &v.described, &d.object, effort)
                 } else {
                     Panel::measure(&v.measuring, &v.described, &d.object, effort)
