@@ -11,7 +11,9 @@ pub use boost::Boost;
 pub(crate) use event::Worldline;
 pub use event::{Event, FourVector};
 pub use ray::{LightSpeed, Ray};
-pub use schwarzschild::{Geodesic, Leg, Schwarzschild, Spacetime, CHORD_TOLERANCE, MAX_CHORDS};
+pub use schwarzschild::{
+    Geodesic, Leg, Schwarzschild, Spacetime, CHORD_TOLERANCE, MAX_CHORDS, SKY_TOLERANCE,
+};
 
 use glam::DVec3;
 
