@@ -1,6 +1,6 @@
 //! The `lensing` check kind (docs/checks.md): a mass's shadow, the Einstein
-//! ring of a disc behind it and the deflection of a marker's light are
-//! where the oracle puts them; rendered without the mass, or with a mass
+//! ring of a disc behind it, the deflection of a marker's light and the
+//! image of a star of the sky are where the oracle puts them; rendered without the mass, or with a mass
 //! 10% heavier, every row fails; declarations without a mass are refused.
 
 use renderer::Spacetime;
@@ -18,7 +18,12 @@ fn with_mass(f: &vstf::Fixture, k: f64) -> vstf::Fixture {
 
 #[test]
 fn the_shadow_ring_and_deflection_are_where_the_oracle_puts_them() {
-    for name in ["black-hole", "lensed-marker"] {
+    for name in [
+        "black-hole",
+        "lensed-marker",
+        "black-hole-stars",
+        "lensed-grid",
+    ] {
         let f = fixture(name);
         let all = rows(&f, &f);
         assert!(!all.is_empty());
@@ -30,7 +35,12 @@ fn the_shadow_ring_and_deflection_are_where_the_oracle_puts_them() {
 
 #[test]
 fn rendered_flat_or_heavier_every_row_fails() {
-    for name in ["black-hole", "lensed-marker"] {
+    for name in [
+        "black-hole",
+        "lensed-marker",
+        "black-hole-stars",
+        "lensed-grid",
+    ] {
         let f = fixture(name);
         for k in [0.0, 1.1] {
             for r in rows(&with_mass(&f, k), &f) {
@@ -74,5 +84,16 @@ fn a_massless_spacetime_is_flat_and_lensing_needs_a_mass() {
     refused(
         &|v| v["camera"]["position"] = serde_json::json!([0.0, 0.0, 2.5]),
         "camera.position",
+    );
+    let star = serde_json::json!({"view": "view", "read": "star", "star": [0.0, 0.0, -1.0]});
+    refused(
+        &|v| v["checks"][0]["measure"]["lensing"] = star.clone(),
+        "checks[0].measure.lensing.star: the fixture has no sky",
+    );
+    refused(
+        &|v| {
+            v["checks"][0]["measure"]["lensing"]["star"] = serde_json::json!([0.0, 0.0, -1.0]);
+        },
+        "checks[0].measure.lensing.star",
     );
 }
