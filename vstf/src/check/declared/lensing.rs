@@ -60,6 +60,17 @@ pub(super) fn render(
     measuring.measuring_render(&keep, measuring.size(effort.probe), 1)
 }
 
+/// Which render (see [`render`]) the check `l` shares with the view's
+/// other lensing checks: its marker's, the sky's for a star (the shadow is
+/// read without the sky), or the bare one.
+pub(super) fn render_key(l: &LensingSpec) -> String {
+    match (&l.marker, l.star) {
+        (Some(name), _) => name.clone(),
+        (None, Some(_)) => "\u{0}sky".into(),
+        (None, None) => String::new(),
+    }
+}
+
 /// Measures the lensing check `l` on `rendered` (see [`render`]), made
 /// with `measuring`, expected from `described`.
 pub(super) fn measure(

@@ -291,13 +291,7 @@ impl<'a> Evaluation<'a> {
             MeasureSpec::Lensing(l) => {
                 let v = self.view(&l.view)?;
                 let effort = self.effort;
-                // The star is read on a render of the sky, the shadow
-                // without it.
-                let key = match (&l.marker, l.star) {
-                    (Some(name), _) => name.clone(),
-                    (None, Some(_)) => "\u{0}sky".into(),
-                    (None, None) => String::new(),
-                };
+                let key = lensing::render_key(l);
                 let (rendered, _) = shared(&mut self.lensed, (v.index, &key), || {
                     lensing::render(&v.measuring, l, effort)
                 })?;
