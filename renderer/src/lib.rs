@@ -62,6 +62,7 @@
 //!         spectrum: None,
 //!     },
 //!     background: DVec3::ZERO,
+//!     sky: None,
 //!     spacetime: Spacetime::Flat,
 //! };
 //! let model = Model::RELATIVISTIC;
@@ -108,6 +109,6 @@ pub use scene::{
 pub use shading::{Effects, Shader};
 pub use spacetime::{
     Boost, Event, FourVector, Geodesic, Leg, LightSpeed, Ray, Schwarzschild, Spacetime, Waypoint,
-    WaypointWindow, CHORD_TOLERANCE, MAX_CHORDS, MAX_WINDOW_WAYPOINTS,
+    WaypointWindow, CHORD_TOLERANCE, MAX_CHORDS, MAX_WINDOW_WAYPOINTS, SKY_TOLERANCE,
 };
 pub use trace::{Outcome, RayKind, Recorder, Step, Trace};

@@ -89,6 +89,7 @@ pub fn shader<'a>(
         db,
         light: &scene.light,
         background: scene.background,
+        sky: scene.sky.as_deref(),
         light_speed: model.light_speed,
         max_depth: settings.max_depth,
         shadows: settings.shadows,

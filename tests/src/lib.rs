@@ -62,6 +62,7 @@ pub fn scene(objects: Vec<SceneObject>) -> Scene {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        sky: None,
         spacetime: Spacetime::Flat,
     }
 }

@@ -22,6 +22,7 @@ mod spacetime {
 mod rendering {
     mod render;
     mod shading;
+    mod sky;
     mod textures;
 }
 

@@ -110,6 +110,7 @@ mod tests {
                 spectrum: None,
             },
             background: DVec3::ZERO,
+            sky: None,
             spacetime: Spacetime::Flat,
         }
     }

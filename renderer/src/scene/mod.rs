@@ -28,6 +28,7 @@ use crate::spacetime::Spacetime;
 use glam::DVec3;
 #[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 /// The two object classes of paper 3.1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -94,8 +95,13 @@ pub struct Scene {
     pub objects: Vec<SceneObject>,
     /// The one point light, at rest in the lab.
     pub light: Light,
-    /// Colour where a ray meets nothing.
+    /// Colour where a ray meets nothing (when there is no `sky`).
     pub background: DVec3,
+    /// An equirectangular image of the sky at infinity, in the lab's
+    /// directions ([`Texels::toward`]): where a ray meets nothing, the
+    /// direction its light came from at infinity shows this instead of the
+    /// background colour.
+    pub sky: Option<Arc<Texels>>,
     /// The spacetime light crosses: flat, or curved by a mass at rest.
     pub spacetime: Spacetime,
 }

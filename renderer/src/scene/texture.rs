@@ -117,6 +117,14 @@ impl Texels {
         self.linear[(y.rem_euclid(h) * w + x.rem_euclid(w)) as usize]
     }
 
+    /// The colour of an equirectangular image (a sky at infinity) in the
+    /// direction `d`, as [`UvMapping::Equirectangular`] maps it: the
+    /// image's centre is +z, its left and right edges -z, its top row +y,
+    /// and u grows towards +x; bilinear, as [`Texels::bilinear`].
+    pub fn toward(&self, d: DVec3) -> DVec3 {
+        self.bilinear(equirectangular(d))
+    }
+
     /// The colour at (u, v), bilinear between the four nearest texel
     /// centres (texel i's centre at u = (i + 1/2) / width), repeating.
     pub fn bilinear(&self, uv: DVec2) -> DVec3 {
@@ -173,6 +181,15 @@ impl Texture {
     }
 }
 
+/// The equirectangular coordinates of the direction `d` (any length):
+/// u = 1/2 + atan2(x, z) / 2 pi, v = acos(y / |d|) / pi.
+fn equirectangular(d: DVec3) -> DVec2 {
+    let d = d.normalize_or_zero();
+    let u = 0.5 + math::atan2(d.x, d.z) / std::f64::consts::TAU;
+    let v = math::acos(d.y.clamp(-1.0, 1.0)) / std::f64::consts::PI;
+    DVec2::new(u, v)
+}
+
 impl UvMapping {
     fn uv(&self, p: &SurfacePoint) -> Option<DVec2> {
         match self {
@@ -181,12 +198,7 @@ impl UvMapping {
                 let c = corners.get(t as usize)?;
                 Some(c[0] * b[0] + c[1] * b[1] + c[2] * b[2])
             }
-            UvMapping::Equirectangular => {
-                let d = p.local.normalize_or_zero();
-                let u = 0.5 + math::atan2(d.x, d.z) / std::f64::consts::TAU;
-                let v = math::acos(d.y.clamp(-1.0, 1.0)) / std::f64::consts::PI;
-                Some(DVec2::new(u, v))
-            }
+            UvMapping::Equirectangular => Some(equirectangular(p.local)),
         }
     }
 }

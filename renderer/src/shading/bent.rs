@@ -3,11 +3,14 @@
 //! searched in the flat database as a ray of limited length, in order from
 //! the camera, so the first chord with a hit gives the most recent event
 //! the light met, as one straight ray does in flat spacetime. Shadow and
-//! mirror rays leaving the hit stay straight.
+//! mirror rays leaving the hit stay straight. An escaping ray shows the sky
+//! in the direction its light came from at infinity
+//! ([`Geodesic::asymptote`]: the bending still left beyond its last chord
+//! followed out), the background colour being the same in every direction.
 //!
 //! With the colour effects on, the light climbing from the hit (or the
-//! background, at infinity) to the camera is shifted by the ratio of the
-//! static observers' frequencies there, sqrt(f(r_e) / f(r_o)): the
+//! background or sky, at infinity) to the camera is shifted by the ratio of
+//! the static observers' frequencies there, sqrt(f(r_e) / f(r_o)): the
 //! spectrum is evaluated at the wavelengths the static observer at the
 //! hit saw, and its radiance scaled with the searchlight, as across any
 //! other leg (docs/physics.md, "Gravitational redshift").
@@ -32,24 +35,32 @@ impl Shader<'_> {
         trace: &mut T,
     ) -> C {
         let reach = self.db.reach_from(hole.centre);
-        let geodesic =
+        let mut geodesic =
             Geodesic::backwards(hole, ray.origin, ray.direction.x, self.light_speed, reach);
-        for leg in geodesic {
-            let Piece::Chord(chord, length) = leg else {
-                break;
-            };
+        while let Some(Piece::Chord(chord, length)) = geodesic.next() {
             let range = (0.0, length);
             if T::ENABLED {
                 trace.record(ray_step(RayKind::Primary, 0, &chord, range));
             }
             let hit = self.db.closest_hit_traced(&chord, range, trace);
-            if hit.is_some() || length == f64::INFINITY {
-                let g = self.climb(hole, ray, hit.map(|h| h.event.x), trace);
-                let at = C::emitted_band(band, g);
-                let seen: C = self.carry_hit(&chord, hit, 0, RayKind::Primary, &at, trace);
-                let factors = C::carries_factors(self.effects);
-                return seen.with_gain(factors.then(|| self.effects.intensity(g, Leg::Radiance)));
+            if hit.is_none() && length < f64::INFINITY {
+                continue;
             }
+            let sky = match (hit, self.sky) {
+                (None, Some(_)) => match geodesic.asymptote() {
+                    Some(toward) => Some(toward),
+                    None => break,
+                },
+                _ => None,
+            };
+            let g = self.climb(hole, ray, hit.map(|h| h.event.x), trace);
+            let at = C::emitted_band(band, g);
+            let seen: C = match sky {
+                Some(toward) => self.escaped(RayKind::Primary, toward, &at, trace),
+                None => self.carry_hit(&chord, hit, 0, RayKind::Primary, &at, trace),
+            };
+            let factors = C::carries_factors(self.effects);
+            return seen.with_gain(factors.then(|| self.effects.intensity(g, Leg::Radiance)));
         }
         if T::ENABLED {
             trace.record(Step::Miss {

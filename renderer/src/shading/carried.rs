@@ -24,8 +24,8 @@ pub(super) trait Carried: Copy {
     type Local;
     /// No light at all.
     const ZERO: Self;
-    /// The colour where a ray meets nothing.
-    fn background(shader: &Shader<'_>, band: &Self::At) -> Self;
+    /// The colour of the linear RGB `seen` where a ray meets nothing.
+    fn background(seen: DVec3, band: &Self::At) -> Self;
     /// Whether the colour carries the surface's frequency factors (paper 6):
     /// a spectrum always does (its wavelengths shift); RGB only through the
     /// searchlight's change of intensity.
@@ -90,8 +90,8 @@ impl Carried for DVec3 {
     type At = ();
     type Local = RgbLocal;
     const ZERO: DVec3 = DVec3::ZERO;
-    fn background(shader: &Shader<'_>, _: &()) -> DVec3 {
-        shader.background
+    fn background(seen: DVec3, _: &()) -> DVec3 {
+        seen
     }
     fn carries_factors(effects: Effects) -> bool {
         effects.searchlight
@@ -163,8 +163,8 @@ impl Carried for Band {
     /// The band's wavelengths in the surface's frame.
     type Local = Band;
     const ZERO: Band = [0.0; BAND_LEN];
-    fn background(shader: &Shader<'_>, nm: &Band) -> Band {
-        sample(&Spectrum::Rgb(shader.background), nm)
+    fn background(seen: DVec3, nm: &Band) -> Band {
+        sample(&Spectrum::Rgb(seen), nm)
     }
     fn carries_factors(_: Effects) -> bool {
         true

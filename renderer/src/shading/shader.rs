@@ -43,8 +43,11 @@ pub struct Shader<'a> {
     pub db: &'a Database,
     /// The scene's point light.
     pub light: &'a Light,
-    /// Colour where a ray meets nothing.
+    /// Colour where a ray meets nothing, when there is no sky.
     pub background: DVec3,
+    /// The sky at infinity ([`crate::Scene::sky`]), seen where a ray
+    /// escapes, by the lab direction its light came from.
+    pub sky: Option<&'a crate::Texels>,
     /// Whether rays lie on light cones or in constant-time slices.
     pub light_speed: LightSpeed,
     /// Number of mirror bounces followed.
@@ -110,15 +113,7 @@ impl Shader<'_> {
         trace: &mut T,
     ) -> C {
         match hit {
-            None => {
-                if T::ENABLED {
-                    trace.record(Step::Miss {
-                        kind,
-                        background: self.background,
-                    });
-                }
-                C::background(self, band)
-            }
+            None => self.escaped(kind, ray.direction.x, band, trace),
             Some(hit) => {
                 if T::ENABLED {
                     trace.record(self.hit_step(kind, ray, &hit));
@@ -126,6 +121,29 @@ impl Shader<'_> {
                 self.shade_hit(ray, &hit, depth, band, trace)
             }
         }
+    }
+
+    /// The colour `C` of a ray of `kind` that met nothing, its light having
+    /// come from the lab direction `toward` at infinity: the sky there, or
+    /// the background colour.
+    pub(super) fn escaped<C: Carried, T: Trace>(
+        &self,
+        kind: RayKind,
+        toward: DVec3,
+        band: &C::At,
+        trace: &mut T,
+    ) -> C {
+        let seen = match self.sky {
+            Some(sky) => sky.toward(toward),
+            None => self.background,
+        };
+        if T::ENABLED {
+            trace.record(Step::Miss {
+                kind,
+                background: seen,
+            });
+        }
+        C::background(seen, band)
     }
 
     pub(super) fn hit_step(&self, kind: RayKind, ray: &Ray, hit: &Hit) -> Step {

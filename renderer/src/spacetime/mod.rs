@@ -12,7 +12,9 @@ pub use boost::Boost;
 pub(crate) use event::Worldline;
 pub use event::{Event, FourVector};
 pub use ray::{LightSpeed, Ray};
-pub use schwarzschild::{Geodesic, Leg, Schwarzschild, Spacetime, CHORD_TOLERANCE, MAX_CHORDS};
+pub use schwarzschild::{
+    Geodesic, Leg, Schwarzschild, Spacetime, CHORD_TOLERANCE, MAX_CHORDS, SKY_TOLERANCE,
+};
 pub use waypoints::{Waypoint, WaypointWindow, MAX_WINDOW_WAYPOINTS};
 
 use glam::DVec3;

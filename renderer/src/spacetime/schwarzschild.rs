@@ -104,6 +104,10 @@ pub const MAX_CHORDS: usize = 20_000;
 /// camera's distance (geometry farther still is met on a straight last chord).
 const FAR_FACTOR: f64 = 1e6;
 
+/// The most an escaping ray's direction may still turn beyond the point at
+/// which [`Geodesic::asymptote`] reads it, radians.
+pub const SKY_TOLERANCE: f64 = 1e-6;
+
 /// One leg of a geodesic traced backwards from its camera event.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Leg {
@@ -133,6 +137,8 @@ pub struct Geodesic {
     far: f64,
     chords: usize,
     done: bool,
+    /// The last, infinite chord has been given.
+    escaped: bool,
 }
 
 /// d/d(lambda) of (x, v, t) (t's with `time_sign` applied by the caller).
@@ -209,6 +215,7 @@ impl Geodesic {
             time_sign,
             far: reach.min(FAR_FACTOR * r).max(3.0 * s.mass),
             chords: 0,
+            escaped: false,
             done: !(r.is_finite() && v.is_finite()),
         }
     }
@@ -255,6 +262,39 @@ impl Geodesic {
     }
 }
 
+impl Geodesic {
+    /// The direction (a lab unit vector) the light came from at infinity,
+    /// once the geodesic has given its last, infinite chord: the chord
+    /// leaves where the ray has passed all geometry, where its direction
+    /// may still turn by up to 2M/r, so the orbit is followed further out,
+    /// chord by chord, until what is left is within [`SKY_TOLERANCE`]. The
+    /// path in these coordinates curves by kappa = 3 M sin^3(psi) / r^2 per
+    /// unit length (psi between it and the radius; [`Geodesic`]), so on the
+    /// nearly straight rest of the way out, of impact parameter
+    /// b = r sin(psi), it turns by at most the integral of 3 M b^3 / (s^2 +
+    /// b^2)^(5/2) beyond s = r cos(psi): (M / b) (1 - cos psi)^2 (2 + cos psi).
+    /// `None` for a ray that was captured or has not yet escaped.
+    pub fn asymptote(&mut self) -> Option<DVec3> {
+        let m = self.mass;
+        for _ in 0..MAX_CHORDS {
+            let r = self.x.length();
+            let speed = self.v.length();
+            let c = (self.x.dot(self.v) / (r * speed)).min(1.0);
+            if !(self.escaped && c >= 0.0) {
+                return None;
+            }
+            let left = m * (2.0 + c) * (1.0 - c) * ((1.0 - c) / (1.0 + c)).sqrt() / r;
+            if left <= SKY_TOLERANCE {
+                return Some(self.v / speed);
+            }
+            if self.step() == Leg::Captured {
+                return None;
+            }
+        }
+        None
+    }
+}
+
 impl Iterator for Geodesic {
     type Item = Leg;
 
@@ -273,6 +313,7 @@ impl Iterator for Geodesic {
             // Past every object and moving out: it never turns back (no
             // turning point of r lies outside the photon sphere on the way out).
             self.done = true;
+            self.escaped = true;
             let (_, _, dt) = derivative(m, self.x, self.v);
             let n = self.v.normalize();
             let ray = Ray {

@@ -71,8 +71,9 @@ fn a_moving_scene_differs_between_models() {
 
 #[test]
 fn images_do_not_depend_on_thread_count() {
-    // Flat, and bent by a mass (chord by chord, pixel by pixel).
-    for name in ["flange", "black-hole"] {
+    // Flat, bent by a mass (chord by chord, pixel by pixel), and bent
+    // into the sky (each escaping ray followed out to its asymptote).
+    for name in ["flange", "black-hole", "black-hole-stars"] {
         let f = workspace_tests::fixture(name);
         let mut view = vstf::run::view(&f, &small(None)).unwrap();
         view.settings.spp = 5;

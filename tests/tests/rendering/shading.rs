@@ -46,6 +46,7 @@ fn shadows_are_cast_where_the_light_was_blocked_earlier() {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        sky: None,
         spacetime: Spacetime::Flat,
     };
     let db = Database::build(&scene, false).unwrap();
@@ -53,6 +54,7 @@ fn shadows_are_cast_where_the_light_was_blocked_earlier() {
         db: &db,
         light: &scene.light,
         background: DVec3::ZERO,
+        sky: None,
         spacetime: Spacetime::Flat,
         light_speed,
         max_depth: 0,
@@ -127,6 +129,7 @@ fn a_mirror_shows_a_moving_object_retarded_over_the_reflected_path() {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        sky: None,
         spacetime: Spacetime::Flat,
     };
     let db = Database::build(&scene, false).unwrap();
@@ -134,6 +137,7 @@ fn a_mirror_shows_a_moving_object_retarded_over_the_reflected_path() {
         db: &db,
         light: &scene.light,
         background: DVec3::ZERO,
+        sky: None,
         spacetime: Spacetime::Flat,
         light_speed: LightSpeed::Finite,
         max_depth: 2,
@@ -199,6 +203,7 @@ fn the_shutter_blurs_a_moving_edge_over_its_travel() {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        sky: None,
         spacetime: Spacetime::Flat,
     };
     let db = Database::build(&scene, false).unwrap();
@@ -278,6 +283,7 @@ fn a_v_obj_clock_and_lifetime_are_dilated() {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        sky: None,
         spacetime: Spacetime::Flat,
     };
     let rel = Database::build(&scene, true).unwrap();
@@ -346,6 +352,7 @@ fn a_non_finite_light_direction_reaches_the_pixel_instead_of_shading_unlit() {
                 spectrum: None,
             },
             background: DVec3::ZERO,
+            sky: None,
             spacetime: Spacetime::Flat,
         };
         let db = Database::build(&scene, false).unwrap();
@@ -353,6 +360,7 @@ fn a_non_finite_light_direction_reaches_the_pixel_instead_of_shading_unlit() {
             db: &db,
             light: &scene.light,
             background: DVec3::ZERO,
+            sky: None,
             spacetime: Spacetime::Flat,
             light_speed: LightSpeed::Finite,
             max_depth: 0,

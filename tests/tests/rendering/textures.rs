@@ -52,6 +52,7 @@ fn scene(objects: Vec<SceneObject>, ambient: f64) -> Scene {
         objects,
         light: Light::white(DVec3::new(4.0, 10.0, 12.0), ambient),
         background: DVec3::ZERO,
+        sky: None,
         spacetime: Spacetime::Flat,
     }
 }
@@ -143,6 +144,7 @@ fn a_moving_plates_checkerboard_is_its_rest_frame_pattern() {
         db: &db,
         light: &s.light,
         background: DVec3::ZERO,
+        sky: None,
         spacetime: Spacetime::Flat,
         light_speed: LightSpeed::Finite,
         max_depth: 0,

@@ -157,6 +157,7 @@ pub fn tessellated_boxes(n: usize, k: u32, seed: u64) -> Scene {
             spectrum: None,
         },
         background: DVec3::ZERO,
+        sky: None,
         spacetime: Spacetime::Flat,
     }
 }

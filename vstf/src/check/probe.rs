@@ -172,7 +172,28 @@ impl Observer<'_> {
         spp: u32,
         max_depth: u32,
     ) -> Result<(RgbImage, Pinhole), String> {
-        let mut probe = self.fixture.only(keep).map_err(|e| e.to_string())?;
+        let probe = self.fixture.only(keep).map_err(|e| e.to_string())?;
+        self.probe_render(probe, (width, height), spp, max_depth)
+    }
+
+    /// [`Observer::measuring_render`] of the fixture's sky alone: no
+    /// object, the sky kept.
+    pub(crate) fn sky_render(&self, size: (u32, u32)) -> Result<(RgbImage, Pinhole), String> {
+        let mut probe = self.fixture.only(&[]).map_err(|e| e.to_string())?;
+        probe.spec.sky.clone_from(&self.fixture.spec.sky);
+        probe.scene.sky.clone_from(&self.fixture.scene.sky);
+        self.probe_render(probe, size, 1, 0)
+    }
+
+    /// `probe` rendered through the camera at this observer's time, model
+    /// and size, without shutter time or shadows.
+    fn probe_render(
+        &self,
+        mut probe: crate::fixture::Fixture,
+        (width, height): (u32, u32),
+        spp: u32,
+        max_depth: u32,
+    ) -> Result<(RgbImage, Pinhole), String> {
         let image = &mut probe.spec.image;
         (image.shutter, image.seed, image.max_depth, image.shadows) = (0.0, 1, max_depth, false);
         let view = crate::run::view(

@@ -239,6 +239,34 @@ pub fn impact_reaching(m: f64, r_obs: f64, d: f64, x: f64) -> Option<f64> {
     Some(0.5 * (lo + hi))
 }
 
+/// The angle from the centre at which an observer at rest at radius r sees
+/// the primary image of a star at infinity `beta` from the direction of the
+/// centre (0 < beta < pi): light of impact parameter b arriving from the
+/// star sweeps the polar angle phi(b) = swept_between(b, r, infinity), so
+/// it comes from beta = pi - phi(b), which grows with b from minus
+/// infinity at b_c, through 0 at the Einstein ring, towards pi; bisection
+/// in b between b_c and the observer's horizon of view.
+pub fn star_image(m: f64, r: f64, beta: f64) -> Option<f64> {
+    let bc = 3.0 * 3f64.sqrt() * m;
+    let (mut lo, mut hi) = (
+        (bc * (1.0 + 1e-9)).max(1e-9 * r),
+        r / (1.0 - 2.0 * m / r).sqrt() * 0.999_999,
+    );
+    let at = |b: f64| swept_between(m, b, r, f64::INFINITY).map(|phi| PI - phi - beta);
+    if !(at(lo)? < 0.0 && at(hi)? > 0.0) {
+        return None;
+    }
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if at(mid)? > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Some(seen_angle(m, r, 0.5 * (lo + hi)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -317,6 +345,20 @@ mod tests {
         let second = weak * (1.0 + 15.0 * PI / 32.0 * m / (dl * weak));
         assert!((theta / second - 1.0).abs() < 3e-5, "{theta} vs {second}");
         assert!((theta / weak - 1.0).abs() > 3e-3);
+    }
+
+    #[test]
+    fn a_far_star_is_seen_where_the_thin_lens_puts_it() {
+        // Source at infinity, observer at D: theta = (beta + sqrt(beta^2 +
+        // 4 theta_E^2)) / 2, theta_E^2 = 4M / D, to first order.
+        let (m, r, beta): (f64, f64, f64) = (1.0, 1e6, 3e-3);
+        let theta = star_image(m, r, beta).unwrap();
+        let thin = 0.5 * (beta + (beta * beta + 16.0 * m / r).sqrt());
+        assert!((theta / thin - 1.0).abs() < 1e-3, "{theta} vs {thin}");
+        // Without the mass, the star is where it is (the control).
+        let flat = star_image(0.0, 30.0, 0.3).unwrap();
+        assert!((flat - 0.3).abs() < 1e-9, "{flat}");
+        assert!((theta - beta).abs() > 1e-3);
     }
 
     #[test]

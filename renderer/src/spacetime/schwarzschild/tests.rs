@@ -163,3 +163,38 @@ fn light_moves_at_one_in_the_static_frame() {
     let (_, k) = s.static_frame(x, DVec3::ZERO, (n * f.sqrt() + t).normalize());
     assert!((k - (n + t).normalize()).length() < 1e-15, "{k}");
 }
+
+/// Past b = 100 M with no geometry beyond 10 M, the last chord leaves at
+/// the periapsis, having turned through only half the deflection; the
+/// asymptote follows the rest of the orbit out and meets the series within
+/// its tolerance.
+#[test]
+fn the_asymptote_of_an_escaping_ray_has_turned_through_the_whole_deflection() {
+    let b = 100.0;
+    let s = hole();
+    let origin = Event::new(0.0, s.centre + DVec3::new(1e6, b, 0.0));
+    let mut g = Geodesic::backwards(&s, origin, DVec3::NEG_X, LightSpeed::Finite, 10.0);
+    assert_eq!(g.asymptote(), None, "not escaped yet");
+    let mut last = None;
+    for leg in g.by_ref() {
+        if let Leg::Chord(ray, _) = leg {
+            last = Some(ray.direction.x);
+        }
+    }
+    let alpha = |d: DVec3| math::atan2(-d.y, -d.x);
+    let q = M / b;
+    let pi = std::f64::consts::PI;
+    let series = 4.0 * q
+        + 15.0 * pi / 4.0 * q * q
+        + 128.0 / 3.0 * q * q * q
+        + 3465.0 * pi / 64.0 * q * q * q * q;
+    let far = g.asymptote().expect("escaped");
+    assert!(
+        (alpha(far) - series).abs() < SKY_TOLERANCE + 2e-7,
+        "{} vs {series}",
+        alpha(far)
+    );
+    // The control: the last chord itself has turned through about half.
+    let chord = alpha(last.unwrap());
+    assert!((chord - series / 2.0).abs() < 0.1 * series, "{chord}");
+}

@@ -5,8 +5,10 @@
 //! give the first camera time at which any pixel shows it and the first at
 //! which it shows fully (as many pixels as at the end of the search, which
 //! must show it), searched from just before light along a straight line
-//! could bring it over [`WINDOW`]; the renders are half the effort's
-//! width, one sample a pixel.
+//! could bring it over [`WINDOW`]. The renders are square probes of
+//! [`PROBE`] pixels, one sample each, aimed at where the marker is seen at
+//! the window's end (in the view's measuring image at half the effort's
+//! width); camera and mass at rest, it is seen there whenever it is seen.
 //!
 //! Expected: the coordinate time light takes from the marker's centre to
 //! the camera along its primary image's null geodesic, by quadrature
@@ -19,12 +21,14 @@
 //! plus the bisection's step.
 
 use super::lensing::{hole, Found};
-use crate::check::probe::Effort;
+use crate::check::probe::{Effort, Probe};
 use crate::check::row::{Reading, Unit};
 use crate::fixture::checks::LensingSpec;
 use crate::measure;
 use crate::observer::{background, is_background, Observer};
 use crate::oracle::schwarzschild as gr;
+use glam::DVec3;
+use image::RgbImage;
 use renderer::Shape;
 
 /// The bisection's last step, t.units.
@@ -33,6 +37,9 @@ const STEP: f64 = 0.05;
 /// How long after the straight line's light time the marker must be
 /// shown fully, t.units: the delay searched for is within it.
 const WINDOW: f64 = 64.0;
+
+/// The width and height of the probes the bisection renders, pixels.
+const PROBE: u32 = 32;
 
 /// Measures the delay check `l` (see the module doc).
 pub(super) fn measure(
@@ -56,22 +63,24 @@ pub(super) fn measure(
         .and_then(|b| gr::light_time(m, b, r1, r2))
         .ok_or("no light from the marker's centre reaches the camera past the mass")?;
     let spread = radius / (1.0 - 2.0 * m / (r2 - radius));
-    let size = measuring.size(effort.probe / 2);
-    let bg = background(measuring.fixture);
+    let straight = (at - camera).length();
+    let lo = t_on + straight - radius - 1.0;
+    let hi = lo + WINDOW;
+    let (look_at, hfov_deg) = around(measuring, name, hi, effort)?;
     let shown = |t: f64| -> Result<usize, String> {
         let o = Observer {
             camera_t: t,
             ..*measuring
         };
-        let (img, _) = o.measuring_render(&[name], size, 1)?;
-        Ok(img
-            .enumerate_pixels()
-            .filter(|(x, y, _)| !is_background(measure::color(&img, *x, *y), bg))
-            .count())
+        let (img, _) = o.probe(&Probe {
+            keep: &[name],
+            look_at,
+            hfov_deg,
+            size: (PROBE, PROBE),
+            spp: 1,
+        })?;
+        Ok(lit(&img, background(measuring.fixture)))
     };
-    let straight = (at - camera).length();
-    let lo = t_on + straight - radius - 1.0;
-    let hi = lo + WINDOW;
     if shown(lo)? > 0 {
         return Err(format!(
             "{name:?} is seen at camera time {lo}, before light on a straight line could bring it"
@@ -82,7 +91,7 @@ pub(super) fn measure(
         return Err(format!("{name:?} is not seen at camera time {hi}"));
     }
     let first = bisect(lo, hi, |t| Ok(shown(t)? > 0))?;
-    let full = bisect(lo, hi, |t| Ok(shown(t)? >= all))?;
+    let full = bisect(first - STEP, hi, |t| Ok(shown(t)? >= all))?;
     Ok((
         (
             Reading {
@@ -112,4 +121,51 @@ fn bisect(
         }
     }
     Ok(hi)
+}
+
+/// The pixels of `img` that show something other than the background `bg`.
+fn lit(img: &RgbImage, bg: DVec3) -> usize {
+    img.enumerate_pixels()
+        .filter(|(x, y, _)| !is_background(measure::color(img, *x, *y), bg))
+        .count()
+}
+
+/// Where the marker `name` is seen at camera time `t` (the camera and the
+/// mass at rest, it is seen there at every time it is seen at all): the
+/// point a square probe looks at and its field (degrees), covering the
+/// marker's pixels in the view's measuring image, half the effort's width,
+/// with half their extent to spare on each side.
+fn around(
+    measuring: &Observer,
+    name: &str,
+    t: f64,
+    effort: &Effort,
+) -> Result<(DVec3, f64), String> {
+    let o = Observer {
+        camera_t: t,
+        ..*measuring
+    };
+    let (img, pinhole) = o.measuring_render(&[name], o.size(effort.probe / 2), 1)?;
+    let bg = background(measuring.fixture);
+    let (mut x0, mut y0, mut x1, mut y1) = (u32::MAX, u32::MAX, 0, 0);
+    for (x, y, _) in img.enumerate_pixels() {
+        if !is_background(measure::color(&img, x, y), bg) {
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+        }
+    }
+    if x0 > x1 {
+        return Err(format!("{name:?} is not seen at camera time {t}"));
+    }
+    let (fx0, fy0, fx1, fy1) = (
+        f64::from(x0),
+        f64::from(y0),
+        f64::from(x1) + 1.0,
+        f64::from(y1) + 1.0,
+    );
+    let centre = pinhole.direction(0.5 * (fx0 + fx1), 0.5 * (fy0 + fy1));
+    let half = [(fx0, fy0), (fx1, fy0), (fx0, fy1), (fx1, fy1)]
+        .iter()
+        .map(|&(x, y)| pinhole.direction(x, y).angle_between(centre))
+        .fold(0.0, f64::max);
+    Ok((o.camera_x() + centre, 4.0 * half.to_degrees()))
 }

@@ -13,7 +13,9 @@
 //! an arc about the mass, so not its centroid's) is the angle theta it is
 //! seen at, so its impact parameter b = r sin(theta) / sqrt(1 - 2M/r);
 //! the angle the light turned through is the angle camera-mass-marker less
-//! the angle a straight line of impact b sweeps between those radii.
+//! the angle a straight line of impact b sweeps between those radii. A
+//! star of the sky: rendered with the sky alone, its primary image's mean
+//! angle from the mass against the lens equation for a source at infinity.
 //!
 //! Expected: the closed form of the shadow, the rings by the exact lens
 //! equation (quadrature of the orbit, [`crate::oracle::schwarzschild`]),
@@ -51,8 +53,22 @@ pub(super) fn render(
     l: &LensingSpec,
     effort: &Effort,
 ) -> Result<(RgbImage, Pinhole), String> {
+    if l.read == LensRead::Star {
+        return measuring.sky_render(measuring.size(effort.probe));
+    }
     let keep: Vec<&str> = l.marker.iter().map(String::as_str).collect();
     measuring.measuring_render(&keep, measuring.size(effort.probe), 1)
+}
+
+/// Which render (see [`render`]) the check `l` shares with the view's
+/// other lensing checks: its marker's, the sky's for a star (the shadow is
+/// read without the sky), or the bare one.
+pub(super) fn render_key(l: &LensingSpec) -> String {
+    match (&l.marker, l.star) {
+        (Some(name), _) => name.clone(),
+        (None, Some(_)) => "\u{0}sky".into(),
+        (None, None) => String::new(),
+    }
 }
 
 /// Measures the lensing check `l` on `rendered` (see [`render`]), made
@@ -72,6 +88,9 @@ pub(super) fn measure(
         return Err("the background must not be black: the shadow would not show".into());
     }
     let to_mass = (centre - camera).normalize();
+    if let (LensRead::Star, Some(star)) = (l.read, l.star) {
+        return star_image(img, pinhole, (m, r, to_mass), star, measuring);
+    }
     if l.read == LensRead::Deflection {
         return deflection(img, pinhole, (m, centre, camera), described, l, bg);
     }
@@ -261,5 +280,63 @@ fn deflection(
             Unit::Degrees,
         ),
         seen,
+    ))
+}
+
+/// The `star` row: the primary image of the sky's star in the direction
+/// `star` is its pixels' largest connected part, a pixel counting when its
+/// colour is the star's texel's within 10% of its direction in RGB and at
+/// least a quarter of its brightness; the mean angle of its pixels from the
+/// mass against the lens equation for a source at infinity at the star's
+/// angle beta from the mass ([`gr::star_image`]). Tolerance: half a pixel,
+/// plus half the spread of the angles at which the star's texel is seen
+/// (beta give or take one texel, the reach of bilinear filtering).
+fn star_image(
+    img: &RgbImage,
+    pinhole: &Pinhole,
+    (m, r, to_mass): (f64, f64, DVec3),
+    star: DVec3,
+    o: &Observer,
+) -> Result<Found, String> {
+    let sky = o
+        .fixture
+        .scene
+        .sky
+        .as_ref()
+        .ok_or("the fixture has no sky")?;
+    let colour = sky.toward(star);
+    let hue = colour.normalize_or_zero();
+    let is_star = |c: DVec3| {
+        c.length() >= 0.25 * colour.length() && (c.normalize_or_zero() - hue).length() < 0.1
+    };
+    let image = Mask::of(img, is_star).largest_part();
+    let (px, py) = image
+        .centroid()
+        .ok_or("the star is nowhere in the view (no pixel of its colour)")?;
+    let angles: Vec<f64> = image
+        .centres()
+        .map(|(x, y)| pinhole.direction(x, y).angle_between(to_mass))
+        .collect();
+    let theta = angles.iter().sum::<f64>() / angles.len() as f64;
+    let beta = star.normalize().angle_between(to_mass);
+    let seen = |beta: f64| {
+        gr::star_image(m, r, beta)
+            .ok_or_else(|| format!("no image of a star {beta} rad off the mass"))
+    };
+    let expected = seen(beta)?;
+    let (w, h) = sky.size();
+    let texel = (std::f64::consts::TAU / f64::from(w)).max(std::f64::consts::PI / f64::from(h));
+    let spread = 0.5 * (seen(beta + texel)? - seen((beta - texel).max(1e-9))?).abs();
+    let tolerance = 0.5 * pinhole.angular_footprint(px, py, true) + spread;
+    Ok((
+        (
+            Reading {
+                value: theta.to_degrees(),
+                tolerance: tolerance.to_degrees(),
+            },
+            expected.to_degrees(),
+            Unit::Degrees,
+        ),
+        pinhole.direction(px, py),
     ))
 }

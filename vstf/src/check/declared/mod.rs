@@ -367,7 +367,7 @@ impl<'a> Evaluation<'a> {
         let (reading, mark) = if l.read == LensRead::Delay {
             delay::measure(&v.measuring, &v.described, l, effort)?
         } else {
-            let key = l.marker.clone().unwrap_or_default();
+            let key = lensing::render_key(l);
             let (rendered, _) = shared(&mut self.lensed, (v.index, &key), || {
                 lensing::render(&v.measuring, l, effort)
             })?;
