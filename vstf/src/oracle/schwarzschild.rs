@@ -74,16 +74,34 @@ pub fn turning_point(m: f64, b: f64) -> Option<f64> {
     if g(m, b, top) >= 0.0 {
         return None;
     }
-    let (mut lo, mut hi) = (0.0, top);
-    for _ in 0..200 {
+    bisect((0.0, top), 200, Slope::Falling, |u| Some(g(m, b, u)))
+}
+
+/// Where `f` changes sign in (lo, hi), rising (from negative to positive)
+/// or falling as `Slope` says, after `steps` halvings: the middle of the
+/// last interval; `None` when `f` cannot be evaluated on the way.
+fn bisect(
+    (mut lo, mut hi): (f64, f64),
+    steps: u32,
+    slope: Slope,
+    f: impl Fn(f64) -> Option<f64>,
+) -> Option<f64> {
+    for _ in 0..steps {
         let mid = 0.5 * (lo + hi);
-        if g(m, b, mid) > 0.0 {
-            lo = mid;
-        } else {
+        if (f(mid)? > 0.0) == (slope == Slope::Rising) {
             hi = mid;
+        } else {
+            lo = mid;
         }
     }
     Some(0.5 * (lo + hi))
+}
+
+/// Which way a function crosses zero at the root [`bisect`] looks for.
+#[derive(Clone, Copy, PartialEq)]
+enum Slope {
+    Rising,
+    Falling,
 }
 
 /// The polar angle swept between u and the turning point u0: the integral
@@ -143,20 +161,12 @@ pub fn light_time(m: f64, b: f64, r1: f64, r2: f64) -> Option<f64> {
 /// above b_c at which [`swept_between`] is `psi`.
 pub fn impact_sweeping(m: f64, r1: f64, r2: f64, psi: f64) -> Option<f64> {
     let bc = 3.0 * 3f64.sqrt() * m;
-    let (mut lo, mut hi) = (bc * (1.0 + 1e-9), r1.min(r2) * (1.0 - 1e-12));
+    let (lo, hi) = (bc * (1.0 + 1e-9), r1.min(r2) * (1.0 - 1e-12));
     let over = |b: f64| swept_between(m, b, r1, r2).map(|a| a - psi);
     if !(over(lo)? > 0.0 && over(hi)? < 0.0) {
         return None;
     }
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        if over(mid)? > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Some(0.5 * (lo + hi))
+    bisect((lo, hi), 100, Slope::Falling, over)
 }
 
 /// The exact deflection of light of impact parameter b from infinity to
@@ -197,19 +207,11 @@ pub fn plane_crossing(m: f64, b: f64, r_obs: f64, d: f64) -> Option<f64> {
     // On the way out, phi(u) = first + swept(u, u0); the plane is where
     // r cos(phi) = -d, between the turning point and infinity.
     let z = |u: f64| (first + swept(m, b, u, u0)).cos() / u + d;
-    let (mut lo, mut hi) = (1e-12 * u0, u0);
+    let (lo, hi) = (1e-12 * u0, u0);
     if z(hi) < 0.0 || z(lo) > 0.0 {
         return None;
     }
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if z(mid) > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    let u = 0.5 * (lo + hi);
+    let u = bisect((lo, hi), 60, Slope::Rising, |u| Some(z(u)))?;
     Some((first + swept(m, b, u, u0)).sin() / u)
 }
 
@@ -220,7 +222,7 @@ pub fn plane_crossing(m: f64, b: f64, r_obs: f64, d: f64) -> Option<f64> {
 /// and the observer's horizon of view.
 pub fn impact_reaching(m: f64, r_obs: f64, d: f64, x: f64) -> Option<f64> {
     let bc = 3.0 * 3f64.sqrt() * m;
-    let (mut lo, mut hi) = (
+    let (lo, hi) = (
         bc * (1.0 + 1e-6),
         r_obs / (1.0 - 2.0 * m / r_obs).sqrt() * 0.999,
     );
@@ -228,15 +230,7 @@ pub fn impact_reaching(m: f64, r_obs: f64, d: f64, x: f64) -> Option<f64> {
     if !(at(lo)? < 0.0 && at(hi)? > 0.0) {
         return None;
     }
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if at(mid)? > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    Some(0.5 * (lo + hi))
+    bisect((lo, hi), 60, Slope::Rising, at)
 }
 
 /// The angle from the centre at which an observer at rest at radius r sees
@@ -248,7 +242,7 @@ pub fn impact_reaching(m: f64, r_obs: f64, d: f64, x: f64) -> Option<f64> {
 /// in b between b_c and the observer's horizon of view.
 pub fn star_image(m: f64, r: f64, beta: f64) -> Option<f64> {
     let bc = 3.0 * 3f64.sqrt() * m;
-    let (mut lo, mut hi) = (
+    let (lo, hi) = (
         (bc * (1.0 + 1e-9)).max(1e-9 * r),
         r / (1.0 - 2.0 * m / r).sqrt() * 0.999_999,
     );
@@ -256,15 +250,7 @@ pub fn star_image(m: f64, r: f64, beta: f64) -> Option<f64> {
     if !(at(lo)? < 0.0 && at(hi)? > 0.0) {
         return None;
     }
-    for _ in 0..80 {
-        let mid = 0.5 * (lo + hi);
-        if at(mid)? > 0.0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    Some(seen_angle(m, r, 0.5 * (lo + hi)))
+    Some(seen_angle(m, r, bisect((lo, hi), 80, Slope::Rising, at)?))
 }
 
 #[cfg(test)]
