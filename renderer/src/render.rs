@@ -77,14 +77,11 @@ impl Image {
     }
 }
 
-/// The shader for one render: the database, the scene's light and
-/// background, the model's light speed and the settings' bounce limit.
-pub fn shader<'a>(
-    db: &'a Database,
-    scene: &'a Scene,
-    model: Model,
-    settings: &RenderSettings,
-) -> Shader<'a> {
+/// The shader for one render of `frame`: the database, the scene's light
+/// and background, the model's light speed, the settings' bounce limit and
+/// the angle the camera's pixels subtend.
+pub fn shader<'a>(db: &'a Database, scene: &'a Scene, frame: &Frame) -> Shader<'a> {
+    let (model, settings) = (frame.model, frame.settings);
     Shader {
         db,
         light: &scene.light,
@@ -95,6 +92,7 @@ pub fn shader<'a>(
         shadows: settings.shadows,
         effects: settings.effects,
         spacetime: scene.spacetime,
+        pixel_angle: frame.camera.at(frame.camera_t).pixel_angle(),
     }
 }
 
@@ -126,7 +124,7 @@ pub fn render_stoppable(
     frame: &Frame,
     stop: &AtomicBool,
 ) -> Option<Image> {
-    let shader = shader(db, scene, frame.model, frame.settings);
+    let shader = shader(db, scene, frame);
     let camera = &Camera {
         kinematics: Kinematics::of(frame.model),
         ..*frame.camera

@@ -70,13 +70,13 @@ pub fn aovs(f: &Fixture, view: &View, db: &Database) -> Vec<PixelAov> {
         },
         ..view.settings
     };
-    let shader = renderer::shader(db, &f.scene, view.model, &settings);
     let frame = Frame {
         camera: &view.camera,
         camera_t: view.camera_t,
         model: view.model,
         settings: &settings,
     };
+    let shader = renderer::shader(db, &f.scene, &frame);
     let camera = view.camera.position_at(view.camera_t);
     let (w, h) = (view.camera.width, view.camera.height);
     (0..w * h)

@@ -249,6 +249,20 @@ impl Camera {
         self.vfov_deg
     }
 
+    /// The least angle, radians, between the lab lines of sight of
+    /// neighbouring pixels: the centre pixel's 2 tan(vfov / 2) / height,
+    /// times cos^2 of the angle out to the image's corner (a flat image's
+    /// pixels subtend less away from its centre), times
+    /// sqrt((1 - v) / (1 + v)) for a camera moving at v (aberration
+    /// narrows a solid angle's extent by at most that, paper eq. 6).
+    pub fn pixel_angle(&self) -> f64 {
+        let th = self.tan_half_v();
+        let aspect = f64::from(self.width) / f64::from(self.height);
+        let corner2 = th * th * (1.0 + aspect * aspect);
+        let v = self.velocity.length().min(1.0);
+        2.0 * th / f64::from(self.height) / (1.0 + corner2) * ((1.0 - v) / (1.0 + v)).sqrt()
+    }
+
     /// Half-extent of the image plane at unit distance, vertically.
     fn tan_half_v(&self) -> f64 {
         self.tan_half_v

@@ -2,7 +2,10 @@
 //! from the camera event, cut into straight 4D chords; each chord is
 //! searched in the flat database as a ray of limited length, in order from
 //! the camera, so the first chord with a hit gives the most recent event
-//! the light met, as one straight ray does in flat spacetime. Shadow and
+//! the light met, as one straight ray does in flat spacetime. The chords
+//! stray from the geodesic by at most `CHORD_TOLERANCE` M, or where it is
+//! more, an eighth of the footprint the pixel would have there in flat
+//! spacetime (its angle times the arc from the camera). Shadow and
 //! mirror rays leaving the hit stay straight. An escaping ray shows the sky
 //! in the direction its light came from at infinity
 //! ([`Geodesic::asymptote`]: the bending still left beyond its last chord
@@ -35,8 +38,12 @@ impl Shader<'_> {
         trace: &mut T,
     ) -> C {
         let reach = self.db.reach_from(hole.centre);
+        // The static observer's radial lengths are dr / sqrt(f): in the
+        // coordinates the pixel's angle is at least sqrt(f) times its own.
+        let angle = self.pixel_angle * hole.lapse_squared(ray.origin.x).max(0.0).sqrt();
         let mut geodesic =
-            Geodesic::backwards(hole, ray.origin, ray.direction.x, self.light_speed, reach);
+            Geodesic::backwards(hole, ray.origin, ray.direction.x, self.light_speed, reach)
+                .sized_to_pixel(angle);
         while let Some(Piece::Chord(chord, length)) = geodesic.next() {
             let range = (0.0, length);
             if T::ENABLED {

@@ -58,6 +58,10 @@ pub struct Shader<'a> {
     pub effects: Effects,
     /// The spacetime primary rays cross: straight lines, or bent by a mass.
     pub spacetime: Spacetime,
+    /// The least angle between neighbouring pixels' lines of sight, radians
+    /// ([`crate::Camera::pixel_angle`]): the chords of a bent ray stray
+    /// from it by at most a fraction of the pixel's footprint.
+    pub pixel_angle: f64,
 }
 impl Shader<'_> {
     /// Colour of the light arriving along `ray` (towards its origin).

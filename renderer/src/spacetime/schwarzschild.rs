@@ -89,10 +89,22 @@ impl Schwarzschild {
     }
 }
 
-/// The most a chord strays from its geodesic, in units of M: no point of a
-/// chord is farther than `CHORD_TOLERANCE * M` in space, nor in coordinate
-/// time, from the geodesic's point at the same fraction of its arc.
+/// The most a chord strays from its geodesic, in units of M, wherever the
+/// pixel's footprint is finer: no point of a chord is farther than
+/// `CHORD_TOLERANCE * M` in space, nor in coordinate time, from the
+/// geodesic's point at the same fraction of its arc.
 pub const CHORD_TOLERANCE: f64 = 1e-3;
+
+/// Beyond the camera's surroundings a chord may stray from its geodesic by
+/// this fraction of the pixel's footprint there (the pixel's angle times
+/// the arc travelled from the camera): a hit is found where the object
+/// would be if it were moved by at most that much.
+pub const PIXEL_FRACTION: f64 = 1.0 / 8.0;
+
+/// No step of the integration is longer than this fraction of the radius
+/// it starts at, however loose the chord tolerance: the accuracy of the
+/// ray's direction, and so of where it goes, rests on it.
+const LONGEST_STEP: f64 = 0.1;
 
 /// A ray still bound after this many chords (circling near the photon
 /// sphere r = 3M, each turn dimming its light by e^(2 pi)) is taken as
@@ -135,6 +147,10 @@ pub struct Geodesic {
     time_sign: f64,
     /// Outgoing beyond this radius, the ray meets no geometry bent.
     far: f64,
+    /// The coordinate length travelled from the camera.
+    arc: f64,
+    /// The angle a pixel subtends, radians (0: the tolerance in M alone).
+    pixel_angle: f64,
     chords: usize,
     done: bool,
     /// The last, infinite chord has been given.
@@ -154,19 +170,23 @@ fn derivative(m: f64, x: DVec3, v: DVec3) -> (DVec3, DVec3, f64) {
     (v, a, dt)
 }
 
-/// The longest chord whose sagitta and time error stay within the
-/// tolerance where the geodesic's radius is at least `r`: the path's
-/// curvature is at most 3M / r^2 and dt/ds changes at most 7M / (r^2 f^3)
-/// per unit length (docs/physics.md), so a chord of length L strays by at
-/// most 7 M L^2 / (8 r^2 f^3).
-fn longest_chord(m: f64, r: f64) -> f64 {
+/// The longest chord that strays by at most `tol` from a geodesic of
+/// h = |x cross v| and C = v^2 - 2 M h^2 / r^3 (both conserved: the
+/// central acceleration's angular momentum and energy) wherever its radius
+/// is at least `r` (docs/physics.md, "Chords"). Its path curves by
+/// kappa = 3 M h^2 / (r^4 v^2) = 3 M h^2 / (C r^4 + 2 M h^2 r), which
+/// grows as r falls, and its dt/ds changes by at most
+/// M cos(psi) (2 + 3 sin^2 psi) / (r^2 f^2) <= 2.485 M / (r^2 f^2) per unit
+/// length; a chord of length L strays by L^2 / 8 times the larger of them.
+fn longest_chord(m: f64, r: f64, h2: f64, c: f64, tol: f64) -> f64 {
     let f = 1.0 - 2.0 * m / r;
-    if f <= 0.0 {
+    if f <= 0.0 || r <= 0.0 {
         return 0.0;
     }
-    r * f * f.sqrt() * (8.0 * CHORD_TOLERANCE / 7.0).sqrt()
+    let bending = 3.0 * m * h2 / (c * r.powi(4) + 2.0 * m * h2 * r);
+    let timing = 2.485 * m / (r * r * f * f);
+    (8.0 * tol / bending.max(timing)).sqrt()
 }
-
 /// The distance from the origin to the segment from `a` to `b`.
 fn distance_to_segment(a: DVec3, b: DVec3) -> f64 {
     let d = b - a;
@@ -214,6 +234,8 @@ impl Geodesic {
             t: origin.t,
             time_sign,
             far: reach.min(FAR_FACTOR * r).max(3.0 * s.mass),
+            arc: 0.0,
+            pixel_angle: 0.0,
             chords: 0,
             escaped: false,
             done: !(r.is_finite() && v.is_finite()),
@@ -234,18 +256,47 @@ impl Geodesic {
         (x + dx, v + dv, dt)
     }
 
-    /// The next chord: one step, halved until the chord is within the
-    /// tolerance of the arc it cuts (measured at the least radius it
-    /// passes, less the tolerance itself).
+    /// The same geodesic, its chords allowed to stray by [`PIXEL_FRACTION`]
+    /// of the footprint of a pixel subtending `angle` radians (in the
+    /// lab's coordinates at the camera), where that is more than
+    /// [`CHORD_TOLERANCE`] M.
+    pub fn sized_to_pixel(self, angle: f64) -> Geodesic {
+        Geodesic {
+            pixel_angle: angle.max(0.0),
+            ..self
+        }
+    }
+
+    /// How far the next chord may stray from the geodesic.
+    fn tolerance(&self) -> f64 {
+        (CHORD_TOLERANCE * self.mass).max(PIXEL_FRACTION * self.pixel_angle * self.arc)
+    }
+
+    /// The next chord: one step, as long as the chord bound allows at the
+    /// least radius the straight line along v would pass, halved until the
+    /// chord is within the tolerance of the arc it cuts (measured at the
+    /// least radius it passes, less the tolerance itself), and never longer
+    /// than [`LONGEST_STEP`] of the radius.
     fn step(&mut self) -> Leg {
+        let m = self.mass;
         let r = self.x.length();
         let speed = self.v.length();
-        let mut h = 0.95 * longest_chord(self.mass, r) / speed;
+        let h2 = self.x.cross(self.v).length_squared();
+        let c = speed * speed - 2.0 * m * h2 / (r * r * r);
+        let tol = self.tolerance();
+        let allowed = |nearest: f64| {
+            longest_chord(m, nearest - tol, h2, c, tol).min(LONGEST_STEP * r)
+        };
+        let ahead = self.v / speed;
+        let mut len = allowed(r);
+        for _ in 0..2 {
+            len = allowed(distance_to_segment(self.x, self.x + ahead * len));
+        }
+        let mut h = 0.95 * len / speed;
         for _ in 0..40 {
             let (x, v, dt) = self.rk4(h);
             let len = (x - self.x).length();
-            let nearest = distance_to_segment(self.x, x) - CHORD_TOLERANCE * self.mass;
-            if len <= longest_chord(self.mass, nearest) && x.is_finite() {
+            if len <= allowed(distance_to_segment(self.x, x)) && x.is_finite() {
                 let dt = dt * self.time_sign;
                 let ray = Ray {
                     origin: Event::new(self.t, self.centre + self.x),
@@ -254,6 +305,7 @@ impl Geodesic {
                 self.x = x;
                 self.v = v;
                 self.t += dt;
+                self.arc += len;
                 return Leg::Chord(ray, len);
             }
             h /= 2.0;

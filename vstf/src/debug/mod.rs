@@ -57,7 +57,6 @@ pub fn trace_pixel(
             view.camera.width, view.camera.height
         ));
     }
-    let shader = renderer::shader(db, &f.scene, view.model, &view.settings);
     let mut rec = Recorder::default();
     let frame = renderer::Frame {
         camera: &view.camera,
@@ -65,6 +64,7 @@ pub fn trace_pixel(
         model: view.model,
         settings: &view.settings,
     };
+    let shader = renderer::shader(db, &f.scene, &frame);
     let color = renderer::pixel_traced(&shader, &frame, x, y, &mut rec);
     let one = crate::output::rgb8(&renderer::Image {
         width: 1,
