@@ -157,7 +157,25 @@ impl Database {
     /// any time (an upper bound; 0 for an empty database, infinite for an
     /// object that lives for ever).
     pub fn reach_from(&self, centre: DVec3) -> f64 {
-        let (lo, hi) = *self.reach.get_or_init(|| {
+        let (lo, hi) = self.spatial_bounds();
+        if lo.cmpgt(hi).any() {
+            return 0.0;
+        }
+        let far = (centre - lo).abs().max((hi - centre).abs());
+        let d = far.length();
+        if d.is_nan() {
+            f64::INFINITY
+        } else {
+            d
+        }
+    }
+
+    /// The least and greatest corners of a box holding every point of
+    /// every object at any time (the least above the greatest for an empty
+    /// database, infinite along the motion of an object that lives for
+    /// ever).
+    pub fn spatial_bounds(&self) -> (DVec3, DVec3) {
+        *self.reach.get_or_init(|| {
             let (mut lo, mut hi) = self.accel.spatial_box();
             for s in &self.spheres {
                 for t in [s.origin.t, s.end] {
@@ -171,17 +189,7 @@ impl Database {
                 }
             }
             (lo, hi)
-        });
-        if lo.cmpgt(hi).any() {
-            return 0.0;
-        }
-        let far = (centre - lo).abs().max((hi - centre).abs());
-        let d = far.length();
-        if d.is_nan() {
-            f64::INFINITY
-        } else {
-            d
-        }
+        })
     }
 
     /// How many prisms (extruded triangles) there are.

@@ -38,12 +38,14 @@ impl Shader<'_> {
         trace: &mut T,
     ) -> C {
         let reach = self.db.reach_from(hole.centre);
+        let (lo, hi) = self.db.spatial_bounds();
         // The static observer's radial lengths are dr / sqrt(f): in the
         // coordinates the pixel's angle is at least sqrt(f) times its own.
         let angle = self.pixel_angle * hole.lapse_squared(ray.origin.x).max(0.0).sqrt();
         let mut geodesic =
             Geodesic::backwards(hole, ray.origin, ray.direction.x, self.light_speed, reach)
-                .sized_to_pixel(angle);
+                .sized_to_pixel(angle)
+                .with_geometry_in(lo, hi);
         while let Some(Piece::Chord(chord, length)) = geodesic.next() {
             let range = (0.0, length);
             if T::ENABLED {

@@ -104,7 +104,21 @@ pub const PIXEL_FRACTION: f64 = 1.0 / 8.0;
 /// No step of the integration is longer than this fraction of the radius
 /// it starts at, however loose the chord tolerance: the accuracy of the
 /// ray's direction, and so of where it goes, rests on it.
-const LONGEST_STEP: f64 = 0.1;
+const LONGEST_STEP: f64 = 0.25;
+
+/// Where the ray passes clear of every object, a step may be this
+/// fraction of the radius it starts at, or less so that its path turns by
+/// at most [`CLEAR_TURN`] radians: the chord can meet nothing, only the
+/// integration's accuracy bounds it.
+const CLEAR_STEP: f64 = 0.5;
+
+/// The most a ray's path turns over one step clear of every object.
+const CLEAR_TURN: f64 = 0.2;
+
+/// A step clear of every object is taken where its estimated error is at
+/// most this fraction of the chord tolerance in position and of the pixel's
+/// angle in direction.
+const CLEAR_ERROR: f64 = 1.0 / 16.0;
 
 /// A ray still bound after this many chords (circling near the photon
 /// sphere r = 3M, each turn dimming its light by e^(2 pi)) is taken as
@@ -151,6 +165,12 @@ pub struct Geodesic {
     arc: f64,
     /// The angle a pixel subtends, radians (0: the tolerance in M alone).
     pixel_angle: f64,
+    /// The least and greatest corners of a box, relative to the centre,
+    /// holding every object at every time (everywhere unless told).
+    geometry: (DVec3, DVec3),
+    /// The fraction of the radius the next step clear of every object
+    /// tries, adapted to its error.
+    clear_fraction: f64,
     chords: usize,
     done: bool,
     /// The last, infinite chord has been given.
@@ -183,10 +203,48 @@ fn longest_chord(m: f64, r: f64, h2: f64, c: f64, tol: f64) -> f64 {
     if f <= 0.0 || r <= 0.0 {
         return 0.0;
     }
-    let bending = 3.0 * m * h2 / (c * r.powi(4) + 2.0 * m * h2 * r);
+    let bending = bending(m, r, h2, c);
     let timing = 2.485 * m / (r * r * f * f);
     (8.0 * tol / bending.max(timing)).sqrt()
 }
+/// The curvature bound kappa = 3 M h^2 / (C r^4 + 2 M h^2 r) of the path
+/// of a geodesic of h = |x cross v| and C = v^2 - 2 M h^2 / r^3 wherever
+/// its radius is at least `r` ([`longest_chord`]).
+fn bending(m: f64, r: f64, h2: f64, c: f64) -> f64 {
+    3.0 * m * h2 / (c * r.powi(4) + 2.0 * m * h2 * r)
+}
+
+/// Whether the segment from `a` to `b` meets the box [`lo`, `hi`].
+fn segment_meets_box(a: DVec3, b: DVec3, (lo, hi): (DVec3, DVec3)) -> bool {
+    if lo.cmpgt(hi).any() {
+        return false;
+    }
+    let d = b - a;
+    let (mut enter, mut leave) = (0.0_f64, 1.0_f64);
+    for i in 0..3 {
+        if d[i] == 0.0 {
+            if a[i] < lo[i] || a[i] > hi[i] {
+                return false;
+            }
+            continue;
+        }
+        let inverse = 1.0 / d[i];
+        let (near, far) = ((lo[i] - a[i]) * inverse, (hi[i] - a[i]) * inverse);
+        enter = enter.max(near.min(far));
+        leave = leave.min(near.max(far));
+        if enter > leave {
+            return false;
+        }
+    }
+    true
+}
+
+/// The least radius an arc from `a` to `b` turning by at most CLEAR_TURN
+/// can pass: the chord's, less the most the arc strays from it.
+fn least_radius(a: DVec3, b: DVec3) -> f64 {
+    distance_to_segment(a, b) - CLEAR_TURN * (b - a).length()
+}
+
 /// The distance from the origin to the segment from `a` to `b`.
 fn distance_to_segment(a: DVec3, b: DVec3) -> f64 {
     let d = b - a;
@@ -236,6 +294,8 @@ impl Geodesic {
             far: reach.min(FAR_FACTOR * r).max(3.0 * s.mass),
             arc: 0.0,
             pixel_angle: 0.0,
+            geometry: (DVec3::NEG_INFINITY, DVec3::INFINITY),
+            clear_fraction: CLEAR_STEP,
             chords: 0,
             escaped: false,
             done: !(r.is_finite() && v.is_finite()),
@@ -256,6 +316,51 @@ impl Geodesic {
         (x + dx, v + dv, dt)
     }
 
+    /// One Dormand-Prince step of `h` in lambda from (x, v): the fifth
+    /// order solution, and the difference from the embedded fourth order
+    /// one in x and in v (the step's error estimate).
+    fn dopri(&self, h: f64) -> ((DVec3, DVec3, f64), DVec3, DVec3) {
+        const A: [[f64; 6]; 6] = [
+            [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+            [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+            [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0, 0.0],
+            [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0.0],
+            [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
+        ];
+        const E: [f64; 7] = [
+            35.0 / 384.0 - 5179.0 / 57600.0,
+            0.0,
+            500.0 / 1113.0 - 7571.0 / 16695.0,
+            125.0 / 192.0 - 393.0 / 640.0,
+            -2187.0 / 6784.0 + 92097.0 / 339200.0,
+            11.0 / 84.0 - 187.0 / 2100.0,
+            -1.0 / 40.0,
+        ];
+        let m = self.mass;
+        let mut kx = [DVec3::ZERO; 7];
+        let mut kv = [DVec3::ZERO; 7];
+        let mut kt = [0.0; 7];
+        (kx[0], kv[0], kt[0]) = derivative(m, self.x, self.v);
+        let mut end = (self.x, self.v, 0.0);
+        for (i, row) in A.iter().enumerate() {
+            let (mut x, mut v, mut t) = (self.x, self.v, 0.0);
+            for j in 0..=i {
+                x += kx[j] * (h * row[j]);
+                v += kv[j] * (h * row[j]);
+                t += kt[j] * (h * row[j]);
+            }
+            (kx[i + 1], kv[i + 1], kt[i + 1]) = derivative(m, x, v);
+            end = (x, v, t);
+        }
+        let (mut ex, mut ev) = (DVec3::ZERO, DVec3::ZERO);
+        for j in 0..7 {
+            ex += kx[j] * (h * E[j]);
+            ev += kv[j] * (h * E[j]);
+        }
+        (end, ex, ev)
+    }
+
     /// The same geodesic, its chords allowed to stray by [`PIXEL_FRACTION`]
     /// of the footprint of a pixel subtending `angle` radians (in the
     /// lab's coordinates at the camera), where that is more than
@@ -267,16 +372,29 @@ impl Geodesic {
         }
     }
 
+    /// The same geodesic told that every object lies, at every time, in
+    /// the box from `lo` to `hi` (lab coordinates): where it passes clear
+    /// of that box its steps are as long as [`CLEAR_STEP`] and
+    /// [`CLEAR_TURN`] allow, however far their chords stray.
+    pub fn with_geometry_in(self, lo: DVec3, hi: DVec3) -> Geodesic {
+        Geodesic {
+            geometry: (lo - self.centre, hi - self.centre),
+            ..self
+        }
+    }
+
     /// How far the next chord may stray from the geodesic.
     fn tolerance(&self) -> f64 {
         (CHORD_TOLERANCE * self.mass).max(PIXEL_FRACTION * self.pixel_angle * self.arc)
     }
 
-    /// The next chord: one step, as long as the chord bound allows at the
-    /// least radius the straight line along v would pass, halved until the
-    /// chord is within the tolerance of the arc it cuts (measured at the
-    /// least radius it passes, less the tolerance itself), and never longer
-    /// than [`LONGEST_STEP`] of the radius.
+    /// The next chord: a step clear of all geometry where one longer than
+    /// [`LONGEST_STEP`] of the radius can be taken ([`Geodesic::clear_step`]);
+    /// otherwise one step, as long as the chord bound allows at the least
+    /// radius the straight line along v would pass, halved until the chord
+    /// is within the tolerance of the arc it cuts (measured at the least
+    /// radius it passes, less the tolerance itself), and never longer than
+    /// [`LONGEST_STEP`] of the radius.
     fn step(&mut self) -> Leg {
         let m = self.mass;
         let r = self.x.length();
@@ -287,6 +405,9 @@ impl Geodesic {
         let allowed = |nearest: f64| {
             longest_chord(m, nearest - tol, h2, c, tol).min(LONGEST_STEP * r)
         };
+        if let Some(leg) = self.clear_step(LONGEST_STEP * r, h2, c, tol) {
+            return leg;
+        }
         let ahead = self.v / speed;
         let mut len = allowed(r);
         for _ in 0..2 {
@@ -297,20 +418,88 @@ impl Geodesic {
             let (x, v, dt) = self.rk4(h);
             let len = (x - self.x).length();
             if len <= allowed(distance_to_segment(self.x, x)) && x.is_finite() {
-                let dt = dt * self.time_sign;
-                let ray = Ray {
-                    origin: Event::new(self.t, self.centre + self.x),
-                    direction: FourVector::new(dt / len, (x - self.x) / len),
-                };
-                self.x = x;
-                self.v = v;
-                self.t += dt;
-                self.arc += len;
-                return Leg::Chord(ray, len);
+                return self.advance(x, v, dt, len);
             }
             h /= 2.0;
         }
         Leg::Captured
+    }
+
+    /// A step longer than `len` along which nothing can be met: its arc
+    /// keeps more than `tol` outside the box holding all geometry and turns
+    /// by at most [`CLEAR_TURN`] ([`Geodesic::meets_geometry`]). It is one
+    /// Dormand-Prince 5(4) step of at most [`CLEAR_STEP`] of the radius,
+    /// taken when its error estimate is within [`CLEAR_ERROR`] of the chord
+    /// tolerance in position and of the pixel's angle in direction, and
+    /// shortened (by the estimate's fourth root, three tries) where it is
+    /// not; the length that passed is tried first next time. `None` where
+    /// no such step is longer than `len`, and for a geodesic not sized to a
+    /// pixel.
+    fn clear_step(&mut self, len: f64, h2: f64, c: f64, tol: f64) -> Option<Leg> {
+        let r = self.x.length();
+        let speed = self.v.length();
+        let ahead = self.v / speed;
+        let mut clear = self.clear_fraction * r;
+        for _ in 0..2 {
+            let end = self.x + ahead * clear;
+            let kappa = bending(self.mass, least_radius(self.x, end), h2, c);
+            clear = clear.min(CLEAR_TURN / kappa);
+        }
+        let turning = self.pixel_angle * CLEAR_ERROR;
+        if turning == 0.0 {
+            return None;
+        }
+        for _ in 0..3 {
+            if !(clear > len) || self.meets_geometry(self.x + ahead * clear, h2, c, tol) {
+                return None;
+            }
+            let ((x, v, dt), ex, ev) = self.dopri(0.9 * clear / speed);
+            let len = (x - self.x).length();
+            let error = (ex.length() / (tol * CLEAR_ERROR)).max(ev.length() / (speed * turning));
+            let scale = (0.9 / error.sqrt().sqrt()).clamp(0.2, 2.0);
+            self.clear_fraction = (self.clear_fraction * scale).min(CLEAR_STEP);
+            if error > 1.0 {
+                clear *= scale;
+                continue;
+            }
+            if !(x.is_finite() && len <= CLEAR_STEP * r) || self.meets_geometry(x, h2, c, tol) {
+                return None;
+            }
+            return Some(self.advance(x, v, dt, len));
+        }
+        None
+    }
+
+    /// Whether the arc from here to `end` may come within `tol` of the box
+    /// holding all geometry (or turn by more than CLEAR_TURN): it keeps
+    /// within the sagitta (1 - sqrt(1 - (kappa L / 2)^2)) / kappa of its
+    /// chord of length L, kappa the bending at its least radius.
+    fn meets_geometry(&self, end: DVec3, h2: f64, c: f64, tol: f64) -> bool {
+        let len = (end - self.x).length();
+        let kappa = bending(self.mass, least_radius(self.x, end), h2, c);
+        if !(kappa >= 0.0 && kappa * len <= CLEAR_TURN) {
+            return true;
+        }
+        let half = 0.5 * kappa * len;
+        let sagitta = 0.5 * len * half / (1.0 + (1.0 - half * half).sqrt());
+        let margin = DVec3::splat(1.01 * sagitta + tol);
+        let (lo, hi) = self.geometry;
+        segment_meets_box(self.x, end, (lo - margin, hi + margin))
+    }
+
+    /// Moves on to (x, v), `dt` later in lambda's direction, giving the
+    /// chord of length `len` from here.
+    fn advance(&mut self, x: DVec3, v: DVec3, dt: f64, len: f64) -> Leg {
+        let dt = dt * self.time_sign;
+        let ray = Ray {
+            origin: Event::new(self.t, self.centre + self.x),
+            direction: FourVector::new(dt / len, (x - self.x) / len),
+        };
+        self.x = x;
+        self.v = v;
+        self.t += dt;
+        self.arc += len;
+        Leg::Chord(ray, len)
     }
 }
 
