@@ -366,13 +366,13 @@ fn a_shutter_integrates_over_the_cameras_proper_time() {
     )
     .unwrap();
     let db = vstf::run::database(&g, true, Traversal::Bvh).unwrap();
-    let shader = renderer::shader(&db, &g.scene, view.model, &view.settings);
     let frame = renderer::Frame {
         camera: &view.camera,
         camera_t: view.camera_t,
         model: view.model,
         settings: &view.settings,
     };
+    let shader = renderer::shader(&db, &g.scene, &frame);
     let mut rec = renderer::Recorder::default();
     renderer::pixel_traced(&shader, &frame, 48, 36, &mut rec);
     let times: Vec<f64> = rec

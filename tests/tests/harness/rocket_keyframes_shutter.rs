@@ -66,13 +66,13 @@ fn render(f: &Fixture, view: &View) -> Image {
 /// The lab times of pixel (48, 36)'s samples in `view`.
 fn sample_times(f: &Fixture, view: &View) -> Vec<f64> {
     let db = vstf::run::database(f, true, Traversal::Bvh).unwrap();
-    let shader = renderer::shader(&db, &f.scene, view.model, &view.settings);
     let frame = renderer::Frame {
         camera: &view.camera,
         camera_t: view.camera_t,
         model: view.model,
         settings: &view.settings,
     };
+    let shader = renderer::shader(&db, &f.scene, &frame);
     let mut rec = renderer::Recorder::default();
     renderer::pixel_traced(&shader, &frame, 48, 36, &mut rec);
     rec.steps

@@ -316,7 +316,6 @@ fn a_render_gives_each_pixel_the_colour_it_has_alone() {
         // Packets whatever the scene's size (see `Packing::Auto`).
         db.set_packing(renderer::Packing::Packets);
         let image = vstf::run::render_with(&db, &f, &view).unwrap();
-        let shader = renderer::shader(&db, &f.scene, view.model, &view.settings);
         let mut camera = view.camera;
         camera.kinematics = renderer::Kinematics::of(view.model);
         let frame = renderer::Frame {
@@ -325,6 +324,7 @@ fn a_render_gives_each_pixel_the_colour_it_has_alone() {
             model: view.model,
             settings: &view.settings,
         };
+        let shader = renderer::shader(&db, &f.scene, &frame);
         let alone: Vec<[u64; 3]> = (0..17)
             .flat_map(|y| (0..23).map(move |x| (x, y)))
             .map(|(x, y)| {

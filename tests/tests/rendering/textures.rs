@@ -146,6 +146,7 @@ fn a_moving_plates_checkerboard_is_its_rest_frame_pattern() {
         background: DVec3::ZERO,
         sky: None,
         spacetime: Spacetime::Flat,
+        pixel_angle: 0.0,
         light_speed: LightSpeed::Finite,
         max_depth: 0,
         shadows: false,

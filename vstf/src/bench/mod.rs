@@ -404,7 +404,9 @@ fn curved_spacetime(plan: &Plan, out: &mut String) -> Result<(), String> {
     let time = |f: &Fixture| -> Result<f64, String> {
         let db = crate::run::database(f, view.model.lorentz, Traversal::Bvh)?;
         crate::run::render_with(&db, f, &view)?;
-        Ok(best_of(plan.runs, || drop(crate::run::render_with(&db, f, &view))))
+        Ok(best_of(plan.runs, || {
+            drop(crate::run::render_with(&db, f, &view))
+        }))
     };
     let (curved, straight) = (time(&bent)?, time(&flat)?);
     let _ = writeln!(

@@ -172,8 +172,14 @@ fn chords_sized_to_a_pixel_stray_by_at_most_its_fraction_of_the_footprint() {
     let (_, _, n_fine) = worst_stray(6.0, 60.0, 0.0);
     // The footprint at the far end of the stretch followed (about 120 M).
     let bound = PIXEL_FRACTION * angle * 130.0;
-    assert!(space <= bound && time <= bound, "{space}, {time} vs {bound}");
-    assert!(space.max(time) > CHORD_TOLERANCE * M, "looser than the floor");
+    assert!(
+        space <= bound && time <= bound,
+        "{space}, {time} vs {bound}"
+    );
+    assert!(
+        space.max(time) > CHORD_TOLERANCE * M,
+        "looser than the floor"
+    );
     assert!(2 * n < n_fine, "{n} chords against {n_fine}");
 }
 
@@ -193,7 +199,10 @@ fn chords_sized_to_a_pixel_keep_the_deflection() {
                 Leg::Captured => None,
             })
             .collect();
-        (math::atan2(-rays[rays.len() - 1].y, -rays[rays.len() - 1].x), rays.len())
+        (
+            math::atan2(-rays[rays.len() - 1].y, -rays[rays.len() - 1].x),
+            rays.len(),
+        )
     };
     let ((coarse, n), (fine, n_fine)) = (last(1e-4), last(0.0));
     assert!((coarse - fine).abs() < 1e-4 / 20.0, "{coarse} vs {fine}");
@@ -279,7 +288,6 @@ fn the_asymptote_of_an_escaping_ray_has_turned_through_the_whole_deflection() {
     assert!((chord - series / 2.0).abs() < 0.1 * series, "{chord}");
 }
 
-
 /// Told that all geometry lies in a slab the ray crosses after passing
 /// the mass, the geodesic takes long steps elsewhere, their chords (meeting
 /// nothing) straying farther than the tolerance, but inside the slab its
@@ -290,10 +298,16 @@ fn chords_stray_beyond_the_tolerance_only_clear_of_all_geometry() {
     let bound = PIXEL_FRACTION * angle * 130.0;
     let slab = (DVec3::new(-50.0, -1e3, -1e3), DVec3::new(-30.0, 1e3, 1e3));
     let (space, time, n) = worst_stray_in(6.0, 60.0, angle, slab, slab);
-    assert!(space <= bound && time <= bound, "{space}, {time} vs {bound}");
+    assert!(
+        space <= bound && time <= bound,
+        "{space}, {time} vs {bound}"
+    );
     let everywhere = (DVec3::NEG_INFINITY, DVec3::INFINITY);
     let (_, _, n_everywhere) = worst_stray_in(6.0, 60.0, angle, everywhere, everywhere);
-    assert!(3 * n < 2 * n_everywhere, "{n} chords against {n_everywhere}");
+    assert!(
+        3 * n < 2 * n_everywhere,
+        "{n} chords against {n_everywhere}"
+    );
     // Negative control: outside the slab the chords stray beyond the bound.
     let (space, time, _) = worst_stray_in(6.0, 60.0, angle, slab, everywhere);
     assert!(space.max(time) > bound, "{space}, {time} vs {bound}");
@@ -323,7 +337,9 @@ fn clear_steps_keep_the_deflection_to_a_fraction_of_the_pixel() {
             (geodesic.asymptote().unwrap(), n)
         };
         let start = || Geodesic::backwards(&s, origin, towards, LightSpeed::Finite, 400.0);
-        let (clear, n) = sky(start().sized_to_pixel(angle).with_geometry_in(nowhere.0, nowhere.1));
+        let (clear, n) = sky(start()
+            .sized_to_pixel(angle)
+            .with_geometry_in(nowhere.0, nowhere.1));
         let (fine, n_fine) = sky(start());
         let error = clear.angle_between(fine);
         assert!(error < angle / 20.0, "b {b}: {error} rad");
