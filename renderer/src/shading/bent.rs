@@ -51,6 +51,9 @@ impl Shader<'_> {
             if T::ENABLED {
                 trace.record(ray_step(RayKind::Primary, 0, &chord, range));
             }
+            if geodesic.passed_clear() {
+                continue;
+            }
             let hit = self.db.closest_hit_traced(&chord, range, trace);
             if hit.is_none() && length < f64::INFINITY {
                 continue;

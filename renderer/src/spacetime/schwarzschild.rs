@@ -171,23 +171,47 @@ pub struct Geodesic {
     /// The fraction of the radius the next step clear of every object
     /// tries, adapted to its error.
     clear_fraction: f64,
+    /// The last chord given passes clear of every object.
+    cleared: bool,
     chords: usize,
     done: bool,
     /// The last, infinite chord has been given.
     escaped: bool,
 }
 
-/// d/d(lambda) of (x, v, t) (t's with `time_sign` applied by the caller).
-fn derivative(m: f64, x: DVec3, v: DVec3) -> (DVec3, DVec3, f64) {
-    let r2 = x.length_squared();
-    let r = r2.sqrt();
-    let h2 = x.cross(v).length_squared();
-    let a = x * (-3.0 * m * h2 / (r2 * r2 * r));
-    let f = 1.0 - 2.0 * m / r;
-    let vr = x.dot(v) / r;
-    let vt2 = (v.length_squared() - vr * vr).max(0.0);
-    let dt = (vr * vr / (f * f) + vt2 / f).sqrt();
-    (v, a, dt)
+/// What stays the same along a geodesic's path: M, h^2 = |x cross v|^2
+/// and sqrt(C), C = v^2 - 2 M h^2 / r^3 (the central acceleration's
+/// angular momentum and energy).
+#[derive(Clone, Copy)]
+struct Invariants {
+    m: f64,
+    h2: f64,
+    root_c: f64,
+}
+
+impl Invariants {
+    fn of(m: f64, x: DVec3, v: DVec3) -> Invariants {
+        let h2 = x.cross(v).length_squared();
+        let r = x.length();
+        let c = v.length_squared() - 2.0 * m * h2 / (r * r * r);
+        Invariants {
+            m,
+            h2,
+            root_c: c.max(0.0).sqrt(),
+        }
+    }
+
+    /// d/d(lambda) of (x, v, t) (t's with `time_sign` applied by the
+    /// caller): a = -3 M h^2 x / r^5, and from the null condition
+    /// dt/dlambda = sqrt(v_r^2 / f^2 + v_t^2 / f) = sqrt(C) / f, since
+    /// v_r^2 + f v_t^2 = v^2 - (2M / r) h^2 / r^2 = C.
+    fn derivative(&self, x: DVec3, v: DVec3) -> (DVec3, DVec3, f64) {
+        let r2 = x.length_squared();
+        let r = r2.sqrt();
+        let a = x * (-3.0 * self.m * self.h2 / (r2 * r2 * r));
+        let dt = self.root_c * r / (r - 2.0 * self.m);
+        (v, a, dt)
+    }
 }
 
 /// The longest chord that strays by at most `tol` from a geodesic of
@@ -296,6 +320,7 @@ impl Geodesic {
             pixel_angle: 0.0,
             geometry: (DVec3::NEG_INFINITY, DVec3::INFINITY),
             clear_fraction: CLEAR_STEP,
+            cleared: false,
             chords: 0,
             escaped: false,
             done: !(r.is_finite() && v.is_finite()),
@@ -304,12 +329,12 @@ impl Geodesic {
 
     /// One classical Runge-Kutta step of `h` in lambda from (x, v).
     fn rk4(&self, h: f64) -> (DVec3, DVec3, f64) {
-        let m = self.mass;
         let (x, v) = (self.x, self.v);
-        let (k1x, k1v, k1t) = derivative(m, x, v);
-        let (k2x, k2v, k2t) = derivative(m, x + k1x * (h / 2.0), v + k1v * (h / 2.0));
-        let (k3x, k3v, k3t) = derivative(m, x + k2x * (h / 2.0), v + k2v * (h / 2.0));
-        let (k4x, k4v, k4t) = derivative(m, x + k3x * h, v + k3v * h);
+        let orbit = Invariants::of(self.mass, x, v);
+        let (k1x, k1v, k1t) = orbit.derivative(x, v);
+        let (k2x, k2v, k2t) = orbit.derivative(x + k1x * (h / 2.0), v + k1v * (h / 2.0));
+        let (k3x, k3v, k3t) = orbit.derivative(x + k2x * (h / 2.0), v + k2v * (h / 2.0));
+        let (k4x, k4v, k4t) = orbit.derivative(x + k3x * h, v + k3v * h);
         let dx = (k1x + (k2x + k3x) * 2.0 + k4x) * (h / 6.0);
         let dv = (k1v + (k2v + k3v) * 2.0 + k4v) * (h / 6.0);
         let dt = (k1t + 2.0 * (k2t + k3t) + k4t) * (h / 6.0);
@@ -358,11 +383,11 @@ impl Geodesic {
             11.0 / 84.0 - 187.0 / 2100.0,
             -1.0 / 40.0,
         ];
-        let m = self.mass;
+        let orbit = Invariants::of(self.mass, self.x, self.v);
         let mut kx = [DVec3::ZERO; 7];
         let mut kv = [DVec3::ZERO; 7];
         let mut kt = [0.0; 7];
-        (kx[0], kv[0], kt[0]) = derivative(m, self.x, self.v);
+        (kx[0], kv[0], kt[0]) = orbit.derivative(self.x, self.v);
         let mut end = (self.x, self.v, 0.0);
         for (i, row) in A.iter().enumerate() {
             let (mut x, mut v, mut t) = (self.x, self.v, 0.0);
@@ -371,7 +396,7 @@ impl Geodesic {
                 v += kv[j] * (h * row[j]);
                 t += kt[j] * (h * row[j]);
             }
-            (kx[i + 1], kv[i + 1], kt[i + 1]) = derivative(m, x, v);
+            (kx[i + 1], kv[i + 1], kt[i + 1]) = orbit.derivative(x, v);
             end = (x, v, t);
         }
         let (mut ex, mut ev) = (DVec3::ZERO, DVec3::ZERO);
@@ -402,6 +427,13 @@ impl Geodesic {
             geometry: (lo - self.centre, hi - self.centre),
             ..self
         }
+    }
+
+    /// Whether the last chord given passes clear of every object (told by
+    /// [`Geodesic::with_geometry_in`]), so that no search along it can meet
+    /// anything.
+    pub fn passed_clear(&self) -> bool {
+        self.cleared
     }
 
     /// How far the next chord may stray from the geodesic.
@@ -438,6 +470,7 @@ impl Geodesic {
             let (x, v, dt) = self.rk4(h);
             let len = (x - self.x).length();
             if len <= allowed(distance_to_segment(self.x, x)) && x.is_finite() {
+                self.cleared = false;
                 return self.advance(x, v, dt, len);
             }
             h /= 2.0;
@@ -456,55 +489,60 @@ impl Geodesic {
     /// no such step is longer than `len`, and for a geodesic not sized to a
     /// pixel.
     fn clear_step(&mut self, len: f64, h2: f64, c: f64, tol: f64) -> Option<Leg> {
+        let turning = self.pixel_angle * CLEAR_ERROR;
         let r = self.x.length();
         let speed = self.v.length();
-        let ahead = self.v / speed;
         let mut clear = self.clear_fraction * r;
-        for _ in 0..2 {
-            let end = self.x + ahead * clear;
-            let kappa = bending(self.mass, least_radius(self.x, end), h2, c);
-            clear = clear.min(CLEAR_TURN / kappa);
-        }
-        let turning = self.pixel_angle * CLEAR_ERROR;
-        if turning == 0.0 {
-            return None;
-        }
         for _ in 0..3 {
-            if !(clear > len) || self.meets_geometry(self.x + ahead * clear, h2, c, tol) {
+            let (lo, hi) = self.geometry;
+            let margin = DVec3::splat(tol);
+            let ahead = self.x + self.v * (clear / speed);
+            if !(clear > len && turning > 0.0) {
+                // No longer than a chord here: try longer again later.
+                self.clear_fraction = (self.clear_fraction * 1.5).min(CLEAR_STEP);
                 return None;
             }
-            let ((x, v, dt), ex, ev) = self.dopri(0.9 * clear / speed);
-            let len = (x - self.x).length();
+            if segment_meets_box(self.x, ahead, (lo - margin, hi + margin)) {
+                return None;
+            }
+            let ((x, v, dt), ex, ev) = self.dopri(clear / speed);
             let error = (ex.length() / (tol * CLEAR_ERROR)).max(ev.length() / (speed * turning));
             let scale = (0.9 / error.sqrt().sqrt()).clamp(0.2, 2.0);
             self.clear_fraction = (self.clear_fraction * scale).min(CLEAR_STEP);
-            if error > 1.0 {
-                clear *= scale;
-                continue;
+            let turn = match self.meets_geometry(x, h2, c, tol) {
+                Some(turn) if x.is_finite() => turn,
+                _ => return None,
+            };
+            if error <= 1.0 && turn <= CLEAR_TURN {
+                self.cleared = true;
+                return Some(self.advance(x, v, dt, (x - self.x).length()));
             }
-            if !(x.is_finite() && len <= CLEAR_STEP * r) || self.meets_geometry(x, h2, c, tol) {
-                return None;
-            }
-            return Some(self.advance(x, v, dt, len));
+            clear *= scale.min(0.9 * CLEAR_TURN / turn);
         }
         None
     }
 
-    /// Whether the arc from here to `end` may come within `tol` of the box
-    /// holding all geometry (or turn by more than CLEAR_TURN): it keeps
-    /// within the sagitta (1 - sqrt(1 - (kappa L / 2)^2)) / kappa of its
-    /// chord of length L, kappa the bending at its least radius.
-    fn meets_geometry(&self, end: DVec3, h2: f64, c: f64, tol: f64) -> bool {
+    /// How far the arc from here to `end` turns, if it keeps more than
+    /// `tol` outside the box holding all geometry: it lies within the
+    /// sagitta (1 - sqrt(1 - (kappa L / 2)^2)) / kappa of its chord of
+    /// length L, kappa the bending at the least radius it can pass; `None`
+    /// where it may come nearer (or the bound fails: kappa L >= 2, or the
+    /// least radius inside the photon sphere).
+    fn meets_geometry(&self, end: DVec3, h2: f64, c: f64, tol: f64) -> Option<f64> {
         let len = (end - self.x).length();
-        let kappa = bending(self.mass, least_radius(self.x, end), h2, c);
-        if !(kappa >= 0.0 && kappa * len <= CLEAR_TURN) {
-            return true;
-        }
+        let least = least_radius(self.x, end);
+        let kappa = bending(self.mass, least, h2, c);
         let half = 0.5 * kappa * len;
+        if !(least > 3.0 * self.mass && kappa >= 0.0 && half < 1.0) {
+            return None;
+        }
         let sagitta = 0.5 * len * half / (1.0 + (1.0 - half * half).sqrt());
         let margin = DVec3::splat(1.01 * sagitta + tol);
         let (lo, hi) = self.geometry;
-        segment_meets_box(self.x, end, (lo - margin, hi + margin))
+        match segment_meets_box(self.x, end, (lo - margin, hi + margin)) {
+            true => None,
+            false => Some(2.0 * half),
+        }
     }
 
     /// Moves on to (x, v), `dt` later in lambda's direction, giving the
@@ -575,7 +613,8 @@ impl Iterator for Geodesic {
             // turning point of r lies outside the photon sphere on the way out).
             self.done = true;
             self.escaped = true;
-            let (_, _, dt) = derivative(m, self.x, self.v);
+            self.cleared = false;
+            let (_, _, dt) = Invariants::of(m, self.x, self.v).derivative(self.x, self.v);
             let n = self.v.normalize();
             let ray = Ray {
                 origin: Event::new(self.t, self.centre + self.x),
