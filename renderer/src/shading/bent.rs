@@ -5,7 +5,9 @@
 //! the light met, as one straight ray does in flat spacetime. The chords
 //! stray from the geodesic by at most `CHORD_TOLERANCE` M, or where it is
 //! more, an eighth of the footprint the pixel would have there in flat
-//! spacetime (its angle times the arc from the camera). Shadow and
+//! spacetime (its angle times the arc from the camera); where the geodesic
+//! passes clear of the box holding every object its steps are longer and
+//! their chords, which can meet nothing, are not searched. Shadow and
 //! mirror rays leaving the hit stay straight. An escaping ray shows the sky
 //! in the direction its light came from at infinity
 //! ([`Geodesic::asymptote`]: the bending still left beyond its last chord

@@ -485,9 +485,10 @@ impl Geodesic {
     /// taken when its error estimate is within [`CLEAR_ERROR`] of the chord
     /// tolerance in position and of the pixel's angle in direction, and
     /// shortened (by the estimate's fourth root, three tries) where it is
-    /// not; the length that passed is tried first next time. `None` where
-    /// no such step is longer than `len`, and for a geodesic not sized to a
-    /// pixel.
+    /// not; the length that passed is tried first next time (and, where it
+    /// was no longer than a chord, half as long again). `None` where no
+    /// such step is longer than `len`, where the straight line ahead
+    /// meets the box, and for a geodesic not sized to a pixel.
     fn clear_step(&mut self, len: f64, h2: f64, c: f64, tol: f64) -> Option<Leg> {
         let turning = self.pixel_angle * CLEAR_ERROR;
         let r = self.x.length();
