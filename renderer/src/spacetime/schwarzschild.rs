@@ -407,7 +407,7 @@ impl Geodesic {
         (end, ex, ev)
     }
 
-    /// The same geodesic, its chords allowed to stray by [`PIXEL_FRACTION`]
+    /// The same geodesic, its chords allowed to stray by `PIXEL_FRACTION`
     /// of the footprint of a pixel subtending `angle` radians (in the
     /// lab's coordinates at the camera), where that is more than
     /// [`CHORD_TOLERANCE`] M.
@@ -420,8 +420,8 @@ impl Geodesic {
 
     /// The same geodesic told that every object lies, at every time, in
     /// the box from `lo` to `hi` (lab coordinates): where it passes clear
-    /// of that box its steps are as long as [`CLEAR_STEP`] and
-    /// [`CLEAR_TURN`] allow, however far their chords stray.
+    /// of that box its steps are as long as `CLEAR_STEP` and
+    /// `CLEAR_TURN` allow, however far their chords stray.
     pub fn with_geometry_in(self, lo: DVec3, hi: DVec3) -> Geodesic {
         Geodesic {
             geometry: (lo - self.centre, hi - self.centre),

@@ -394,7 +394,7 @@ fn teaser_frame(plan: &Plan, out: &mut String) -> Result<(), String> {
     Ok(())
 }
 
-/// 8. Light bent by a mass: the `lensed-flange` fixture against the same
+/// Section 8, light bent by a mass: the `lensed-flange` fixture against the same
 /// scene in flat spacetime, each frame with its database built once.
 fn curved_spacetime(plan: &Plan, out: &mut String) -> Result<(), String> {
     let (fw, fh) = if plan.quick { (320, 180) } else { (1920, 1080) };
