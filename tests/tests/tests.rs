@@ -20,6 +20,7 @@ mod spacetime {
 /// Whole images and the shading of their pixels: light-speed models,
 /// determinism, retarded positions, shadows, mirrors, motion blur and clocks.
 mod rendering {
+    mod bent;
     mod render;
     mod shading;
     mod sky;

@@ -101,6 +101,10 @@ pub const CHORD_TOLERANCE: f64 = 1e-3;
 /// would be if it were moved by at most that much.
 pub const PIXEL_FRACTION: f64 = 1.0 / 8.0;
 
+/// A chord sized to the pixel strays by at most this fraction of its
+/// start's height above the horizon.
+const HEIGHT_FRACTION: f64 = 1.0 / 16.0;
+
 /// No step of the integration is longer than this fraction of the radius
 /// it starts at, however loose the chord tolerance: the accuracy of the
 /// ray's direction, and so of where it goes, rests on it.
@@ -437,8 +441,12 @@ impl Geodesic {
     }
 
     /// How far the next chord may stray from the geodesic.
+    /// However coarse the pixel, never more than [`HEIGHT_FRACTION`] of the
+    /// height above the horizon, so that the bounds are taken outside it.
     fn tolerance(&self) -> f64 {
-        (CHORD_TOLERANCE * self.mass).max(PIXEL_FRACTION * self.pixel_angle * self.arc)
+        let height = self.x.length() - 2.0 * self.mass;
+        let footprint = PIXEL_FRACTION * self.pixel_angle * self.arc;
+        (CHORD_TOLERANCE * self.mass).max(footprint.min(HEIGHT_FRACTION * height))
     }
 
     /// The next chord: a step clear of all geometry where one longer than
@@ -469,7 +477,7 @@ impl Geodesic {
         for _ in 0..40 {
             let (x, v, dt) = self.rk4(h);
             let len = (x - self.x).length();
-            if len <= allowed(distance_to_segment(self.x, x)) && x.is_finite() {
+            if len > 0.0 && len <= allowed(distance_to_segment(self.x, x)) && x.is_finite() {
                 self.cleared = false;
                 return self.advance(x, v, dt, len);
             }
@@ -514,7 +522,7 @@ impl Geodesic {
                 Some(turn) if x.is_finite() => turn,
                 _ => return None,
             };
-            if error <= 1.0 && turn <= CLEAR_TURN {
+            if error <= 1.0 && turn <= CLEAR_TURN && x != self.x {
                 self.cleared = true;
                 return Some(self.advance(x, v, dt, (x - self.x).length()));
             }

@@ -346,3 +346,37 @@ fn clear_steps_keep_the_deflection_to_a_fraction_of_the_pixel() {
         assert!(4 * n < n_fine, "b {b}: {n} steps against {n_fine}");
     }
 }
+
+/// However coarse the pixel (here a 12 x 9 image's, 0.03 rad, from 291 M
+/// with a box of geometry beyond the mass), every chord is finite and of
+/// positive length, and every ray ends: a footprint larger than the
+/// distance to the horizon once gave chords of length 0, whose direction
+/// was not a number.
+#[test]
+fn chords_of_a_coarse_pixel_are_finite_and_every_ray_ends() {
+    let s = hole();
+    let origin = Event::new(10.0, s.centre + DVec3::new(0.0, 150.0, 250.0));
+    let (lo, hi) = (
+        DVec3::new(-870.0, -310.0, -830.0),
+        DVec3::new(920.0, -90.0, -170.0),
+    );
+    for i in 0..200 {
+        let a = f64::from(i) * 0.0014 - 0.14;
+        let towards = (-origin.x + s.centre + DVec3::new(a * 290.0, a * 100.0, 0.0)).normalize();
+        let legs: Vec<Leg> = Geodesic::backwards(&s, origin, towards, LightSpeed::Finite, 1500.0)
+            .sized_to_pixel(0.031)
+            .with_geometry_in(s.centre + lo, s.centre + hi)
+            .take(MAX_CHORDS + 2)
+            .collect();
+        assert!(legs.len() <= MAX_CHORDS + 1, "ray {i} does not end");
+        for leg in legs {
+            if let Leg::Chord(ray, len) = leg {
+                let finite = ray.origin.x.is_finite() && ray.direction.x.is_finite();
+                assert!(
+                    finite && ray.direction.t.is_finite() && len > 0.0,
+                    "ray {i}: {ray:?} {len}"
+                );
+            }
+        }
+    }
+}
