@@ -11,6 +11,15 @@ use crate::spacetime::{Event, Ray};
 use crate::trace::{NoTrace, Outcome, Step, Trace};
 use glam::DVec4;
 
+/// Whether a search along `ray` within `range` means anything: its origin
+/// and direction finite and its range's end not NaN. Any other ray meets
+/// nothing (given a direction that is not a number, the hierarchy's box
+/// tests would let it into every box).
+fn searchable(ray: &Ray, range: (f64, f64)) -> bool {
+    let (o, d) = (ray.origin, ray.direction);
+    o.x.is_finite() && o.t.is_finite() && d.x.is_finite() && d.t.is_finite() && !range.1.is_nan()
+}
+
 impl Database {
     /// The hit with the smallest ray parameter in `range`: on a light-cone
     /// ray, the most recent event (paper 3.2). A ray runs forward from its
@@ -27,7 +36,9 @@ impl Database {
         range: (f64, f64),
         trace: &mut T,
     ) -> Option<Hit> {
-        // (NaN included.)
+        if !searchable(ray, range) {
+            return None;
+        }
         let range = (range.0.max(0.0), range.1);
         let best = self.closest_in_runs(ray, range, trace);
         self.nearer_on_spheres(ray, range, best)
@@ -49,6 +60,15 @@ impl Database {
         let range = (range.0.max(0.0), range.1);
         for (rays, hits) in rays.chunks(PACKET).zip(hits.chunks_mut(PACKET)) {
             let found = match rays {
+                _ if !rays.iter().all(|ray| searchable(ray, range)) => {
+                    let mut one_by_one = [None; PACKET];
+                    for (hit, ray) in one_by_one.iter_mut().zip(rays) {
+                        if searchable(ray, range) {
+                            *hit = self.closest_in_runs(ray, range, &mut NoTrace);
+                        }
+                    }
+                    one_by_one
+                }
                 [ray] => {
                     let mut one = [None; PACKET];
                     one[0] = self.closest_in_runs(ray, range, &mut NoTrace);
@@ -57,7 +77,10 @@ impl Database {
                 _ => self.closest_in_runs_packet(rays, range),
             };
             for ((hit, ray), best) in hits.iter_mut().zip(rays).zip(found) {
-                *hit = self.nearer_on_spheres(ray, range, best);
+                *hit = match searchable(ray, range) {
+                    true => self.nearer_on_spheres(ray, range, best),
+                    false => None,
+                };
             }
         }
     }

@@ -178,3 +178,38 @@ fn packets_are_chosen_for_large_meshes_in_few_slices() {
     assert!(!large.packs());
     assert!(!sheet(Database::PACKED_FROM - 1).packs());
 }
+
+/// A ray whose direction or origin is not a number, or whose range ends
+/// at NaN, meets nothing, alone or in a packet, and its packet's other
+/// rays still find their own hits. (Such a ray once sent the hierarchy's
+/// search into every box, growing without bound: the process was killed.)
+#[test]
+fn a_ray_that_is_not_a_number_meets_nothing_and_spoils_no_packet() {
+    let (mut db, rays) = boxes_and_rays(true);
+    let nan = f64::NAN;
+    let broken = [
+        Ray::backwards(rays[0].origin, glam::DVec3::splat(nan), LightSpeed::Finite),
+        Ray::backwards(
+            Event::new(nan, rays[0].origin.x),
+            rays[0].direction.x,
+            LightSpeed::Finite,
+        ),
+    ];
+    for ray in &broken {
+        assert!(db.closest_hit(ray, (0.0, 1e3)).is_none());
+    }
+    assert!(db.closest_hit(&rays[0], (0.0, nan)).is_none());
+    // The control: the same packets without the broken rays hit.
+    let whole = assert_packets_find_single_hits(&mut db, &rays[..400], "whole rays");
+    assert!(whole > 100, "{whole} of 400 rays hit");
+    let mut mixed = rays[..400].to_vec();
+    for k in (0..400).step_by(7) {
+        mixed[k] = broken[k % 2];
+    }
+    let hits = assert_packets_find_single_hits(&mut db, &mixed, "a packet with a broken ray");
+    let lost = (0..400)
+        .step_by(7)
+        .filter(|&k| db.closest_hit(&rays[k], (0.0, f64::INFINITY)).is_some())
+        .count();
+    assert_eq!(hits, whole - lost);
+}
