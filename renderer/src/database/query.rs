@@ -59,16 +59,13 @@ impl Database {
         }
         let range = (range.0.max(0.0), range.1);
         for (rays, hits) in rays.chunks(PACKET).zip(hits.chunks_mut(PACKET)) {
-            let found = match rays {
-                _ if !rays.iter().all(|ray| searchable(ray, range)) => {
-                    let mut one_by_one = [None; PACKET];
-                    for (hit, ray) in one_by_one.iter_mut().zip(rays) {
-                        if searchable(ray, range) {
-                            *hit = self.closest_in_runs(ray, range, &mut NoTrace);
-                        }
-                    }
-                    one_by_one
+            if !rays.iter().all(|ray| searchable(ray, range)) {
+                for (hit, ray) in hits.iter_mut().zip(rays) {
+                    *hit = self.closest_hit(ray, range);
                 }
+                continue;
+            }
+            let found = match rays {
                 [ray] => {
                     let mut one = [None; PACKET];
                     one[0] = self.closest_in_runs(ray, range, &mut NoTrace);
@@ -77,10 +74,7 @@ impl Database {
                 _ => self.closest_in_runs_packet(rays, range),
             };
             for ((hit, ray), best) in hits.iter_mut().zip(rays).zip(found) {
-                *hit = match searchable(ray, range) {
-                    true => self.nearer_on_spheres(ray, range, best),
-                    false => None,
-                };
+                *hit = self.nearer_on_spheres(ray, range, best);
             }
         }
     }

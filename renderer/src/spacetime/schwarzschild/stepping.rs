@@ -160,9 +160,9 @@ impl Geodesic {
         let r = self.x.length();
         let speed = self.v.length();
         let mut clear = self.clear_fraction * r;
+        let (lo, hi) = self.geometry;
+        let margin = DVec3::splat(tol);
         for _ in 0..3 {
-            let (lo, hi) = self.geometry;
-            let margin = DVec3::splat(tol);
             let ahead = self.x + self.v * (clear / speed);
             if !(clear > len && turning > 0.0) {
                 // No longer than a chord here: try longer again later.
