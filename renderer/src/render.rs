@@ -205,7 +205,7 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
     };
     let mut rngs: [SplitMix64; PACKET] = [rng(0), rng(1), rng(2), rng(3)];
     let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
-    let mut cameras = [*camera; PACKET];
+    let mut moved: [Option<Camera>; PACKET] = [None, None, None, None];
     let mut rays = [camera.ray(0.5, 0.5, camera_t, model.light_speed); PACKET];
     let mut hits = [None; PACKET];
     let mut colors = [DVec3::ZERO; PACKET];
@@ -217,14 +217,16 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
             } else {
                 stratified(&mut rngs[j], (x, y), (k, n), frame)
             };
-            cameras[j] = camera.at(t);
-            rays[j] = cameras[j].ray(px, py, t, model.light_speed);
+            moved[j] = moved_at(camera, t);
+            let here = moved[j].as_ref().unwrap_or(camera);
+            rays[j] = here.ray(px, py, t, model.light_speed);
         }
         shader
             .db
             .closest_hits(&rays[..m], (0.0, f64::INFINITY), &mut hits[..m]);
         for j in 0..m {
-            let c = shader.observed_found(&cameras[j], &rays[j], hits[j]);
+            let here = moved[j].as_ref().unwrap_or(camera);
+            let c = shader.observed_found(here, &rays[j], hits[j]);
             colors[j] = if settings.spp <= 1 { c } else { colors[j] + c };
         }
     }
@@ -232,6 +234,14 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
         colors = colors.map(|c| c / f64::from(settings.spp));
     }
     colors
+}
+
+/// The camera at lab time `t` ([`Camera::at`]) where that is not `camera`
+/// itself: a camera holds its worldline's waypoints inline (about a
+/// kilobyte), so a copy for every sample of an inertial camera cost a
+/// large part of the shading's time.
+fn moved_at(camera: &Camera, t: f64) -> Option<Camera> {
+    (camera.worldline.is_some() && t != camera.event.t).then(|| camera.at(t))
 }
 
 /// Sample k of pixel (x, y) with n*n strata: its place in the image
@@ -282,9 +292,10 @@ pub fn pixel_traced<T: Trace>(
                 camera_t: t,
             });
         }
-        let camera = camera.at(t);
+        let moved = moved_at(camera, t);
+        let camera = moved.as_ref().unwrap_or(camera);
         let ray = camera.ray(px, py, t, model.light_speed);
-        shader.observed_traced(&camera, &ray, trace)
+        shader.observed_traced(camera, &ray, trace)
     };
     if settings.spp <= 1 {
         return sample(0, f64::from(x) + 0.5, f64::from(y) + 0.5, camera_t, trace);
