@@ -6,6 +6,9 @@ use crate::fixture::{Fixture, Overrides, View};
 use renderer::{Database, Image, Traversal};
 use std::sync::atomic::AtomicBool;
 
+mod memo;
+pub use memo::Renders;
+
 /// A fixture's database for one Lorentz setting.
 pub fn database(fixture: &Fixture, lorentz: bool, traversal: Traversal) -> Result<Database, Error> {
     let mut db = fixture.database(lorentz)?;
@@ -20,10 +23,18 @@ pub fn view(fixture: &Fixture, overrides: &Overrides) -> Result<View, Error> {
         .map_err(|e| Error::Fixture(e.in_file(&fixture.file)))
 }
 
-/// Renders `view` of `fixture` with a database built for it.
+/// Renders `view` of `fixture` with a database built for it, or gives the
+/// image this fixture (or a copy of it) rendered already for the same
+/// scene, spec, view and traversal ([`Renders`]).
 pub fn render(fixture: &Fixture, view: &View, traversal: Traversal) -> Result<Image, Error> {
+    let key = fixture.renders.key(fixture, view, traversal);
+    if let Some(image) = fixture.renders.get(key) {
+        return Ok(image);
+    }
     let db = database(fixture, view.model.lorentz, traversal)?;
-    render_with(&db, fixture, view)
+    let image = render_with(&db, fixture, view)?;
+    fixture.renders.keep(key, &image);
+    Ok(image)
 }
 
 /// Renders `view` with an existing database (built with the view's Lorentz
@@ -150,6 +161,48 @@ mod tests {
     fn pixels(f: &Fixture) -> Vec<glam::DVec3> {
         let view = view(f, &Overrides::default()).unwrap();
         render(f, &view, Traversal::Bvh).unwrap().pixels
+    }
+
+    /// A render repeated, of the fixture or of a copy, is the first's
+    /// image, reused; a copy whose lamp is dimmer (as checks recolour
+    /// their copies), a later camera time or the other traversal is
+    /// rendered anew (negative controls), the traversal giving the same
+    /// image.
+    #[test]
+    fn a_render_repeated_is_reused_and_any_change_renders_anew() {
+        let f = lit_plate(|_| {});
+        let v = view(&f, &Overrides::default()).unwrap();
+        let first = render(&f, &v, Traversal::Bvh).unwrap();
+        assert_eq!(f.renders.counts(), (1, 0));
+        assert_eq!(render(&f.clone(), &v, Traversal::Bvh).unwrap(), first);
+        assert_eq!(f.renders.counts(), (1, 1));
+        let mut dimmer = f.clone();
+        dimmer.scene.light.color *= 0.5;
+        assert_ne!(render(&dimmer, &v, Traversal::Bvh).unwrap(), first);
+        assert_eq!(f.renders.counts(), (2, 1));
+        let later = View {
+            camera_t: v.camera_t + 0.25,
+            ..v
+        };
+        render(&f, &later, Traversal::Bvh).unwrap();
+        assert_eq!(f.renders.counts(), (3, 1));
+        assert_eq!(render(&f, &v, Traversal::BruteForce).unwrap(), first);
+        assert_eq!(f.renders.counts(), (4, 1));
+    }
+
+    /// Images beyond the budget are not kept.
+    #[test]
+    fn renders_beyond_the_budget_are_not_kept() {
+        let f = lit_plate(|_| {});
+        let v = view(&f, &Overrides::default()).unwrap();
+        let image = render(&f, &v, Traversal::Bvh).unwrap();
+        let bytes = std::mem::size_of_val(image.pixels.as_slice());
+        for (budget, kept) in [(bytes - 1, None), (bytes, Some(&image))] {
+            let renders = Renders::within(budget);
+            let key = renders.key(&f, &v, Traversal::Bvh);
+            renders.keep(key, &image);
+            assert_eq!(renders.get(key).as_ref(), kept);
+        }
     }
 
     /// Without `light` a fixture renders as with a black lamp and ambient 1:

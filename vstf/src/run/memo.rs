@@ -1,0 +1,125 @@
+//! Renders kept for reuse: a fixture's checks render the same probe for
+//! several rows (an edge's two sides, a mirror's readings, a grid's lines),
+//! and each such image is rendered once.
+//!
+//! An image is kept under a keyed 128-bit hash of everything the render
+//! reads: the scene (every mesh corner, motion and material), the file's
+//! spec, the view (camera, model, settings) and the traversal. The renderer
+//! is deterministic, so a kept image is the one a new render would give, to
+//! the bit. The hash runs over the values' `Debug` forms, which print each
+//! f64 exactly (shortest round trip, the sign of a zero included). A
+//! texture's texels are not hashed: they are the files the spec names, read
+//! once when the fixture is loaded. The keys are drawn at random for each
+//! loaded fixture, so no input can be made to collide on purpose.
+
+use crate::fixture::{Fixture, View};
+use renderer::{Image, Traversal};
+use std::collections::HashMap;
+use std::fmt::{self, Write as _};
+use std::hash::{BuildHasher, Hasher, RandomState};
+use std::sync::Mutex;
+
+/// Bytes of images kept at most for one loaded fixture; renders beyond
+/// them are made and not kept.
+const BUDGET: usize = 256 << 20;
+
+/// The images rendered for one loaded fixture and the copies checks make
+/// of it (shared by those copies: each render is keyed by its content).
+pub struct Renders {
+    keys: (RandomState, RandomState),
+    budget: usize,
+    kept: Mutex<Kept>,
+}
+
+#[derive(Default)]
+struct Kept {
+    bytes: usize,
+    images: HashMap<u128, Image>,
+    reused: usize,
+}
+
+/// What a render reads, hashed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct Key(u128);
+
+impl Default for Renders {
+    fn default() -> Renders {
+        Renders::within(BUDGET)
+    }
+}
+
+impl fmt::Debug for Renders {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let kept = self.lock();
+        write!(
+            f,
+            "Renders({} kept, {} reused)",
+            kept.images.len(),
+            kept.reused
+        )
+    }
+}
+
+/// Two keyed SipHash streams over the same text.
+struct TwoHashers<A, B>(A, B);
+
+impl<A: Hasher, B: Hasher> fmt::Write for TwoHashers<A, B> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        self.0.write(s.as_bytes());
+        self.1.write(s.as_bytes());
+        Ok(())
+    }
+}
+
+impl Renders {
+    /// A store keeping at most `budget` bytes of images.
+    pub(crate) fn within(budget: usize) -> Renders {
+        Renders {
+            keys: (RandomState::new(), RandomState::new()),
+            budget,
+            kept: Mutex::default(),
+        }
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, Kept> {
+        self.kept
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// The key of rendering `view` of `fixture` with `traversal`.
+    pub(crate) fn key(&self, fixture: &Fixture, view: &View, traversal: Traversal) -> Key {
+        let mut h = TwoHashers(self.keys.0.build_hasher(), self.keys.1.build_hasher());
+        // Writing into hashers cannot fail.
+        let _ = write!(
+            h,
+            "{:?}\u{1f}{:?}\u{1f}{view:?}\u{1f}{traversal:?}",
+            fixture.scene, fixture.spec
+        );
+        Key(u128::from(h.0.finish()) << 64 | u128::from(h.1.finish()))
+    }
+
+    /// The image kept under `key`, if any.
+    pub(crate) fn get(&self, key: Key) -> Option<Image> {
+        let mut kept = self.lock();
+        let image = kept.images.get(&key.0).cloned();
+        kept.reused += usize::from(image.is_some());
+        image
+    }
+
+    /// Keeps `image` under `key` while the budget allows.
+    pub(crate) fn keep(&self, key: Key, image: &Image) {
+        let size = std::mem::size_of_val(image.pixels.as_slice());
+        let mut kept = self.lock();
+        if kept.bytes + size <= self.budget && !kept.images.contains_key(&key.0) {
+            kept.bytes += size;
+            kept.images.insert(key.0, image.clone());
+        }
+    }
+
+    /// How many images are kept, and how many renders reused one.
+    pub fn counts(&self) -> (usize, usize) {
+        let kept = self.lock();
+        (kept.images.len(), kept.reused)
+    }
+}
