@@ -1,18 +1,19 @@
 //! Animations (paper 3, item 6): frames differ only by the camera's t; the
 //! 4D database is built once and never touched between frames.
 
+mod behind;
 mod clock;
 
 pub use clock::{lab_times, parse_frames, Clock, FrameRange};
 
 use crate::fixture::{Fixture, View};
 use crate::output::video::{self, VideoFormat};
-use crate::output::{write_atomic, write_png};
+use crate::output::write_atomic;
 use crate::shard::Shard;
 use image::RgbImage;
 use renderer::Database;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 
 /// Most frames one animation may have.
 pub const MAX_FRAMES: usize = 100_000;
@@ -240,14 +241,16 @@ pub fn render_frames(
     let owned: Vec<usize> = (0..times.len())
         .filter(|&i| opts.shard.owns_frame(i))
         .collect();
-    for (k, &i) in owned.iter().enumerate() {
-        if stop.load(Ordering::SeqCst) {
-            return Ok(k);
-        }
-        if !(opts.resume && frame_is_whole(&dir, i, view)) {
-            render_frame((f, view, db), times[i], opts.label, &frame_path(&dir, i))?;
-        }
-        done(k + 1);
+    let kept = |i: usize| opts.resume && frame_is_whole(&dir, i, view);
+    let frames = behind::Frames {
+        scene: (f, view, db),
+        dir: &dir,
+        label: opts.label,
+        kept: &kept,
+    };
+    let finished = frames.run((&owned, times), stop, &mut done)?;
+    if finished < owned.len() {
+        return Ok(finished);
     }
     if opts.shard != Shard::WHOLE {
         let scene = crate::shard::hash_hex(wanted.as_bytes());
@@ -259,25 +262,6 @@ pub fn render_frames(
         m.write(&dir)?;
     }
     Ok(owned.len())
-}
-
-/// Renders one frame at camera time `t` into `path`.
-fn render_frame(
-    (f, view, db): (&Fixture, &View, &Database),
-    t: f64,
-    label: bool,
-    path: &Path,
-) -> Result<(), String> {
-    let frame = View {
-        camera_t: t,
-        ..*view
-    };
-    let mut img = crate::output::rgb8(&crate::run::render_with(db, f, &frame)?);
-    if label {
-        let scale = crate::label::label_scale(img.width());
-        crate::label::draw_label(&mut img, &format!("t = {}", time_label(t)), scale);
-    }
-    Ok(write_png(path, &img)?)
 }
 
 /// Assembles the frames of a sharded animation, found through the shards'
