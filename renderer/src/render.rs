@@ -217,7 +217,7 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
             } else {
                 stratified(&mut rngs[j], (x, y), (k, n), frame)
             };
-            moved[j] = moved_at(camera, t);
+            move_to(&mut moved[j], camera, t);
             let here = moved[j].as_ref().unwrap_or(camera);
             rays[j] = here.ray(px, py, t, model.light_speed);
         }
@@ -236,12 +236,16 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
     colors
 }
 
-/// The camera at lab time `t` ([`Camera::at`]) where that is not `camera`
-/// itself: a camera holds its worldline's waypoints inline (about a
-/// kilobyte), so a copy for every sample of an inertial camera cost a
-/// large part of the shading's time.
-fn moved_at(camera: &Camera, t: f64) -> Option<Camera> {
-    (camera.worldline.is_some() && t != camera.event.t).then(|| camera.at(t))
+/// Puts in `slot` the camera at lab time `t` ([`Camera::at`]) where that
+/// is not `camera` itself, and nothing otherwise. A camera holds its
+/// worldline's waypoints inline (about a kilobyte): copied for every
+/// sample of an inertial camera, or moved as an `Option` returned by
+/// value, it cost a large part of the shading's time.
+fn move_to(slot: &mut Option<Camera>, camera: &Camera, t: f64) {
+    *slot = None;
+    if camera.worldline.is_some() && t != camera.event.t {
+        *slot = Some(camera.at(t));
+    }
 }
 
 /// Sample k of pixel (x, y) with n*n strata: its place in the image
@@ -292,7 +296,8 @@ pub fn pixel_traced<T: Trace>(
                 camera_t: t,
             });
         }
-        let moved = moved_at(camera, t);
+        let mut moved = None;
+        move_to(&mut moved, camera, t);
         let camera = moved.as_ref().unwrap_or(camera);
         let ray = camera.ray(px, py, t, model.light_speed);
         shader.observed_traced(camera, &ray, trace)
