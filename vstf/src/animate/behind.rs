@@ -110,8 +110,9 @@ mod tests {
     use super::*;
     use renderer::Traversal;
 
-    /// `fixtures/lit-plate.json` at 32 x 24, without its views and checks.
-    fn plate() -> Fixture {
+    /// `fixtures/lit-plate.json` at 32 x 24, without its views and checks:
+    /// the fixture, its view and its database.
+    fn plate() -> (Fixture, View, Database) {
         let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/lit-plate.json");
         let mut v: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
@@ -119,7 +120,10 @@ mod tests {
         let o = v.as_object_mut().unwrap();
         o.remove("views");
         o.remove("checks");
-        Fixture::parse(&v.to_string(), &file).unwrap()
+        let f = Fixture::parse(&v.to_string(), &file).unwrap();
+        let view = crate::run::view(&f, &crate::Overrides::default()).unwrap();
+        let db = crate::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+        (f, view, db)
     }
 
     fn scratch(name: &str) -> std::path::PathBuf {
@@ -134,9 +138,7 @@ mod tests {
     /// a frame kept from a resumed run is counted and not rewritten.
     #[test]
     fn frames_written_behind_are_the_frames_rendered_alone() {
-        let f = plate();
-        let view = crate::run::view(&f, &crate::Overrides::default()).unwrap();
-        let db = crate::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+        let (f, view, db) = plate();
         let dir = scratch("alone");
         let times = [-24.0, -12.0, 0.0, 12.0];
         let kept = |i: usize| i == 2;
@@ -176,9 +178,7 @@ mod tests {
     /// before it; raised `stop` writes nothing.
     #[test]
     fn a_failed_write_ends_the_run_with_its_error_and_stop_writes_nothing() {
-        let f = plate();
-        let view = crate::run::view(&f, &crate::Overrides::default()).unwrap();
-        let db = crate::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+        let (f, view, db) = plate();
         let dir = scratch("fails");
         std::fs::create_dir_all(frame_path(&dir, 1)).unwrap();
         let never = |_: usize| false;
