@@ -147,20 +147,19 @@ impl Spectrum {
     /// wavelength axis is rescaled. Spectral radiance per unit wavelength also
     /// changes, by D^5 (I_nu / nu^3 is invariant); that factor is the caller's.
     pub fn sample_scaled(&self, scale: f64) -> [f64; BAND_LEN] {
-        let nm = |i| band_wavelength_nm(i) * scale;
+        self.at_each(&std::array::from_fn(|i| band_wavelength_nm(i) * scale))
+    }
+
+    /// [`Spectrum::at`] of each of the wavelengths `nm`, the same values;
+    /// an RGB spectrum's uplift coefficients are found once for all of
+    /// them.
+    pub fn at_each<const N: usize>(&self, nm: &[f64; N]) -> [f64; N] {
         match self {
             Spectrum::Rgb(rgb) => {
                 let k = colorimetry().uplift * *rgb;
-                std::array::from_fn(|i| {
-                    let x = nm(i);
-                    if x > 0.0 {
-                        uplift(k, x)
-                    } else {
-                        0.0
-                    }
-                })
+                nm.map(|x| if x > 0.0 { uplift(k, x) } else { 0.0 })
             }
-            _ => std::array::from_fn(|i| self.at(nm(i))),
+            _ => nm.map(|x| self.at(x)),
         }
     }
 }
@@ -281,6 +280,58 @@ mod tests {
                 "D = {d}: peak at {} nm",
                 nm[peak]
             );
+        }
+    }
+
+    /// `at_each` is `at` at every wavelength, to the bit, for every kind
+    /// of spectrum, at the band shifted either way, at the window's edges
+    /// and at wavelengths that are not (NaN, zero, negative, infinite);
+    /// the values differ from one wavelength to the next, so a value put
+    /// in another's place would show.
+    #[test]
+    fn at_each_is_at_at_every_wavelength_to_the_bit() {
+        let spectra = [
+            Spectrum::Rgb(DVec3::new(0.9, 0.2, 0.05)),
+            Spectrum::Rgb(DVec3::new(-0.5, 2.0, 0.0)),
+            Spectrum::Gaussian {
+                peak_nm: 520.0,
+                width_nm: 15.0,
+                scale: 1.5,
+            },
+            Spectrum::Blackbody {
+                kelvin: 3200.0,
+                scale: 1.0,
+            },
+            Spectrum::Samples {
+                nm: vec![400.0, 500.0, 600.0],
+                values: vec![1.0, 3.0, 0.0],
+            },
+        ];
+        let odd = [
+            f64::NAN,
+            0.0,
+            -0.0,
+            -450.0,
+            f64::INFINITY,
+            380.0,
+            405.0,
+            690.0,
+            730.0,
+        ];
+        for s in &spectra {
+            let mut values = Vec::new();
+            for d in [0.5, 0.93, 1.0, 1.7] {
+                let nm: [f64; BAND_LEN] = std::array::from_fn(|i| band_nm()[i] * d);
+                let each = s.at_each(&nm);
+                for (x, v) in nm.iter().zip(each) {
+                    assert_eq!(v.to_bits(), s.at(*x).to_bits(), "{s:?} at {x} nm");
+                }
+                values.extend(each);
+            }
+            assert!(values.windows(2).any(|w| w[0] != w[1]), "{s:?}: flat");
+            for (x, v) in odd.iter().zip(s.at_each(&odd)) {
+                assert_eq!(v.to_bits(), s.at(*x).to_bits(), "{s:?} at {x} nm");
+            }
         }
     }
 

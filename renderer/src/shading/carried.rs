@@ -3,7 +3,7 @@
 
 use super::doppler::Effects;
 use super::lit::Lit;
-use super::shader::{sample, scaled, Band, Shader};
+use super::shader::{scaled, Band, Shader};
 use crate::color::{self, Spectrum, BAND_LEN};
 use crate::scene::Material;
 use crate::trace::{Step, Trace};
@@ -164,7 +164,7 @@ impl Carried for Band {
     type Local = Band;
     const ZERO: Band = [0.0; BAND_LEN];
     fn background(seen: DVec3, nm: &Band) -> Band {
-        sample(&Spectrum::Rgb(seen), nm)
+        Spectrum::Rgb(seen).at_each(nm)
     }
     fn carries_factors(_: Effects) -> bool {
         true
@@ -181,18 +181,20 @@ impl Carried for Band {
         lamp_gain: Option<f64>,
     ) -> (Band, Band) {
         let surface_nm = scaled(nm, lit.out);
-        let reflectance = sample(&m.reflectance_textured(lit.tau, lit.texel), &surface_nm);
-        let white = sample(&Spectrum::Rgb(DVec3::ONE), &surface_nm);
-        let lamp = sample(
-            &shader.light.spectrum(),
-            &scaled(&surface_nm, lit.from_light),
-        );
+        let reflectance = m
+            .reflectance_textured(lit.tau, lit.texel)
+            .at_each(&surface_nm);
+        let white = Spectrum::Rgb(DVec3::ONE).at_each(&surface_nm);
+        let lamp = shader
+            .light
+            .spectrum()
+            .at_each(&scaled(&surface_nm, lit.from_light));
         let direct = if lit.faces_light() && !lit.shadowed {
             (m.diffuse * lit.lambert, lit.specular)
         } else {
             (0.0, 0.0)
         };
-        let emission = m.emission.as_ref().map(|e| sample(e, &surface_nm));
+        let emission = m.emission.as_ref().map(|e| e.at_each(&surface_nm));
         let local = std::array::from_fn(|i| {
             let lamp = lamp_gain.map_or(lamp[i], |g| lamp[i] * g);
             reflectance[i] * (shader.light.ambient * white[i] + direct.0 * lamp)

@@ -9,7 +9,7 @@ use super::doppler::{self, Effects, Leg};
 use super::lit::Lit;
 use super::mirror;
 use crate::camera::{Camera, Kinematics};
-use crate::color::{self, Spectrum, BAND_LEN};
+use crate::color::{self, BAND_LEN};
 use crate::database::Database;
 use crate::geometry::Hit;
 use crate::scene::Light;
@@ -21,10 +21,6 @@ use glam::DVec3;
 /// Values at the wavelengths of the observed band, carried into whatever
 /// frame a leg of the path is in.
 pub type Band = [f64; BAND_LEN];
-
-pub(super) fn sample(s: &Spectrum, nm: &Band) -> Band {
-    std::array::from_fn(|i| s.at(nm[i]))
-}
 
 pub(super) fn scaled(nm: &Band, f: f64) -> Band {
     nm.map(|x| x * f)
