@@ -205,6 +205,7 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
     };
     let mut rngs: [SplitMix64; PACKET] = [rng(0), rng(1), rng(2), rng(3)];
     let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
+    // Each sample's camera where it is not `camera` itself (Camera::at_in).
     let mut moved: [Option<Camera>; PACKET] = [None, None, None, None];
     let mut rays = [camera.ray(0.5, 0.5, camera_t, model.light_speed); PACKET];
     let mut hits = [None; PACKET];
@@ -217,9 +218,9 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
             } else {
                 stratified(&mut rngs[j], (x, y), (k, n), frame)
             };
-            move_to(&mut moved[j], camera, t);
-            let here = moved[j].as_ref().unwrap_or(camera);
-            rays[j] = here.ray(px, py, t, model.light_speed);
+            rays[j] = camera
+                .at_in(t, &mut moved[j])
+                .ray(px, py, t, model.light_speed);
         }
         shader
             .db
@@ -234,18 +235,6 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
         colors = colors.map(|c| c / f64::from(settings.spp));
     }
     colors
-}
-
-/// Puts in `slot` the camera at lab time `t` ([`Camera::at`]) where that
-/// is not `camera` itself, and nothing otherwise. A camera holds its
-/// worldline's waypoints inline (about a kilobyte): copied for every
-/// sample of an inertial camera, or moved as an `Option` returned by
-/// value, it cost a large part of the shading's time.
-fn move_to(slot: &mut Option<Camera>, camera: &Camera, t: f64) {
-    *slot = None;
-    if camera.worldline.is_some() && t != camera.event.t {
-        *slot = Some(camera.at(t));
-    }
 }
 
 /// Sample k of pixel (x, y) with n*n strata: its place in the image
@@ -297,8 +286,7 @@ pub fn pixel_traced<T: Trace>(
             });
         }
         let mut moved = None;
-        move_to(&mut moved, camera, t);
-        let camera = moved.as_ref().unwrap_or(camera);
+        let camera = camera.at_in(t, &mut moved);
         let ray = camera.ray(px, py, t, model.light_speed);
         shader.observed_traced(camera, &ray, trace)
     };

@@ -177,16 +177,26 @@ impl Camera {
     /// worldline's event and velocity at `t` (the instantaneous rest
     /// frame there).
     pub fn at(&self, t: f64) -> Camera {
+        *self.at_in(t, &mut None)
+    }
+
+    /// [`Camera::at`] without a copy where the camera stays itself: put in
+    /// `slot` where it differs (and `slot` emptied otherwise), `self`
+    /// where it does not. A camera holds its worldline's waypoints inline,
+    /// about a kilobyte, which a copy for every sample of a frame would
+    /// move.
+    pub(crate) fn at_in<'a>(&'a self, t: f64, slot: &'a mut Option<Camera>) -> &'a Camera {
+        *slot = None;
         match self.worldline {
             Some(w) if t != self.event.t => {
                 let (event, velocity) = w.event_at(t);
-                Camera {
+                slot.insert(Camera {
                     event,
                     velocity,
                     ..*self
-                }
+                })
             }
-            _ => *self,
+            _ => self,
         }
     }
 

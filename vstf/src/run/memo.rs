@@ -19,7 +19,7 @@ use crate::fixture::{Fixture, View};
 use renderer::{Image, Traversal};
 use std::collections::HashMap;
 use std::fmt::{self, Write as _};
-use std::hash::{BuildHasher, Hasher, RandomState};
+use std::hash::{BuildHasher, DefaultHasher, Hasher, RandomState};
 use std::sync::Mutex;
 
 /// Bytes of images kept at most for one loaded fixture; renders beyond
@@ -64,9 +64,9 @@ impl fmt::Debug for Renders {
 }
 
 /// Two keyed SipHash streams over the same text.
-struct TwoHashers<A, B>(A, B);
+struct TwoHashers(DefaultHasher, DefaultHasher);
 
-impl<A: Hasher, B: Hasher> fmt::Write for TwoHashers<A, B> {
+impl fmt::Write for TwoHashers {
     fn write_str(&mut self, s: &str) -> fmt::Result {
         self.0.write(s.as_bytes());
         self.1.write(s.as_bytes());
