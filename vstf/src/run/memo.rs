@@ -11,9 +11,9 @@
 //! texture's texels are not hashed: they are the files the spec names, read
 //! once when the fixture is loaded. The keys are drawn at random for each
 //! loaded fixture, so no input can be made to collide on purpose. Hashing
-//! costs about 0.24 s a million triangles (the benchmark's 1M tori),
-//! against the second or more a database of that size takes to build for
-//! the render it may save.
+//! reads every triangle once, as the database build it may save does
+//! several times over (a one-off timing on the benchmark's 1M tori gave
+//! about a quarter of a second).
 
 use crate::fixture::{Fixture, View};
 use renderer::{Image, Traversal};
