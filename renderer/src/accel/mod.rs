@@ -4,8 +4,8 @@
 
 mod bvh;
 mod packet;
-mod space_bvh;
 mod two_level;
+mod wide;
 
 pub(crate) use bvh::rounding_margin;
 pub(crate) use packet::{Lanes, PACKET};

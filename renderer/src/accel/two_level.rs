@@ -5,9 +5,9 @@
 //! is (instancing with a per-stretch transform). Over all stretches, a
 //! hierarchy of the lab-frame 4D bounds of their time slices.
 
-use super::bvh::{rounding_margin, Bounds4, Bvh};
+use super::bvh::{rounding_margin, Bounds4};
 use super::packet::{Lanes, PACKET};
-use super::space_bvh::{down, up, SpaceBvh};
+use super::wide::{down, up, AxisRay, SliceBvh, SpaceBvh};
 use crate::geometry::{comoving_line, nearer, Hit};
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
@@ -43,10 +43,11 @@ struct StretchBvh {
 
 impl StretchBvh {
     /// The ray `o + s d` in comoving coordinates (x, y, z), with the same
-    /// parameter s.
+    /// parameter s, as the stretch's hierarchy takes it: (o, 1/d).
     #[inline]
-    fn to_comoving(&self, o: DVec4, d: DVec4) -> (DVec3, DVec3) {
-        comoving_line(o, d, (self.origin.t, self.origin.x), self.velocity)
+    fn to_comoving(&self, o: DVec4, d: DVec4) -> AxisRay<3> {
+        let (o, d) = comoving_line(o, d, (self.origin.t, self.origin.x), self.velocity);
+        (o.to_array(), (DVec3::ONE / d).to_array())
     }
 }
 
@@ -127,7 +128,7 @@ impl Searched {
 /// comoving bounds; over all stretches, a hierarchy of the lab-frame 4D
 /// bounds of their time slices.
 pub(crate) struct TwoLevel {
-    top: Bvh,
+    top: SliceBvh,
     stretches: Vec<StretchBvh>,
     slices: Vec<TimeSlice>,
 }
@@ -202,7 +203,7 @@ impl TwoLevel {
             });
         }
         TwoLevel {
-            top: Bvh::build(slice_bounds.into_iter()),
+            top: SliceBvh::build(slice_bounds.into_iter()),
             stretches: built,
             slices: all_slices,
         }
@@ -248,26 +249,39 @@ impl TwoLevel {
     ) -> Option<Hit> {
         let inv = DVec4::ONE / d;
         let mut searched = Searched::default();
-        self.top.closest(o, inv, range, |k, r| {
-            let slice = &self.slices[k as usize];
-            let stretch = &self.stretches[slice.stretch as usize];
-            if !slice.alone {
-                // A leaf of the top level may hold several slices, and
-                // its box theirs. The first slice of a stretch the ray
-                // enters has the stretch searched over all its lab times:
-                // its hierarchy's boxes hold its prisms at every one of
-                // them, so it is entered only where the ray meets the
-                // stretch's sweep, and each prism is tested once.
-                if searched.holds(slice.stretch) || !slice.entered(o, inv, r) {
-                    return None;
+        let ray = (o.to_array(), inv.to_array());
+        self.top.closest(ray, range, |_, slices, r| {
+            let mut best: Option<Hit> = None;
+            for &k in slices {
+                let r = (r.0, best.map_or(r.1, |b| b.s));
+                let slice = &self.slices[k as usize];
+                let stretch = &self.stretches[slice.stretch as usize];
+                if !slice.alone {
+                    // A leaf of the top level may hold several slices, and
+                    // its box theirs. The first slice of a stretch the ray
+                    // enters has the stretch searched over all its lab
+                    // times: its hierarchy's boxes hold its prisms at every
+                    // one of them, so it is entered only where the ray
+                    // meets the stretch's sweep, and each prism is tested
+                    // once.
+                    if searched.holds(slice.stretch) || !slice.entered(o, inv, r) {
+                        continue;
+                    }
+                    searched.add(slice.stretch);
                 }
-                searched.add(slice.stretch);
+                let Some(r) = window(stretch.span, o, d, r) else {
+                    continue;
+                };
+                let found = stretch
+                    .bvh
+                    .closest(stretch.to_comoving(o, d), r, |first, items, r| {
+                        leaf(slice.stretch, first, items, r)
+                    });
+                if let Some(h) = found {
+                    best = Some(nearer(best, h));
+                }
             }
-            let r = window(stretch.span, o, d, r)?;
-            let (oc, dc) = stretch.to_comoving(o, d);
-            stretch.bvh.closest(oc, dc, r, |first, items, r| {
-                leaf(slice.stretch, first, items, r)
-            })
+            best
         })
     }
 
@@ -281,48 +295,52 @@ impl TwoLevel {
         range: (f64, f64),
         mut leaf: impl FnMut(usize, u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> [Option<Hit>; PACKET] {
-        let (mut o, mut inv) = ([DVec4::ZERO; PACKET], [DVec4::ZERO; PACKET]);
+        let mut inv = [DVec4::ZERO; PACKET];
+        let mut lab = [([0.0; 4], [0.0; 4]); PACKET];
         for i in 0..PACKET {
-            (o[i], inv[i]) = (rays[i].0, DVec4::ONE / rays[i].1);
+            inv[i] = DVec4::ONE / rays[i].1;
+            lab[i] = (rays[i].0.to_array(), inv[i].to_array());
         }
         let mut searched: [Searched; PACKET] = Default::default();
         let mut best: [Option<Hit>; PACKET] = [None; PACKET];
         self.top
-            .closest_packet((&o, &inv), lanes, range, |k, lanes, hi| {
-                let slice = &self.slices[k as usize];
-                let stretch = &self.stretches[slice.stretch as usize];
-                let mut comoving = [(DVec3::ZERO, DVec3::ZERO); PACKET];
-                let mut windows = [(0.0, 0.0); PACKET];
-                // As in `closest`, ray by ray (written out again: a helper
-                // shared with it cost its slice step 14% more instructions,
-                // by callgrind on the flange).
-                let lanes = lanes.filter(|i| {
-                    let ((o, d), r) = (rays[i], (range.0, hi[i]));
-                    if !slice.alone {
-                        if searched[i].holds(slice.stretch) || !slice.entered(o, inv[i], r) {
-                            return false;
+            .search_packet(&lab, lanes, range, |slices, lanes, hi| {
+                for &k in slices {
+                    let slice = &self.slices[k as usize];
+                    let stretch = &self.stretches[slice.stretch as usize];
+                    let mut comoving = [([0.0; 3], [0.0; 3]); PACKET];
+                    let mut windows = [(0.0, 0.0); PACKET];
+                    // As in `closest`, ray by ray (written out again: a helper
+                    // shared with it cost its slice step 14% more instructions,
+                    // by callgrind on the flange).
+                    let lanes = lanes.filter(|i| {
+                        let ((o, d), r) = (rays[i], (range.0, hi[i]));
+                        if !slice.alone {
+                            if searched[i].holds(slice.stretch) || !slice.entered(o, inv[i], r) {
+                                return false;
+                            }
+                            searched[i].add(slice.stretch);
                         }
-                        searched[i].add(slice.stretch);
+                        let Some(w) = window(stretch.span, o, d, r) else {
+                            return false;
+                        };
+                        (windows[i], comoving[i]) = (w, stretch.to_comoving(o, d));
+                        true
+                    });
+                    if lanes.is_empty() {
+                        continue;
                     }
-                    let Some(w) = window(stretch.span, o, d, r) else {
-                        return false;
-                    };
-                    (windows[i], comoving[i]) = (w, stretch.to_comoving(o, d));
-                    true
-                });
-                if lanes.is_empty() {
-                    return;
-                }
-                let found =
-                    stretch
-                        .bvh
-                        .closest_packet(&comoving, lanes, &windows, |i, first, items, r| {
-                            leaf(i, slice.stretch, first, items, r)
-                        });
-                for i in lanes.iter() {
-                    if let Some(h) = found[i] {
-                        let b = nearer(best[i], h);
-                        (best[i], hi[i]) = (Some(b), b.s);
+                    let found = stretch.bvh.closest_packet(
+                        &comoving,
+                        lanes,
+                        &windows,
+                        |i, first, items, r| leaf(i, slice.stretch, first, items, r),
+                    );
+                    for i in lanes.iter() {
+                        if let Some(h) = found[i] {
+                            let b = nearer(best[i], h);
+                            (best[i], hi[i]) = (Some(b), b.s);
+                        }
                     }
                 }
             });

@@ -245,26 +245,45 @@ pub(in crate::accel) fn build<N: PairNode>(bounds: impl Iterator<Item = Bounds4>
         })
         .collect();
     let mut nodes = Vec::new();
-    let (root, root_bounds) = if items.is_empty() {
-        let none = DVec4::splat(f64::INFINITY);
-        (Child { index: 0, count: 0 }, Bounds4::new(none, -none))
+    let root = if items.is_empty() {
+        Child { index: 0, count: 0 }
     } else {
         let ext = Extent::of(&items);
-        build_into(&mut nodes, &mut items, ext, (0, 0))
+        build_into(&mut nodes, &mut items, ext, (0, 0)).0
     };
     Built {
         nodes,
         root,
-        root_bounds,
         order: items.iter().map(|i| i.index).collect(),
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::Bvh;
     use super::*;
     use crate::rng::SplitMix64;
+
+    /// An inner node as the build makes it, in f64: both children's boxes.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    struct Node {
+        min: [DVec4; 2],
+        max: [DVec4; 2],
+        children: [Child; 2],
+    }
+
+    impl PairNode for Node {
+        fn pair(bounds: [Bounds4; 2], children: [Child; 2]) -> Node {
+            Node {
+                min: bounds.map(|b| b.min),
+                max: bounds.map(|b| b.max),
+                children,
+            }
+        }
+
+        fn children_mut(&mut self) -> &mut [Child; 2] {
+            &mut self.children
+        }
+    }
 
     /// The bin through i64 is the bin through usize, at every kind of
     /// value: in range, at the edges, negative, huge, infinite, NaN.
@@ -309,12 +328,12 @@ mod tests {
             .collect()
     }
 
-    fn built_on(threads: usize, boxes: &[Bounds4]) -> Bvh {
+    fn built_on(threads: usize, boxes: &[Bounds4]) -> Built<Node> {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| Bvh::build(boxes.iter().copied()))
+        pool.install(|| build(boxes.iter().copied()))
     }
 
     /// A build large enough to split on both threads gives the tree a build
@@ -324,13 +343,13 @@ mod tests {
     fn the_tree_does_not_depend_on_the_thread_count() {
         let boxes = random_boxes(4 * PARALLEL_ITEMS, 9);
         let (one, two) = (built_on(1, &boxes), built_on(2, &boxes));
-        assert!(one.0.nodes.len() > 1000);
-        assert_eq!(one.0.nodes, two.0.nodes);
-        assert_eq!((one.0.root, one.0.order.clone()), (two.0.root, two.0.order));
+        assert!(one.nodes.len() > 1000);
+        assert_eq!(one.nodes, two.nodes);
+        assert_eq!((one.root, one.order.clone()), (two.root, two.order));
         let mut moved = boxes.clone();
         moved[7].min.x += 50.0;
         moved[7].max.x += 50.0;
-        assert_ne!(built_on(2, &moved).0.nodes, one.0.nodes);
+        assert_ne!(built_on(2, &moved).nodes, one.nodes);
     }
 
     /// Every item sits in exactly one leaf, inside every box on its path.
@@ -341,17 +360,18 @@ mod tests {
         let mut seen = vec![0u32; boxes.len()];
         let inside =
             |b: &Bounds4, min: DVec4, max: DVec4| b.min.cmpge(min).all() && b.max.cmple(max).all();
-        let mut stack = vec![(bvh.0.root, bvh.0.root_bounds)];
+        let everywhere = Bounds4::new(DVec4::NEG_INFINITY, DVec4::INFINITY);
+        let mut stack = vec![(bvh.root, everywhere)];
         while let Some((child, bounds)) = stack.pop() {
             if child.count > 0 {
                 let start = child.index as usize;
-                for &i in &bvh.0.order[start..start + child.count as usize] {
+                for &i in &bvh.order[start..start + child.count as usize] {
                     assert!(inside(&boxes[i as usize], bounds.min, bounds.max));
                     seen[i as usize] += 1;
                 }
                 continue;
             }
-            let node = &bvh.0.nodes[child.index as usize];
+            let node = &bvh.nodes[child.index as usize];
             for c in 0..2 {
                 let b = Bounds4::new(node.min[c], node.max[c]);
                 assert!(inside(&b, bounds.min, bounds.max));

@@ -4,15 +4,13 @@
 //!
 //! Items are anything with 4D bounds: the database uses one hierarchy over
 //! the time slices of its stretches (lab frame) and one per stretch over its
-//! prisms (in the stretch's comoving coordinates, [`super::space_bvh`]).
-//! Both are built by [`build()`], binary, each inner node keeping both
-//! children's boxes and stored children first, the root last; the
-//! per-stretch tree is then collapsed into nodes of eight children. Here:
-//! the boxes and node types both share, and the lab-frame hierarchy
-//! ([`Bvh`], searched in `traverse`).
+//! prisms (in the stretch's comoving coordinates). Both are built by
+//! [`build()`], binary, each inner node keeping both children's boxes and
+//! stored children first, the root last, then collapsed into nodes of
+//! eight children ([`super::wide`]). Here: the boxes, the f64 slab test and
+//! the node types both share.
 
 mod build;
-mod traverse;
 
 pub(super) use build::build;
 
@@ -35,7 +33,7 @@ impl Bounds4 {
     /// within `range`, if any: the test the hierarchy's nodes make.
     #[inline(always)]
     pub(crate) fn entry(&self, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
-        Bvh::enter(self.min, self.max, o, inv, range)
+        enter(self.min, self.max, o, inv, range)
     }
 
     /// The box padded as a hierarchy pads a leaf's (see [`build::pad`]).
@@ -62,6 +60,36 @@ pub(crate) fn rounding_margin(min: DVec4, max: DVec4) -> DVec4 {
     DVec4::new(space, space, space, per_axis.w)
 }
 
+/// Entry parameter of the ray into the box `min..max` within `range`,
+/// if any. `inv` holds 1/d per axis (infinite for d = 0: such an axis
+/// constrains nothing unless the origin lies outside the slab); the
+/// near face of each axis is the lower one when 1/d is positive
+/// (+inf included) and the upper one otherwise.
+#[inline(always)]
+fn enter(min: DVec4, max: DVec4, o: DVec4, inv: DVec4, range: (f64, f64)) -> Option<f64> {
+    let a = ((min - o) * inv).to_array();
+    let b = ((max - o) * inv).to_array();
+    let inv = inv.to_array();
+    let (mut lo, mut hi) = range;
+    for k in 0..4 {
+        let (near, far) = if inv[k] < 0.0 {
+            (b[k], a[k])
+        } else {
+            (a[k], b[k])
+        };
+        // A NaN (0 * inf: the origin on a slab face of a parallel
+        // axis) fails both comparisons and is dropped, which keeps the
+        // test conservative.
+        if near > lo {
+            lo = near;
+        }
+        if far < hi {
+            hi = far;
+        }
+    }
+    (lo <= hi).then_some(lo)
+}
+
 /// What a node's child is: an inner node, or a leaf's items.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(super) struct Child {
@@ -79,12 +107,11 @@ pub(super) trait PairNode: Send {
     fn children_mut(&mut self) -> &mut [Child; 2];
 }
 
-/// A hierarchy as built: inner nodes children first, the root (and its box)
-/// apart, and the item order its leaves index.
+/// A hierarchy as built: inner nodes children first, the root apart, and
+/// the item order its leaves index.
 pub(super) struct Built<N> {
     pub(super) nodes: Vec<N>,
     pub(super) root: Child,
-    pub(super) root_bounds: Bounds4,
     pub(super) order: Vec<u32>,
 }
 
@@ -127,39 +154,6 @@ impl<E: Copy + Default> Stack<E> {
     }
 }
 
-/// An inner node of the lab-frame hierarchy: both children's 4D boxes.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Node {
-    min: [DVec4; 2],
-    max: [DVec4; 2],
-    children: [Child; 2],
-}
-
-impl PairNode for Node {
-    fn pair(bounds: [Bounds4; 2], children: [Child; 2]) -> Node {
-        Node {
-            min: bounds.map(|b| b.min),
-            max: bounds.map(|b| b.max),
-            children,
-        }
-    }
-
-    fn children_mut(&mut self) -> &mut [Child; 2] {
-        &mut self.children
-    }
-}
-
-/// The hierarchy over 4D boxes (the lab frame's time slices).
-pub(crate) struct Bvh(Built<Node>);
-
-impl Bvh {
-    /// Builds the hierarchy over items given by their 4D bounds (x, y, z,
-    /// t), in order: item i is the i-th bounds.
-    pub(crate) fn build(bounds: impl Iterator<Item = Bounds4>) -> Bvh {
-        Bvh(build(bounds))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -177,6 +171,39 @@ mod tests {
                 assert_eq!(stack.pop(), Some(i + round));
             }
             assert_eq!(stack.pop(), None);
+        }
+    }
+
+    /// A ray parallel to an axis (either signed zero) whose origin lies
+    /// exactly on one of the box's faces on that axis enters it; one just
+    /// outside does not. (Taking the near face as the lesser of the two
+    /// crossings, as before, let the NaN of 0 * inf on the lower face pass
+    /// the upper face's +inf as the entry: such boxes were culled.)
+    #[test]
+    fn a_parallel_ray_from_a_face_enters_the_box() {
+        let (min, max) = (
+            DVec4::new(0.0, 0.0, 0.0, 0.0),
+            DVec4::new(1.0, 1.0, 1.0, 1.0),
+        );
+        for axis in 0..4 {
+            for zero in [0.0, -0.0] {
+                for (face, inside) in [
+                    (0.0, true),
+                    (1.0, true),
+                    (-1e-9, false),
+                    (1.0 + 1e-9, false),
+                ] {
+                    let mut o = DVec4::splat(0.5) - DVec4::new(3.0, 2.0, 2.5, 1.5);
+                    let mut d = DVec4::new(3.0, 2.0, 2.5, 1.5);
+                    o[axis] = face;
+                    d[axis] = zero;
+                    let entered = enter(min, max, o, DVec4::ONE / d, (0.0, 10.0)).is_some();
+                    assert_eq!(
+                        entered, inside,
+                        "axis {axis}, d = {zero:?}, origin on {face}"
+                    );
+                }
+            }
         }
     }
 }

@@ -2,7 +2,6 @@
 //! conservative.
 
 use super::{down, up, WideNode, WIDTH};
-use glam::DVec3;
 use wide::{f32x8, CmpLe};
 
 /// Relative margin of the f32 slab parameters: each is (face - origin) *
@@ -36,32 +35,34 @@ const TINY: f32 = f32::MIN_POSITIVE;
 /// that axis, which can cull a box only when, on that axis, the box's face
 /// lies within 2^-128 times the longest searched ray parameter of the
 /// origin.
-pub(super) struct WideRay {
+pub(super) struct WideRay<const A: usize> {
     /// Per axis: the origin for the near faces and for the far faces, and
     /// 1/d for each, moved by [`MARGIN`] toward zero (near) and away from
     /// it (far).
-    near_o: [f32x8; 3],
-    far_o: [f32x8; 3],
-    near_inv: [f32x8; 3],
-    far_inv: [f32x8; 3],
-    /// Per axis, the index into a node's faces of the near face and of the
-    /// far one (lower then upper when the direction is positive).
-    near: [usize; 3],
-    far: [usize; 3],
+    near_o: [f32x8; A],
+    far_o: [f32x8; A],
+    near_inv: [f32x8; A],
+    far_inv: [f32x8; A],
+    /// Per axis, the index into a node's faces (see [`WideNode::face`]) of
+    /// the near face and of the far one (lower then upper when the
+    /// direction is positive).
+    near: [usize; A],
+    far: [usize; A],
 }
 
-impl WideRay {
+impl<const A: usize> WideRay<A> {
+    /// The ray `o + s d` given `o` and `inv` = 1/d.
     #[inline(always)]
-    pub(super) fn new(o: DVec3, inv: DVec3) -> WideRay {
+    pub(super) fn new(o: [f64; A], inv: [f64; A]) -> WideRay<A> {
         let mut ray = WideRay {
-            near_o: [f32x8::ZERO; 3],
-            far_o: [f32x8::ZERO; 3],
-            near_inv: [f32x8::ZERO; 3],
-            far_inv: [f32x8::ZERO; 3],
-            near: [0, 1, 2],
-            far: [3, 4, 5],
+            near_o: [f32x8::ZERO; A],
+            far_o: [f32x8::ZERO; A],
+            near_inv: [f32x8::ZERO; A],
+            far_inv: [f32x8::ZERO; A],
+            near: std::array::from_fn(|a| a),
+            far: std::array::from_fn(|a| a + A),
         };
-        for a in 0..3 {
+        for a in 0..A {
             let (lower, upper) = (f32x8::splat(down(o[a])), f32x8::splat(up(o[a])));
             let inv32 = inv[a] as f32;
             ray.near_inv[a] = f32x8::splat(inv32 * (1.0 - MARGIN));
@@ -69,7 +70,7 @@ impl WideRay {
             // 1/(-0) = -inf: a direction of -0 is negative here.
             if inv[a].is_sign_negative() {
                 (ray.near_o[a], ray.far_o[a]) = (lower, upper);
-                (ray.near[a], ray.far[a]) = (a + 3, a);
+                (ray.near[a], ray.far[a]) = (a + A, a);
             } else {
                 (ray.near_o[a], ray.far_o[a]) = (upper, lower);
             }
@@ -80,7 +81,7 @@ impl WideRay {
     /// Where the ray enters each of a node's eight boxes within `range`
     /// (in f32, rounded outward), and which it enters (bit i for child i).
     #[inline(always)]
-    pub(super) fn enter(&self, node: &WideNode, range: (f32, f32)) -> ([f32; WIDTH], u32) {
+    pub(super) fn enter(&self, node: &WideNode<A>, range: (f32, f32)) -> ([f32; WIDTH], u32) {
         let (entry, entered) = self.enter_lanes(node, range);
         (entry.to_array(), entered.move_mask() as u32)
     }
@@ -88,12 +89,12 @@ impl WideRay {
     /// [`WideRay::enter`] with the entries kept in lanes, and a lane of all
     /// ones for each box entered.
     #[inline(always)]
-    pub(super) fn enter_lanes(&self, node: &WideNode, range: (f32, f32)) -> (f32x8, f32x8) {
+    pub(super) fn enter_lanes(&self, node: &WideNode<A>, range: (f32, f32)) -> (f32x8, f32x8) {
         let mut entry = f32x8::splat(range.0);
         let mut exit = f32x8::splat(range.1);
-        for a in 0..3 {
-            let near = (node.faces[self.near[a]] - self.near_o[a]) * self.near_inv[a];
-            let far = (node.faces[self.far[a]] - self.far_o[a]) * self.far_inv[a];
+        for a in 0..A {
+            let near = (node.face(self.near[a]) - self.near_o[a]) * self.near_inv[a];
+            let far = (node.face(self.far[a]) - self.far_o[a]) * self.far_inv[a];
             entry = max_dropping_nan(entry, near);
             exit = min_dropping_nan(exit, far);
         }
@@ -126,20 +127,25 @@ fn min_dropping_nan(acc: f32x8, t: f32x8) -> f32x8 {
 
 #[cfg(test)]
 mod tests {
-    use super::super::test_support::{aimed_ray, f64_entry, random_box};
+    use super::super::test_support::{aimed_ray, f64_entry, random_box, Box64};
     use super::super::NO_CHILD;
     use super::*;
     use crate::rng::SplitMix64;
 
     /// The same slab test in f32 without care: origin and 1/d rounded to
     /// nearest, no margin (the negative control).
-    fn naive_enters(b: &[f64; 6], o: DVec3, d: DVec3, range: (f64, f64)) -> bool {
+    fn naive_enters<const A: usize>(
+        b: &Box64<A>,
+        o: [f64; A],
+        d: [f64; A],
+        range: (f64, f64),
+    ) -> bool {
         let (mut lo, mut hi) = (range.0 as f32, range.1 as f32);
-        for a in 0..3 {
+        for a in 0..A {
             let inv = (1.0 / d[a]) as f32;
             let (t0, t1) = (
-                (b[a] as f32 - o[a] as f32) * inv,
-                (b[a + 3] as f32 - o[a] as f32) * inv,
+                (b[0][a] as f32 - o[a] as f32) * inv,
+                (b[1][a] as f32 - o[a] as f32) * inv,
             );
             lo = lo.max(t0.min(t1));
             hi = hi.min(t0.max(t1));
@@ -147,27 +153,28 @@ mod tests {
         lo <= hi
     }
 
-    /// Rays aimed at the corners, edges and faces of boxes at scales from
-    /// 0.05 to 1e5, parallel to an axis or not: the eight-lane f32 test
-    /// enters every box the f64 test enters, no later; the naive f32 test
-    /// (the negative control) culls some.
-    #[test]
-    fn the_f32_slab_test_never_culls_a_box_the_ray_enters() {
-        let mut rng = SplitMix64::new(21);
+    /// Over `A` axes, rays aimed at the corners, edges and faces of boxes
+    /// at scales from 0.05 to 1e5, parallel to an axis or not: the
+    /// eight-lane f32 test enters every box the f64 test enters, no later;
+    /// the naive f32 test (the negative control) culls some.
+    fn never_culls<const A: usize>(seed: u64) {
+        let mut rng = SplitMix64::new(seed);
         let (mut entered, mut naive_culled) = (0, 0);
         for n in 0..200_000 {
             let scale = [0.05, 1.0, 300.0, 1e5][n % 4];
-            let boxes: [[f64; 6]; WIDTH] = [0; WIDTH].map(|_| random_box(&mut rng, scale));
+            let boxes: [Box64<A>; WIDTH] = std::array::from_fn(|_| random_box(&mut rng, scale));
             let lane = n % WIDTH;
             let (o, d) = aimed_ray(&mut rng, &boxes[lane], scale);
-            let inv = DVec3::ONE / d;
+            let inv = d.map(|d| 1.0 / d);
             let range = match n % 3 {
                 0 => (0.0, f64::INFINITY),
                 1 => (0.25 * scale, 1e3 * scale),
-                _ => (0.0, (boxes[lane][0] - o.x).abs() + scale),
+                _ => (0.0, (boxes[lane][0][0] - o[0]).abs() + scale),
             };
             let node = WideNode {
-                faces: [0, 1, 2, 3, 4, 5].map(|f| f32x8::from(boxes.map(|b| b[f] as f32))),
+                faces: [0, 1].map(|side| {
+                    std::array::from_fn(|a| f32x8::from(boxes.map(|b| b[side][a] as f32)))
+                }),
                 children: [NO_CHILD; WIDTH],
             };
             let (entries, mask) = WideRay::new(o, inv).enter(&node, (down(range.0), up(range.1)));
@@ -178,7 +185,7 @@ mod tests {
                 entered += 1;
                 assert!(
                     mask & (1 << k) != 0 && f64::from(entries[k]) <= exact,
-                    "culled: box {b:?}, ray {o} + s {d}, range {range:?}"
+                    "culled: box {b:?}, ray {o:?} + s {d:?}, range {range:?}"
                 );
                 if k == lane && !naive_enters(b, o, d, range) {
                     naive_culled += 1;
@@ -187,5 +194,17 @@ mod tests {
         }
         assert!(entered > 100_000, "{entered}");
         assert!(naive_culled > 100, "the control culled only {naive_culled}");
+    }
+
+    /// Boxes of comoving space (x, y, z), as a stretch's hierarchy holds.
+    #[test]
+    fn the_f32_slab_test_never_culls_a_space_box_the_ray_enters() {
+        never_culls::<3>(21);
+    }
+
+    /// Boxes of spacetime (x, y, z, t), as the top level holds.
+    #[test]
+    fn the_f32_slab_test_never_culls_a_spacetime_box_the_ray_enters() {
+        never_culls::<4>(23);
     }
 }

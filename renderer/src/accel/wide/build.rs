@@ -1,0 +1,117 @@
+//! Building a wide hierarchy: the shared binary build, its nodes' boxes
+//! rounded outward to f32, collapsed into nodes of eight children.
+
+use super::{down, up, WideBvh, WideNode, NO_CHILD, WIDTH};
+use crate::accel::bvh::{build, Bounds4, Child, PairNode};
+use wide::f32x8;
+
+/// A box over `A` axes in f32: lower faces then upper.
+type Faces<const A: usize> = [[f32; A]; 2];
+
+/// An inner node of the binary tree as built, before it is collapsed into
+/// [`WideNode`]s: its two children and their boxes in f32 rounded outward,
+/// so that each holds its f64 box.
+#[derive(Clone, Copy, Debug)]
+struct Node<const A: usize> {
+    bounds: [Faces<A>; 2],
+    children: [Child; 2],
+}
+
+impl<const A: usize> Node<A> {
+    /// Both children with their boxes.
+    fn halves(&self) -> [(Child, Faces<A>); 2] {
+        [0, 1].map(|c| (self.children[c], self.bounds[c]))
+    }
+}
+
+impl<const A: usize> PairNode for Node<A> {
+    fn pair(boxes: [Bounds4; 2], children: [Child; 2]) -> Node<A> {
+        let bounds = boxes.map(|b| {
+            [
+                std::array::from_fn(|axis| down(b.min[axis])),
+                std::array::from_fn(|axis| up(b.max[axis])),
+            ]
+        });
+        Node { bounds, children }
+    }
+
+    fn children_mut(&mut self) -> &mut [Child; 2] {
+        &mut self.children
+    }
+}
+
+impl<const A: usize> WideBvh<A> {
+    /// Builds the hierarchy over items given by their 4D bounds (of which
+    /// it keeps the first `A` axes), in order: item i is the i-th bounds.
+    pub(crate) fn build(bounds: impl Iterator<Item = Bounds4>) -> WideBvh<A> {
+        let built = build::<Node<A>>(bounds);
+        let mut nodes = Vec::with_capacity(built.nodes.len() / 2 + 1);
+        let root = if built.root.count == 0 && !built.nodes.is_empty() {
+            Child {
+                index: collapse(&built.nodes, built.root.index, &mut nodes),
+                count: 0,
+            }
+        } else {
+            built.root
+        };
+        WideBvh {
+            nodes,
+            root,
+            order: built.order,
+        }
+    }
+}
+
+/// Collapses the binary subtree under inner node `n` into nodes of eight
+/// children appended to `out` (a node before its children); returns its
+/// index. A node takes the binary node's two children and opens the
+/// largest inner ones among them (by [`area`]) until it has eight, so the
+/// same leaves hold the same items.
+fn collapse<const A: usize>(binary: &[Node<A>], n: u32, out: &mut Vec<WideNode<A>>) -> u32 {
+    let mut slots: Vec<(Child, Faces<A>)> = binary[n as usize].halves().into();
+    while slots.len() < WIDTH {
+        let open = (0..slots.len())
+            .filter(|&i| slots[i].0.count == 0)
+            .max_by(|&a, &b| area(&slots[a].1).total_cmp(&area(&slots[b].1)));
+        let Some(i) = open else { break };
+        let (child, _) = slots.remove(i);
+        let halves = binary[child.index as usize].halves();
+        slots.splice(i..i, halves);
+    }
+    let at = out.len();
+    out.push(WideNode {
+        faces: [[f32x8::ZERO; A]; 2],
+        children: [NO_CHILD; WIDTH],
+    });
+    let mut faces = [[[f32::INFINITY; WIDTH]; A], [[f32::NEG_INFINITY; WIDTH]; A]];
+    for (slot, (child, bounds)) in slots.into_iter().enumerate() {
+        for side in 0..2 {
+            for axis in 0..A {
+                faces[side][axis][slot] = bounds[side][axis];
+            }
+        }
+        out[at].children[slot] = if child.count > 0 {
+            child
+        } else {
+            Child {
+                index: collapse(binary, child.index, out),
+                count: 0,
+            }
+        };
+    }
+    out[at].faces = faces.map(|side| side.map(f32x8::from));
+    at as u32
+}
+
+/// Half the boundary measure of a box: its surface area over x, y, z; over
+/// x, y, z, t the 4D measure the binary build weighs splits by (xyz + t
+/// (xy + yz + zx)).
+fn area<const A: usize>(b: &Faces<A>) -> f32 {
+    let e: [f32; A] = std::array::from_fn(|a| (b[1][a] - b[0][a]).max(0.0));
+    let [x, y, z] = [e[0], e[1], e[2]];
+    let space = x * y + y * z + z * x;
+    match e.get(3) {
+        Some(t) => x * y * z + t * space,
+        None => space,
+    }
+}
