@@ -28,15 +28,20 @@ impl<const A: usize> WideBvh<A> {
         &self,
         (o, inv): AxisRay<A>,
         range: (f64, f64),
-        leaf: impl FnMut(u32, &[u32], (f64, f64)) -> Option<Hit>,
+        mut leaf: impl FnMut(u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
         if self.root.count == 0 && self.nodes.is_empty() {
             return None; // no items
         }
+        debug_assert!(range.0 >= 0.0, "searched from {}", range.0);
+        if self.root.count > 0 {
+            // A root leaf (a scene of a few stretches, or a stretch of a
+            // few prisms): nothing to test the ray against before it.
+            return leaf(self.root.index, self.leaf_items(self.root), range);
+        }
         // No test of the root's own box: the root node tests its
         // children's (and a stretch's, the top level has tested the time
         // slice's).
-        debug_assert!(range.0 >= 0.0, "searched from {}", range.0);
         let ray = WideRay::new(o, inv);
         self.closest_below((self.root, down(range.0)), &ray, range, leaf)
     }
@@ -169,8 +174,11 @@ impl<const A: usize> WideBvh<A> {
             return; // no items
         }
         debug_assert!(range.0 >= 0.0, "searched from {}", range.0);
-        let wide = wide_rays(rays);
         let mut hi = [range.1; PACKET];
+        if self.root.count > 0 {
+            return leaf(self.leaf_items(self.root), lanes, &mut hi);
+        }
+        let wide = wide_rays(rays);
         // hi32[i] is hi[i] rounded up.
         let (lo32, mut hi32) = ([down(range.0); PACKET], [up(range.1); PACKET]);
         let mut stack = Stack::new();
@@ -186,18 +194,22 @@ impl<const A: usize> WideBvh<A> {
                 continue;
             }
             if w.child.count > 0 {
-                let start = w.child.index as usize;
-                leaf(
-                    &self.order[start..start + w.child.count as usize],
-                    lanes,
-                    &mut hi,
-                );
+                leaf(self.leaf_items(w.child), lanes, &mut hi);
                 lanes.iter().for_each(|i| hi32[i] = up(hi[i]));
                 continue;
             }
             let node = &self.nodes[w.child.index as usize];
             current = packet_enters(node, &wide, lanes, (&lo32, &hi32), &mut stack);
         }
+    }
+}
+
+impl<const A: usize> WideBvh<A> {
+    /// The items of leaf `child`, side by side in the item order.
+    #[inline(always)]
+    fn leaf_items(&self, child: Child) -> &[u32] {
+        let start = child.index as usize;
+        &self.order[start..start + child.count as usize]
     }
 }
 
