@@ -24,6 +24,7 @@
 //! of `wide_ray`.
 
 mod build;
+mod packets;
 mod traverse;
 mod wide_ray;
 
