@@ -20,6 +20,7 @@ use crate::math;
 use glam::DVec3;
 #[cfg(feature = "serde")]
 use serde::{Deserialize, Serialize};
+use std::sync::OnceLock;
 
 /// The second radiation constant c2 = h c / k_B in nm K (exact in the 2019 SI).
 const SECOND_RADIATION_NM_K: f64 = 1.438_776_877_503_933_8e7;
@@ -203,8 +204,9 @@ fn planck_relative(nm_kelvin: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
         return 0.0;
     }
+    static PEAK: OnceLock<f64> = OnceLock::new();
     let shape = |x: f64| math::powi(x, 5) / math::exp_m1(x);
-    shape(x) / shape(WIEN_X)
+    shape(x) / *PEAK.get_or_init(|| shape(WIEN_X))
 }
 
 fn piecewise_linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {

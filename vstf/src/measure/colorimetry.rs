@@ -82,8 +82,9 @@ pub fn planck_relative(nm_kelvin: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
         return 0.0;
     }
+    static PEAK: OnceLock<f64> = OnceLock::new();
     let shape = |x: f64| x.powi(5) / x.exp_m1();
-    shape(x) / shape(WIEN_X)
+    shape(x) / *PEAK.get_or_init(|| shape(WIEN_X))
 }
 
 /// The observer and display tables, built once.

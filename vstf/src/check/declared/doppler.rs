@@ -63,8 +63,9 @@ pub(super) fn factor_from_colour(
     };
     let steps = 2700;
     let grid = |i: usize| lo * (hi / lo).powf(i as f64 / steps as f64);
+    let misses: Vec<f64> = (0..=steps).map(|i| miss(grid(i))).collect();
     let best = (0..=steps)
-        .min_by(|a, b| miss(grid(*a)).total_cmp(&miss(grid(*b))))
+        .min_by(|&a, &b| misses[a].total_cmp(&misses[b]))
         .unwrap();
     let (mut a, mut b) = (grid(best.saturating_sub(1)), grid((best + 1).min(steps)));
     let r = (5f64.sqrt() - 1.0) / 2.0;
