@@ -97,13 +97,16 @@ impl Body {
     }
 
     /// Points covering the body's surface at most `spacing` apart,
-    /// relative to its reference point.
-    fn surface_points(&self, spacing: f64) -> Vec<DVec3> {
+    /// relative to its reference point, each handed to `visit` as it is
+    /// made (there are millions: kept, they would cost more to page in
+    /// than to use).
+    fn each_surface_point(&self, spacing: f64, mut visit: impl FnMut(DVec3)) {
         match &self.form {
-            Form::Triangles(tris) => tris
-                .iter()
-                .flat_map(|t| triangle_points(t, spacing))
-                .collect(),
+            Form::Triangles(tris) => {
+                for t in tris {
+                    triangle_points(t, spacing, &mut visit);
+                }
+            }
             Form::Ellipsoid {
                 radius,
                 axis,
@@ -113,7 +116,6 @@ impl Body {
                 // as finely divided as its circumference needs; then contracted.
                 let (u, w) = perpendiculars(*axis);
                 let rings = ((std::f64::consts::PI * radius / spacing).ceil() as usize).max(2);
-                let mut out = Vec::new();
                 for i in 0..=rings {
                     let theta = std::f64::consts::PI * i as f64 / rings as f64;
                     let (along, across) = (radius * theta.cos(), radius * theta.sin());
@@ -121,11 +123,9 @@ impl Body {
                         ((std::f64::consts::TAU * across / spacing).ceil() as usize).max(1);
                     for j in 0..around {
                         let phi = std::f64::consts::TAU * j as f64 / around as f64;
-                        let p = *axis * (along / gamma) + (u * phi.cos() + w * phi.sin()) * across;
-                        out.push(p);
+                        visit(*axis * (along / gamma) + (u * phi.cos() + w * phi.sin()) * across);
                     }
                 }
-                out
             }
         }
     }
@@ -138,21 +138,20 @@ fn perpendiculars(a: DVec3) -> (DVec3, DVec3) {
     (u, a.cross(u))
 }
 
-/// A triangular grid of points over triangle `t`, at most `spacing` apart.
-fn triangle_points(t: &[DVec3; 3], spacing: f64) -> Vec<DVec3> {
+/// A triangular grid of points over triangle `t`, at most `spacing` apart,
+/// each handed to `visit`.
+fn triangle_points(t: &[DVec3; 3], spacing: f64, visit: &mut impl FnMut(DVec3)) {
     let longest = (t[1] - t[0])
         .length()
         .max((t[2] - t[1]).length())
         .max((t[0] - t[2]).length());
     let m = ((longest / spacing).ceil() as usize).max(1);
-    let mut out = Vec::with_capacity((m + 1) * (m + 2) / 2);
     for i in 0..=m {
         for j in 0..=(m - i) {
             let (a, b) = (i as f64 / m as f64, j as f64 / m as f64);
-            out.push(t[0] + (t[1] - t[0]) * a + (t[2] - t[0]) * b);
+            visit(t[0] + (t[1] - t[0]) * a + (t[2] - t[0]) * b);
         }
     }
-    out
 }
 
 /// The gate's slices: `count` of thickness `thickness` from distance `near`.
@@ -251,7 +250,7 @@ impl Snapshot<'_> {
         for (class, b) in self.bodies.iter().enumerate() {
             // Neighbouring points enter the gate in neighbouring slices.
             let mut guess = self.gate.count / 2;
-            for p in b.surface_points(spacing) {
+            b.each_surface_point(spacing, |p| {
                 let first = self.first_slice(b, p, guess);
                 guess = first;
                 // The slices whose gate admits the point: depth in [0, dz).
@@ -277,7 +276,7 @@ impl Snapshot<'_> {
                         *cell = (rho, Some(class));
                     }
                 }
-            }
+            });
         }
         nearest.into_iter().map(|(_, c)| c).collect()
     }
