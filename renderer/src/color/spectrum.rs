@@ -163,6 +163,30 @@ impl Spectrum {
             _ => nm.map(|x| self.at(x)),
         }
     }
+
+    /// [`Spectrum::at_each`] of this spectrum and of white (the uplift of
+    /// (1, 1, 1)) at the same wavelengths, the same values to the bit: for
+    /// an RGB spectrum the basis and the window, four smoothsteps a
+    /// wavelength, are found once for both.
+    pub fn at_each_with_white<const N: usize>(&self, nm: &[f64; N]) -> ([f64; N], [f64; N]) {
+        let white = colorimetry().uplift * DVec3::ONE;
+        let Spectrum::Rgb(rgb) = self else {
+            return (
+                self.at_each(nm),
+                nm.map(|x| if x > 0.0 { uplift(white, x) } else { 0.0 }),
+            );
+        };
+        let k = colorimetry().uplift * *rgb;
+        let (mut own, mut whites) = ([0.0; N], [0.0; N]);
+        for (i, &x) in nm.iter().enumerate() {
+            let w = if x > 0.0 { window(x) } else { 0.0 };
+            if w > 0.0 {
+                let b = basis(x);
+                (own[i], whites[i]) = ((k.dot(b) * w).max(0.0), (white.dot(b) * w).max(0.0));
+            }
+        }
+        (own, whites)
+    }
 }
 
 /// The C1 smoothstep 3t^2 - 2t^3 of t = (x - edge0) / (edge1 - edge0),
@@ -334,6 +358,37 @@ mod tests {
             for (x, v) in odd.iter().zip(s.at_each(&odd)) {
                 assert_eq!(v.to_bits(), s.at(*x).to_bits(), "{s:?} at {x} nm");
             }
+        }
+    }
+
+    /// `at_each_with_white` is `at_each` of the spectrum and of white, to
+    /// the bit, for every kind, at the band shifted either way and at
+    /// wavelengths that are not; a coloured spectrum differs from white,
+    /// so the two put in each other's place would show.
+    #[test]
+    fn at_each_with_white_is_both_at_each_to_the_bit() {
+        let spectra = [
+            Spectrum::Rgb(DVec3::new(0.9, 0.2, 0.05)),
+            Spectrum::Rgb(DVec3::new(-0.5, 2.0, 0.0)),
+            Spectrum::Blackbody {
+                kelvin: 3200.0,
+                scale: 1.0,
+            },
+        ];
+        let white = Spectrum::Rgb(DVec3::ONE);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for s in &spectra {
+            for d in [0.5, 0.93, 1.0, 1.7] {
+                let nm: [f64; BAND_LEN] = std::array::from_fn(|i| band_nm()[i] * d);
+                let (own, whites) = s.at_each_with_white(&nm);
+                assert_eq!(bits(&own), bits(&s.at_each(&nm)), "{s:?} x {d}");
+                assert_eq!(bits(&whites), bits(&white.at_each(&nm)), "{s:?} x {d}");
+                assert_ne!(bits(&own), bits(&whites), "{s:?} x {d}: white itself");
+            }
+            let odd = [f64::NAN, 0.0, -0.0, -450.0, f64::INFINITY, 380.0, 730.0];
+            let (own, whites) = s.at_each_with_white(&odd);
+            assert_eq!(bits(&own), bits(&s.at_each(&odd)), "{s:?}");
+            assert_eq!(bits(&whites), bits(&white.at_each(&odd)), "{s:?}");
         }
     }
 

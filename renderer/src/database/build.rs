@@ -8,8 +8,8 @@ use crate::geometry::{
     self, extrude_between, piece, CornerRows, Pose, PreparedTet, PrismCorners, Sphere,
 };
 use crate::scene::{
-    Fault, Mesh, Motion, ObjectKind, Scene, SceneError, SceneErrorKind as K, SceneField as F,
-    SceneObject, Shape, NO_MESH,
+    Fault, Material, Mesh, Motion, ObjectKind, Scene, SceneError, SceneErrorKind as K,
+    SceneField as F, SceneObject, Shape, NO_MESH,
 };
 use crate::spacetime::{Boost, Event, FourVector, Worldline};
 use glam::DVec3;
@@ -307,6 +307,10 @@ fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
             triangle_materials: mesh_of(obj).materials.clone(),
             contracted: lorentz && obj.kind == ObjectKind::VObj,
             stretches,
+            emission_rgb: std::iter::once(&obj.material)
+                .chain(&obj.face_materials)
+                .map(Material::emission_rgb)
+                .collect(),
         });
     }
     Ok(Inserted {

@@ -44,15 +44,31 @@ pub struct ObjectRecord {
     /// Its path in lab-time order: one stretch for uniform motion, one per
     /// interval between poses otherwise.
     pub stretches: Vec<Stretch>,
+    /// Each material's [`Material::emission_rgb`] (material 0 first),
+    /// integrated once rather than at every hit.
+    pub(super) emission_rgb: Vec<Option<DVec3>>,
 }
 
 impl ObjectRecord {
     /// The material of triangle `triangle` of the object's mesh (of the
     /// object, for an analytic sphere).
     pub fn material_of(&self, triangle: u32) -> &Material {
+        match self.material_index(triangle) {
+            0 => &self.material,
+            k => &self.face_materials[k - 1],
+        }
+    }
+
+    /// [`Material::emission_rgb`] of the material of triangle `triangle`.
+    pub fn emission_rgb_of(&self, triangle: u32) -> Option<DVec3> {
+        self.emission_rgb[self.material_index(triangle)]
+    }
+
+    /// The index of triangle `triangle`'s material: 0 for the object's own.
+    fn material_index(&self, triangle: u32) -> usize {
         match self.triangle_materials.get(triangle as usize) {
-            Some(&k) if k > 0 => &self.face_materials[k as usize - 1],
-            _ => &self.material,
+            Some(&k) => k as usize,
+            None => 0,
         }
     }
 

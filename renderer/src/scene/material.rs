@@ -113,6 +113,14 @@ pub struct Material {
 }
 
 impl Material {
+    /// The emission in linear RGB: the spectrum integrated over the bands
+    /// unshifted, the colour a surface adds where wavelengths are not
+    /// shifted.
+    pub fn emission_rgb(&self) -> Option<DVec3> {
+        let e = self.emission.as_ref()?;
+        Some(crate::color::to_rgb(&e.sample_scaled(1.0)))
+    }
+
     /// A diffuse surface of the given colour with the default weights.
     pub fn matte(color: DVec3) -> Material {
         Material {

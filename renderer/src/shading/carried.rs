@@ -4,7 +4,7 @@
 use super::doppler::Effects;
 use super::lit::Lit;
 use super::shader::{scaled, Band, Shader};
-use crate::color::{self, Spectrum, BAND_LEN};
+use crate::color::{Spectrum, BAND_LEN};
 use crate::scene::Material;
 use crate::trace::{Step, Trace};
 use glam::DVec3;
@@ -117,8 +117,9 @@ impl Carried for DVec3 {
             Some(g) => ambient + direct * g,
             None => ambient + direct,
         };
-        if let Some(e) = &m.emission {
-            local += color::to_rgb(&e.sample_scaled(1.0));
+        let record = &shader.db.objects()[lit.object as usize];
+        if let Some(e) = record.emission_rgb_of(lit.triangle) {
+            local += e;
         }
         let terms = RgbLocal {
             albedo,
@@ -181,10 +182,9 @@ impl Carried for Band {
         lamp_gain: Option<f64>,
     ) -> (Band, Band) {
         let surface_nm = scaled(nm, lit.out);
-        let reflectance = m
+        let (reflectance, white) = m
             .reflectance_textured(lit.tau, lit.texel)
-            .at_each(&surface_nm);
-        let white = Spectrum::Rgb(DVec3::ONE).at_each(&surface_nm);
+            .at_each_with_white(&surface_nm);
         let lamp = shader
             .light
             .spectrum()
