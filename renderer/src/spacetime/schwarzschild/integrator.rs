@@ -99,26 +99,58 @@ impl Geodesic {
             -1.0 / 40.0,
         ];
         let orbit = Invariants::of(self.mass, self.x, self.v);
-        let mut kx = [DVec3::ZERO; 7];
-        let mut kv = [DVec3::ZERO; 7];
-        let mut kt = [0.0; 7];
-        (kx[0], kv[0], kt[0]) = orbit.derivative(self.x, self.v);
-        let mut end = (self.x, self.v, 0.0);
-        for (i, row) in A.iter().enumerate() {
-            let (mut x, mut v, mut t) = (self.x, self.v, 0.0);
-            for j in 0..=i {
-                x += kx[j] * (h * row[j]);
-                v += kv[j] * (h * row[j]);
-                t += kt[j] * (h * row[j]);
-            }
-            (kx[i + 1], kv[i + 1], kt[i + 1]) = orbit.derivative(x, v);
-            end = (x, v, t);
-        }
+        let mut k = Stages {
+            x: [DVec3::ZERO; 7],
+            v: [DVec3::ZERO; 7],
+            t: [0.0; 7],
+        };
+        (k.x[0], k.v[0], k.t[0]) = orbit.derivative(self.x, self.v);
+        // Stage by stage, each summing a fixed number of terms, so that
+        // every sum is unrolled.
+        let start = (self.x, self.v);
+        k.stage::<1>(start, &A[0], h, &orbit);
+        k.stage::<2>(start, &A[1], h, &orbit);
+        k.stage::<3>(start, &A[2], h, &orbit);
+        k.stage::<4>(start, &A[3], h, &orbit);
+        k.stage::<5>(start, &A[4], h, &orbit);
+        let end = k.stage::<6>(start, &A[5], h, &orbit);
         let (mut ex, mut ev) = (DVec3::ZERO, DVec3::ZERO);
-        for j in 0..7 {
-            ex += kx[j] * (h * E[j]);
-            ev += kv[j] * (h * E[j]);
+        for ((&kx, &kv), &e) in k.x.iter().zip(&k.v).zip(&E) {
+            ex += kx * (h * e);
+            ev += kv * (h * e);
         }
         (end, ex, ev)
+    }
+}
+
+/// The derivatives of a Dormand-Prince step's stages, in x, v and t.
+struct Stages {
+    x: [DVec3; 7],
+    v: [DVec3; 7],
+    t: [f64; 7],
+}
+
+impl Stages {
+    /// Stage `N`: the state `start` moved by the first `N` stages'
+    /// derivatives weighted by `row` (the tableau's row N - 1) over `h`,
+    /// whose derivative becomes stage N's; returns that state, with its
+    /// time.
+    #[inline(always)]
+    fn stage<const N: usize>(
+        &mut self,
+        (x0, v0): (DVec3, DVec3),
+        row: &[f64; 6],
+        h: f64,
+        orbit: &Invariants,
+    ) -> (DVec3, DVec3, f64) {
+        let (mut x, mut v, mut t) = (x0, v0, 0.0);
+        let terms = self.x.iter().zip(&self.v).zip(&self.t).zip(row);
+        for (((&kx, &kv), &kt), &a) in terms.take(N) {
+            x += kx * (h * a);
+            v += kv * (h * a);
+            t += kt * (h * a);
+        }
+        (self.x[N], self.v[N], self.t[N]) = orbit.derivative(x, v);
+        (x, v, t)
     }
 }
