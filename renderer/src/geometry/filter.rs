@@ -80,7 +80,9 @@ impl CornerRows {
 
     /// `ray` prepared for triangles whose comoving coordinates are at most
     /// `reach` in magnitude; `None` where it is not filtered (see the
-    /// module's doc).
+    /// module's doc). (Inlined, so that the prepared ray is written where
+    /// it is kept rather than copied there.)
+    #[inline(always)]
     pub(crate) fn prepare(&self, ray: &ComovingRay, reach: f64) -> Option<FilterRay> {
         let (origin, axes, [sx, sy]) = ray.parts();
         let k = reach + origin.iter().fold(0.0f64, |m, v| m.max(v.abs()));
