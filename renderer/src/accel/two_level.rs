@@ -12,12 +12,6 @@ use crate::geometry::{comoving_line, nearer, Hit};
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
 
-/// Up to this many time slices in all, the top level is one leaf: each ray
-/// tests the slices' boxes in turn (in f64, as a leaf's slices always are)
-/// rather than preparing itself for a tree's eight-wide tests. Ties go to
-/// the lower primitive whatever the order, so the hits are the same.
-const ONE_LEAF_SLICES: usize = 16;
-
 /// Most time slices one stretch is cut into in the top-level hierarchy.
 const MAX_SLICES: usize = 64;
 
@@ -208,13 +202,8 @@ impl TwoLevel {
                 bvh: tree,
             });
         }
-        let top = if slice_bounds.len() <= ONE_LEAF_SLICES {
-            SliceBvh::one_leaf(slice_bounds.len())
-        } else {
-            SliceBvh::build(slice_bounds.into_iter())
-        };
         TwoLevel {
-            top,
+            top: SliceBvh::build(slice_bounds.into_iter()),
             stretches: built,
             slices: all_slices,
         }
@@ -414,50 +403,5 @@ mod tests {
             None
         });
         assert_eq!(tested, [1; 20]);
-    }
-
-    /// Five time slices, a top level of one leaf: a ray keeping pace with
-    /// the object still has its stretch searched once, each prism tested
-    /// once, alone and in a packet beside a ray that passes the sweep by
-    /// and tests nothing.
-    #[test]
-    fn a_top_level_of_few_slices_searches_each_stretch_once() {
-        let stretch = StretchPrisms {
-            origin: Event::new(0.0, DVec3::ZERO),
-            velocity: DVec3::new(0.9, 0.0, 0.0),
-            span: (0.0, 10.0),
-            prisms: 0..20,
-            translation: true,
-        };
-        let two = TwoLevel::build(std::iter::once(&stretch), |_, _| {
-            (DVec3::splat(-1.0), DVec3::splat(1.0))
-        });
-        assert_eq!(two.slices.len(), 5);
-        assert!(two.slices.len() <= ONE_LEAF_SLICES);
-        let d = DVec4::new(-0.9, 0.0, 1e-3, -1.0);
-        let (pacing, beside) = (
-            DVec4::new(9.0, 0.0, 0.0, 10.0),
-            DVec4::new(9.0, 50.0, 0.0, 10.0),
-        );
-        for (o, expected) in [(pacing, [1; 20]), (beside, [0; 20])] {
-            let mut tested = [0; 20];
-            two.closest(o, d, (0.0, f64::INFINITY), |_, _, items, _| {
-                items.iter().for_each(|&p| tested[p as usize] += 1);
-                None
-            });
-            assert_eq!(tested, expected, "alone, from {o}");
-        }
-        let rays = [(pacing, d), (beside, d), (pacing, d), (beside, d)];
-        let mut tested = [[0; 20]; PACKET];
-        two.closest_packet(
-            &rays,
-            Lanes::first(PACKET),
-            (0.0, f64::INFINITY),
-            |i, _, _, items, _| {
-                items.iter().for_each(|&p| tested[i][p as usize] += 1);
-                None
-            },
-        );
-        assert_eq!(tested, [[1; 20], [0; 20], [1; 20], [0; 20]], "in a packet");
     }
 }

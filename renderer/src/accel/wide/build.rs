@@ -62,21 +62,6 @@ impl<const A: usize> WideBvh<A> {
     }
 }
 
-impl<const A: usize> WideBvh<A> {
-    /// A hierarchy of one leaf holding items 0..n in order: searching it
-    /// hands every item to the leaf, with no box tested.
-    pub(crate) fn one_leaf(n: usize) -> WideBvh<A> {
-        WideBvh {
-            nodes: Vec::new(),
-            root: Child {
-                index: 0,
-                count: n as u32,
-            },
-            order: (0..n as u32).collect(),
-        }
-    }
-}
-
 /// Collapses the binary subtree under inner node `n` into nodes of eight
 /// children appended to `out` (a node before its children); returns its
 /// index. A node takes the binary node's two children and opens the
