@@ -241,11 +241,11 @@ impl Snapshot<'_> {
         spacing: f64,
     ) -> Vec<Option<usize>> {
         let (cw, ch) = (w * n, h * n);
+        if self.gate.count == 0 {
+            return vec![None; (cw * ch) as usize];
+        }
         let mut nearest: Vec<(f64, Option<usize>)> =
             vec![(f64::INFINITY, None); (cw * ch) as usize];
-        if self.gate.count == 0 {
-            return vec![None; nearest.len()];
-        }
         let dz = self.gate.thickness;
         for (class, b) in self.bodies.iter().enumerate() {
             // Neighbouring points enter the gate in neighbouring slices.

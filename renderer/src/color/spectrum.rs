@@ -169,14 +169,13 @@ impl Spectrum {
     /// an RGB spectrum the basis and the window, four smoothsteps a
     /// wavelength, are found once for both.
     pub fn at_each_with_white<const N: usize>(&self, nm: &[f64; N]) -> ([f64; N], [f64; N]) {
-        let white = colorimetry().uplift * DVec3::ONE;
         let Spectrum::Rgb(rgb) = self else {
-            return (
-                self.at_each(nm),
-                nm.map(|x| if x > 0.0 { uplift(white, x) } else { 0.0 }),
-            );
+            return (self.at_each(nm), Spectrum::Rgb(DVec3::ONE).at_each(nm));
         };
-        let k = colorimetry().uplift * *rgb;
+        let (k, white) = (
+            colorimetry().uplift * *rgb,
+            colorimetry().uplift * DVec3::ONE,
+        );
         let (mut own, mut whites) = ([0.0; N], [0.0; N]);
         for (i, &x) in nm.iter().enumerate() {
             let w = if x > 0.0 { window(x) } else { 0.0 };
