@@ -97,7 +97,11 @@ impl Observer<'_> {
         marks: &[(DVec3, String)],
     ) -> Result<ViewReport, String> {
         let view = self.report_view(VIEW_WIDTH)?;
-        let image = crate::output::rgb8(&crate::run::render(self.fixture, &view, Traversal::Bvh)?);
+        let image = crate::output::rgb8(&*crate::run::render_shared(
+            self.fixture,
+            &view,
+            Traversal::Bvh,
+        )?);
         let pinhole = self.pinhole(self.size(VIEW_WIDTH))?;
         let (markers, rows) = marks
             .iter()
@@ -139,7 +143,7 @@ impl Observer<'_> {
                 ..Overrides::default()
             },
         )?;
-        let img = crate::run::render(&probe, &view, Traversal::Bvh)?;
+        let img = crate::run::render_shared(&probe, &view, Traversal::Bvh)?;
         let pinhole = Pinhole::looking_at(
             self.camera_x(),
             look_at,
@@ -207,7 +211,7 @@ impl Observer<'_> {
                 ..Overrides::default()
             },
         )?;
-        let img = crate::run::render(&probe, &view, Traversal::Bvh)?;
+        let img = crate::run::render_shared(&probe, &view, Traversal::Bvh)?;
         Ok((crate::output::rgb8(&img), self.pinhole((width, height))?))
     }
 

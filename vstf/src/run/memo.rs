@@ -20,7 +20,7 @@ use renderer::{Image, Traversal};
 use std::collections::HashMap;
 use std::fmt::{self, Write as _};
 use std::hash::{BuildHasher, DefaultHasher, Hasher, RandomState};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 /// Bytes of images kept at most for one loaded fixture; renders beyond
 /// them are made and not kept.
@@ -37,7 +37,7 @@ pub struct Renders {
 #[derive(Default)]
 struct Kept {
     bytes: usize,
-    images: HashMap<u128, Image>,
+    images: HashMap<u128, Arc<Image>>,
     reused: usize,
 }
 
@@ -103,20 +103,21 @@ impl Renders {
     }
 
     /// The image kept under `key`, if any.
-    pub(crate) fn get(&self, key: Key) -> Option<Image> {
+    pub(crate) fn get(&self, key: Key) -> Option<Arc<Image>> {
         let mut kept = self.lock();
         let image = kept.images.get(&key.0).cloned();
         kept.reused += usize::from(image.is_some());
         image
     }
 
-    /// Keeps `image` under `key` while the budget allows.
-    pub(crate) fn keep(&self, key: Key, image: &Image) {
+    /// Keeps `image` under `key` while the budget allows (shared, not
+    /// copied).
+    pub(crate) fn keep(&self, key: Key, image: &Arc<Image>) {
         let size = std::mem::size_of_val(image.pixels.as_slice());
         let mut kept = self.lock();
         if kept.bytes + size <= self.budget && !kept.images.contains_key(&key.0) {
             kept.bytes += size;
-            kept.images.insert(key.0, image.clone());
+            kept.images.insert(key.0, Arc::clone(image));
         }
     }
 

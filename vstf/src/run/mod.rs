@@ -5,6 +5,7 @@ use crate::error::Error;
 use crate::fixture::{Fixture, Overrides, View};
 use renderer::{Database, Image, Traversal};
 use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
 
 mod memo;
 pub use memo::Renders;
@@ -27,12 +28,23 @@ pub fn view(fixture: &Fixture, overrides: &Overrides) -> Result<View, Error> {
 /// image this fixture (or a copy of it) rendered already for the same
 /// scene, spec, view and traversal ([`Renders`]).
 pub fn render(fixture: &Fixture, view: &View, traversal: Traversal) -> Result<Image, Error> {
+    render_shared(fixture, view, traversal).map(Arc::unwrap_or_clone)
+}
+
+/// [`render`], the image shared with the store of kept renders rather
+/// than copied out of it: what the checks read, most of their images
+/// never asked for again.
+pub fn render_shared(
+    fixture: &Fixture,
+    view: &View,
+    traversal: Traversal,
+) -> Result<Arc<Image>, Error> {
     let key = fixture.renders.key(fixture, view, traversal);
     if let Some(image) = fixture.renders.get(key) {
         return Ok(image);
     }
     let db = database(fixture, view.model.lorentz, traversal)?;
-    let image = render_with(&db, fixture, view)?;
+    let image = Arc::new(render_with(&db, fixture, view)?);
     fixture.renders.keep(key, &image);
     Ok(image)
 }
@@ -200,8 +212,8 @@ mod tests {
         for (budget, kept) in [(bytes - 1, None), (bytes, Some(&image))] {
             let renders = Renders::within(budget);
             let key = renders.key(&f, &v, Traversal::Bvh);
-            renders.keep(key, &image);
-            assert_eq!(renders.get(key).as_ref(), kept);
+            renders.keep(key, &Arc::new(image.clone()));
+            assert_eq!(renders.get(key).as_deref(), kept);
         }
     }
 

@@ -83,7 +83,7 @@ fn flat_render(
     object: &str,
     size: (u32, u32),
     spp: u32,
-) -> Result<Image, String> {
+) -> Result<std::sync::Arc<Image>, String> {
     let mut probe = measuring
         .fixture
         .only(&[object])
@@ -109,7 +109,7 @@ fn flat_render(
         },
     )
     .map_err(|e| e.to_string())?;
-    crate::run::render(&probe, &view, Traversal::Bvh).map_err(|e| e.to_string())
+    crate::run::render_shared(&probe, &view, Traversal::Bvh).map_err(|e| e.to_string())
 }
 
 /// The run of pixels of row `row` the line covers nearest `near` (a
