@@ -14,7 +14,7 @@ use crate::database::Database;
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
 use crate::shading::{Effects, Shader};
-use crate::spacetime::Spacetime;
+use crate::spacetime::{Event, Ray, Spacetime};
 use crate::trace::{NoTrace, Step, Trace};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -68,13 +68,24 @@ impl Image {
     /// the top left; values are stored linearly (no sRGB curve) so that a
     /// pixel's value is proportional to the coverage of an edge.
     pub fn to_rgb8_bytes(&self) -> Vec<u8> {
-        let q = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+        let q = |v: f64| round_half_up(v.clamp(0.0, 1.0) * 255.0);
         let mut out = Vec::with_capacity(3 * self.pixels.len());
         for c in &self.pixels {
             out.extend([q(c.x), q(c.y), q(c.z)]);
         }
         out
     }
+}
+
+/// `x` in [0, 255] rounded to the nearest integer, halves away from zero:
+/// `x.round() as u8` to the bit (a NaN gives 0), without the call to the
+/// software `round` that the x86-64 baseline (no SSE4.1) makes of it. The
+/// fraction `x - trunc(x)` is exact: below 1 it is `x` itself, above it
+/// `x` and `trunc(x)` are within a factor of two (Sterbenz).
+fn round_half_up(x: f64) -> u8 {
+    let whole = x as u8;
+    let up = x - f64::from(whole) >= 0.5;
+    whole + u8::from(up)
 }
 
 /// The shader for one render of `frame`: the database, the scene's light
@@ -207,7 +218,13 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
     let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
     // Each sample's camera where it is not `camera` itself (Camera::at_in).
     let mut moved: [Option<Camera>; PACKET] = [None, None, None, None];
-    let mut rays = [camera.ray(0.5, 0.5, camera_t, model.light_speed); PACKET];
+    // Every lane in use is set before it is searched.
+    let unset = Ray::backwards(
+        Event::new(camera_t, DVec3::ZERO),
+        DVec3::Z,
+        model.light_speed,
+    );
+    let mut rays = [unset; PACKET];
     let mut hits = [None; PACKET];
     let mut colors = [DVec3::ZERO; PACKET];
     for k in 0..settings.spp.max(1) {
@@ -301,4 +318,40 @@ pub fn pixel_traced<T: Trace>(
         sum += sample(k, px, py, t, trace);
     }
     sum / f64::from(settings.spp)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::round_half_up;
+
+    /// Every value of [0, 255] near an integer or a half (the steps of
+    /// `to_rgb8_bytes`), and a sweep between, rounds as `f64::round`.
+    #[test]
+    fn rounding_a_channel_matches_f64_round_at_every_half_and_integer() {
+        let mut xs = vec![0.0, 255.0, f64::MIN_POSITIVE, 1e-300];
+        for k in 0..=510u32 {
+            let x = f64::from(k) / 2.0;
+            let below = f64::from_bits(x.to_bits().saturating_sub(1));
+            let above = f64::from_bits(x.to_bits() + 1);
+            xs.extend(
+                [below, x, above]
+                    .into_iter()
+                    .filter(|x| (0.0..=255.0).contains(x)),
+            );
+        }
+        xs.extend((0..100_000).map(|i| f64::from(i) * 255.0 / 99_999.0));
+        for x in xs {
+            assert_eq!(round_half_up(x), x.round() as u8, "{x:e}");
+        }
+        assert_eq!(round_half_up(f64::NAN), f64::NAN.round() as u8);
+    }
+
+    /// Negative control: adding a half and truncating, the usual shortcut,
+    /// rounds the largest double below one half up.
+    #[test]
+    fn adding_a_half_before_truncating_is_not_the_same_rounding() {
+        let x = 0.5f64.next_down();
+        assert_eq!(round_half_up(x), 0);
+        assert_eq!((x + 0.5) as u8, 1);
+    }
 }

@@ -322,7 +322,11 @@ impl Database {
     /// point's place in the triangle (the sum of the hit's barycentric
     /// coordinates over the tetrahedron's vertices at each corner).
     pub fn surface_motion(&self, hit: &Hit) -> (DVec3, f64) {
-        let surface = self.surface(hit);
+        self.motion_on(hit, &self.surface(hit))
+    }
+
+    /// [`Database::surface_motion`] at `hit`, whose [`Surface`] is known.
+    pub(crate) fn motion_on(&self, hit: &Hit, surface: &Surface) -> (DVec3, f64) {
         let record = &self.records[surface.object as usize];
         let stretch = record.stretch_at(hit.event.t);
         let (PrimitiveId::Tetrahedron(tet), Barycentric::Tetrahedron(bary)) =

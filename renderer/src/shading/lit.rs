@@ -6,6 +6,7 @@
 use super::doppler;
 use super::frame::SurfaceFrame;
 use super::shader::{ray_step, self_hit_margin, Shader};
+use crate::database::Surface;
 use crate::geometry::Hit;
 use crate::math;
 use crate::spacetime::{lorentz_factor, Event, LightSpeed, Ray, Spacetime};
@@ -121,10 +122,9 @@ impl Shader<'_> {
     pub(super) fn facing(
         &self,
         ray: &Ray,
-        hit: &Hit,
+        surface: &Surface,
         velocity: DVec3,
     ) -> (DVec3, Option<SurfaceFrame>) {
-        let surface = self.db.surface(hit);
         let n = surface.normal;
         let frame = match self.light_speed {
             LightSpeed::Finite => {
@@ -157,8 +157,8 @@ impl Shader<'_> {
         } else {
             DVec3::NAN
         };
-        let (velocity, gamma) = self.db.surface_motion(hit);
-        let (n, frame) = self.facing(ray, hit, velocity);
+        let (velocity, gamma) = self.db.motion_on(hit, &surface);
+        let (n, frame) = self.facing(ray, &surface, velocity);
         let surface_frame =
             frame.map(|f| [f.normal(), f.towards(l), f.propagation(view.normalize())]);
         let [n_s, l_s, view_s] = surface_frame.unwrap_or([n, l, view]);

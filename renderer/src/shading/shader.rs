@@ -168,7 +168,9 @@ impl Shader<'_> {
     /// own frame (for a moving surface under light cones, not always the
     /// side facing the origin in the lab; see `Shader::facing`).
     pub fn facing_normal(&self, ray: &Ray, hit: &Hit) -> DVec3 {
-        self.facing(ray, hit, self.db.surface_motion(hit).0).0
+        let surface = self.db.surface(hit);
+        self.facing(ray, &surface, self.db.motion_on(hit, &surface).0)
+            .0
     }
 
     /// The mirror ray leaving `hit`, and nu_surface / nu_lab for the light
