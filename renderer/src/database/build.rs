@@ -14,6 +14,7 @@ use crate::scene::{
 use crate::spacetime::{Boost, Event, FourVector, Worldline};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::borrow::Cow;
 use std::sync::OnceLock;
 
 /// An object's mesh; none for an analytic sphere.
@@ -42,9 +43,16 @@ fn material_indices(mesh: &Mesh, count: usize) -> Result<(), Fault> {
 
 /// The database under construction.
 #[derive(Default)]
-struct Builder {
+struct Builder<'a> {
     runs: Vec<Run>,
-    comoving: Vec<[DVec3; 3]>,
+    /// Run by run, the mesh a translation's prisms hold in its comoving
+    /// coordinates: the scene's own, or its Lorentz-contracted copy (`None`
+    /// for a keyframe interval). Its triangles are gathered in leaf order
+    /// once the hierarchy is built ([`in_leaf_order`]), so that no copy of
+    /// them in insertion order lives through the build.
+    meshes: Vec<Option<Cow<'a, Mesh>>>,
+    /// How many prisms of translations there are.
+    translated: usize,
     keyframed: Keyframed,
     spheres: Vec<Sphere>,
     /// Only checking that the scene inserts ([`Database::validate`]): a
@@ -118,10 +126,18 @@ fn straight(obj: &SceneObject, lorentz: bool) -> Result<(Worldline, Boost), Faul
     Ok((worldline, boost))
 }
 
-impl Builder {
+impl<'a> Builder<'a> {
     /// How many prisms have been inserted.
     fn prism_count(&self) -> usize {
-        self.comoving.len() + self.keyframed.prisms.len()
+        self.translated + self.keyframed.prisms.len()
+    }
+
+    /// The corners of prism `p` of run `k`, in the run's comoving
+    /// coordinates, if the run is a translation.
+    fn comoving(&self, k: usize, p: usize) -> Option<[DVec3; 3]> {
+        let run = &self.runs[k];
+        let mesh = self.meshes[k].as_ref()?;
+        Some(mesh.corners(p - run.stretch.prisms.start))
     }
 
     /// Extrudes a keyframed object pose to pose, each interval one stretch
@@ -175,6 +191,7 @@ impl Builder {
                 slot,
                 reach: 0.0,
             });
+            self.meshes.push(None);
             stretches.push(Stretch {
                 worldline,
                 clock,
@@ -187,7 +204,7 @@ impl Builder {
 
     /// Inserts a uniformly moving object: one stretch, an analytic sphere
     /// or the mesh (Lorentz-contracted for a V_obj) extruded along it.
-    fn uniform(&mut self, i: usize, obj: &SceneObject, lorentz: bool) -> Result<Stretch, Fault> {
+    fn uniform(&mut self, i: usize, obj: &'a SceneObject, lorentz: bool) -> Result<Stretch, Fault> {
         let (worldline, boost) = straight(obj, lorentz)?;
         if let Shape::Sphere { radius } = obj.shape {
             self.spheres.push(Sphere {
@@ -199,30 +216,31 @@ impl Builder {
                 end: worldline.end().t,
             });
         } else {
-            let contracted;
             let mesh = if boost.beta() == DVec3::ZERO {
                 // Contraction changes nothing, and `insert` has validated it.
-                mesh_of(obj)
+                Cow::Borrowed(mesh_of(obj))
             } else {
-                contracted = mesh_of(obj).map_vertices(|p| boost.contract(p));
+                let contracted = mesh_of(obj).map_vertices(|p| boost.contract(p));
                 contracted
                     .validate()
                     .map_err(|e| Fault::new(F::Shape, K::ContractedMesh(e)))?;
-                &contracted
+                Cow::Owned(contracted)
             };
-            let (first, slot) = (self.prism_count(), self.comoving.len());
-            if !self.checking {
-                self.comoving
-                    .extend((0..mesh.triangles.len()).map(|t| mesh.corners(t)));
-            }
-            let reach = geometry::reach(&self.comoving[slot..]);
+            let (first, slot) = (self.prism_count(), self.translated);
+            let count = mesh.triangles.len();
+            self.translated += count;
+            let reach = match self.checking {
+                true => 0.0,
+                false => geometry::reach((0..count).map(|t| mesh.corners(t))),
+            };
+            self.meshes.push((!self.checking).then_some(mesh));
             self.runs.push(Run {
                 object: i as u32,
                 stretch: StretchPrisms {
                     origin: worldline.start,
                     velocity: worldline.velocity(),
                     span: (worldline.start.t, worldline.end().t),
-                    prisms: first..first + mesh.triangles.len(),
+                    prisms: first..first + count,
                     translation: true,
                 },
                 extrusion: worldline.extrusion,
@@ -243,7 +261,7 @@ impl Builder {
     fn insert(
         &mut self,
         i: usize,
-        obj: &SceneObject,
+        obj: &'a SceneObject,
         lorentz: bool,
         shared: Option<Shared>,
     ) -> Result<Vec<Stretch>, Fault> {
@@ -282,14 +300,14 @@ impl Builder {
 }
 
 /// Every object inserted, before the acceleration structure is built.
-struct Inserted {
-    builder: Builder,
+struct Inserted<'a> {
+    builder: Builder<'a>,
     records: Vec<ObjectRecord>,
 }
 
 /// Extrudes every object and prepares every keyframe tetrahedron's solve;
 /// the errors are those of [`Database::build`].
-fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted, SceneError> {
+fn insert_all(scene: &Scene, lorentz: bool) -> Result<Inserted<'_>, SceneError> {
     let mut b = Builder::default();
     let mut records = Vec::new();
     let cuts = shared_cuts(scene, lorentz, mesh_of);
@@ -358,26 +376,22 @@ fn keyframed_box(g: &StretchPrisms, corners: &PrismCorners) -> (DVec3, DVec3) {
 /// threads (handing a small one to the thread pool would cost more).
 const PARALLEL_GATHER: usize = 1 << 14;
 
-/// The triangles of translations stored in the order their stretch's
-/// hierarchy holds them (so that a leaf's triangles lie side by side, read
-/// in one sweep), and where each prism's is: at `slot + stored_at[slot +
-/// k]` for prism k of a run at `slot`. Gathered on both threads into a new
-/// vector (the build's scratch, which sets the peak of memory, is freed by
-/// now).
-fn in_leaf_order(
-    comoving: Vec<[DVec3; 3]>,
-    runs: &[Run],
-    accel: &TwoLevel,
-) -> (Vec<[DVec3; 3]>, Vec<u32>) {
-    let mut stored_at = vec![0u32; comoving.len()];
-    let mut sorted = vec![[DVec3::ZERO; 3]; comoving.len()];
-    for (k, run) in runs.iter().enumerate() {
-        if !run.stretch.translation {
+/// The triangles of translations in their comoving coordinates, stored in
+/// the order their stretch's hierarchy holds them (so that a leaf's
+/// triangles lie side by side, read in one sweep), and where each prism's
+/// is: at `slot + stored_at[slot + k]` for prism k of a run at `slot`.
+/// Gathered from the runs' meshes on both threads (the build's scratch,
+/// which sets the peak of memory, is freed by now).
+fn in_leaf_order(b: &Builder, accel: &TwoLevel) -> (Vec<[DVec3; 3]>, Vec<u32>) {
+    let mut stored_at = vec![0u32; b.translated];
+    let mut sorted = vec![[DVec3::ZERO; 3]; b.translated];
+    for (k, run) in b.runs.iter().enumerate() {
+        let Some(mesh) = &b.meshes[k] else {
             continue;
-        }
+        };
         let order = accel.order(k);
-        let (from, to) = (&comoving[run.slot..], &mut sorted[run.slot..]);
-        let gather = |(t, &i): (&mut [DVec3; 3], &u32)| *t = from[i as usize];
+        let to = &mut sorted[run.slot..];
+        let gather = |(t, &i): (&mut [DVec3; 3], &u32)| *t = mesh.corners(i as usize);
         if order.len() >= PARALLEL_GATHER {
             (to[..order.len()].par_iter_mut().zip(order)).for_each(gather);
         } else {
@@ -401,15 +415,15 @@ impl Database {
         } = insert_all(scene, lorentz)?;
         let accel = TwoLevel::build(b.runs.iter().map(|r| &r.stretch), |k, p| {
             let run = &b.runs[k];
-            let slot = run.slot + p - run.stretch.prisms.start;
-            if run.stretch.translation {
-                let c = &b.comoving[slot];
-                (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]))
-            } else {
-                keyframed_box(&run.stretch, &b.keyframed.corners[slot])
+            match b.comoving(k, p) {
+                Some(c) => (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2])),
+                None => {
+                    let slot = run.slot + p - run.stretch.prisms.start;
+                    keyframed_box(&run.stretch, &b.keyframed.corners[slot])
+                }
             }
         });
-        let (comoving, stored_at) = in_leaf_order(b.comoving, &b.runs, &accel);
+        let (comoving, stored_at) = in_leaf_order(&b, &accel);
         Ok(Database {
             records,
             runs: b.runs,

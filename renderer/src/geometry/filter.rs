@@ -52,9 +52,9 @@ pub(crate) struct CornerRows {
 
 /// The largest magnitude of a coordinate of `triangles`: their part of K
 /// (see the module's doc).
-pub(crate) fn reach(triangles: &[[DVec3; 3]]) -> f64 {
+pub(crate) fn reach(triangles: impl IntoIterator<Item = [DVec3; 3]>) -> f64 {
     triangles
-        .iter()
+        .into_iter()
         .flatten()
         .fold(0.0f64, |m, c| m.max(c.abs().max_element()))
 }
@@ -212,7 +212,7 @@ mod tests {
                         .map(|_| triangle(&mut rng, scale, size))
                         .collect();
                     let rows = CornerRows::new(&tris);
-                    let reach = reach(&tris);
+                    let reach = reach(tris.iter().copied());
                     let aim = (rng.next_u64() % LANES as u64) as usize;
                     let (o, d) = aimed(&mut rng, &tris[aim], size);
                     let v = DVec3::new(rng.next_f64() - 0.5, 0.0, 0.0) * 1.8;
