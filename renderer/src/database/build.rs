@@ -2,7 +2,7 @@
 //! prisms (paper 3, items 1-2), its path cut into straight stretches.
 
 use super::worldlines::{resolve_hyperbolic, shared_cuts, Resolved, Shared};
-use super::{Database, Keyframed, ObjectRecord, Packing, Run, Stretch, Traversal};
+use super::{ComovingMeshes, Database, Keyframed, ObjectRecord, Packing, Run, Stretch, Traversal};
 use crate::accel::{rounding_margin, StretchPrisms, TwoLevel};
 use crate::geometry::{
     self, extrude_between, piece, CornerRows, Pose, PreparedTet, PrismCorners, Sphere,
@@ -53,6 +53,8 @@ struct Builder<'a> {
     meshes: Vec<Option<Cow<'a, Mesh>>>,
     /// How many prisms of translations there are.
     translated: usize,
+    /// How many vertices their meshes have.
+    vertex_count: usize,
     keyframed: Keyframed,
     spheres: Vec<Sphere>,
     /// Only checking that the scene inserts ([`Database::validate`]): a
@@ -189,6 +191,7 @@ impl<'a> Builder<'a> {
                 },
                 extrusion: worldline.extrusion,
                 slot,
+                vertices: 0,
                 reach: 0.0,
             });
             self.meshes.push(None);
@@ -226,9 +229,10 @@ impl<'a> Builder<'a> {
                     .map_err(|e| Fault::new(F::Shape, K::ContractedMesh(e)))?;
                 Cow::Owned(contracted)
             };
-            let (first, slot) = (self.prism_count(), self.translated);
+            let (first, slot, vertices) = (self.prism_count(), self.translated, self.vertex_count);
             let count = mesh.triangles.len();
             self.translated += count;
+            self.vertex_count += mesh.vertices.len();
             let reach = match self.checking {
                 true => 0.0,
                 false => geometry::reach((0..count).map(|t| mesh.corners(t))),
@@ -245,6 +249,7 @@ impl<'a> Builder<'a> {
                 },
                 extrusion: worldline.extrusion,
                 slot,
+                vertices,
                 reach,
             });
         }
@@ -376,22 +381,26 @@ fn keyframed_box(g: &StretchPrisms, corners: &PrismCorners) -> (DVec3, DVec3) {
 /// threads (handing a small one to the thread pool would cost more).
 const PARALLEL_GATHER: usize = 1 << 14;
 
-/// The triangles of translations in their comoving coordinates, stored in
-/// the order their stretch's hierarchy holds them (so that a leaf's
-/// triangles lie side by side, read in one sweep), and where each prism's
-/// is: at `slot + stored_at[slot + k]` for prism k of a run at `slot`.
-/// Gathered from the runs' meshes on both threads (the build's scratch,
-/// which sets the peak of memory, is freed by now).
-fn in_leaf_order(b: &Builder, accel: &TwoLevel) -> (Vec<[DVec3; 3]>, Vec<u32>) {
+/// The triangles of translations in their comoving coordinates, their
+/// corners stored in the order their stretch's hierarchy holds them (so
+/// that a leaf's triangles lie side by side, read in one sweep), and where
+/// each prism's is: at `slot + stored_at[slot + k]` for prism k of a run at
+/// `slot`. Gathered from the runs' meshes on both threads (the build's
+/// scratch, which sets the peak of memory, is freed by now).
+fn in_leaf_order(b: &Builder, accel: &TwoLevel) -> (ComovingMeshes, Vec<u32>) {
     let mut stored_at = vec![0u32; b.translated];
-    let mut sorted = vec![[DVec3::ZERO; 3]; b.translated];
+    let mut sorted = ComovingMeshes {
+        vertices: Vec::with_capacity(b.vertex_count),
+        corners: vec![[0; 3]; b.translated],
+    };
     for (k, run) in b.runs.iter().enumerate() {
         let Some(mesh) = &b.meshes[k] else {
             continue;
         };
+        sorted.vertices.extend_from_slice(&mesh.vertices);
         let order = accel.order(k);
-        let to = &mut sorted[run.slot..];
-        let gather = |(t, &i): (&mut [DVec3; 3], &u32)| *t = mesh.corners(i as usize);
+        let to = &mut sorted.corners[run.slot..];
+        let gather = |(t, &i): (&mut [u32; 3], &u32)| *t = mesh.triangles[i as usize];
         if order.len() >= PARALLEL_GATHER {
             (to[..order.len()].par_iter_mut().zip(order)).for_each(gather);
         } else {
@@ -424,10 +433,14 @@ impl Database {
             }
         });
         let (comoving, stored_at) = in_leaf_order(&b, &accel);
+        let translations = b.runs.iter().filter(|r| r.stretch.translation);
+        let in_order = translations.flat_map(|r| {
+            (r.slot..r.slot + r.stretch.prisms.len()).map(|j| comoving.triangle(r.vertices, j))
+        });
         Ok(Database {
+            rows: CornerRows::new(comoving.len(), in_order),
             records,
             runs: b.runs,
-            rows: CornerRows::new(&comoving),
             comoving,
             stored_at,
             keyframed: b.keyframed,

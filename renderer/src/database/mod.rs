@@ -3,11 +3,14 @@
 //! Built in `build`; searched by rays in `query`.
 
 mod build;
+mod comoving;
 mod object;
 mod query;
 mod worldlines;
 
 pub(crate) use object::{ObjectRecord, Stretch};
+
+use comoving::ComovingMeshes;
 
 use crate::accel::{StretchPrisms, TwoLevel};
 use crate::geometry::{
@@ -55,6 +58,8 @@ struct Run {
     /// Index of the run's first prism in [`Database::comoving`] (a
     /// translation) or [`Database::keyframed`] (a keyframe interval).
     slot: usize,
+    /// Where a translation's vertices start in [`Database::comoving`].
+    vertices: usize,
     /// The largest magnitude of a comoving coordinate of a translation's
     /// triangles (0 for a keyframe interval).
     reach: f64,
@@ -80,7 +85,7 @@ pub struct Database {
     /// in their stretch's comoving coordinates x' = x - v (t - t0) - x0: all
     /// such a prism needs, since its events are the triangle carried along
     /// the stretch's worldline.
-    comoving: Vec<[DVec3; 3]>,
+    comoving: ComovingMeshes,
     /// Where each translation prism's triangle is in [`Database::comoving`]:
     /// prism k of a run at `slot` at `slot + stored_at[slot + k]`, its
     /// position in its stretch's hierarchy (a leaf's side by side).
@@ -213,8 +218,8 @@ impl Database {
     }
 
     /// The comoving triangle of prism `k` of translation `run`.
-    fn triangle(&self, run: &Run, k: usize) -> &[DVec3; 3] {
-        &self.comoving[run.slot + self.stored(run, k) as usize]
+    fn triangle(&self, run: &Run, k: usize) -> [DVec3; 3] {
+        (self.comoving).triangle(run.vertices, run.slot + self.stored(run, k) as usize)
     }
 
     /// Prism `p`, by index in `0..prism_count()`: its object, triangle,
@@ -243,7 +248,7 @@ impl Database {
         if !run.stretch.translation {
             return self.keyframed.corners[run.slot + k];
         }
-        let c = *self.triangle(run, k);
+        let c = self.triangle(run, k);
         let start = run.stretch.origin;
         let bottom = c.map(|x| Event::new(start.t, start.x + x));
         let top = bottom.map(|e| e + run.extrusion);

@@ -210,7 +210,7 @@ fn filtered_leaf(
             let i = chunk + candidates.trailing_zeros() as usize;
             candidates &= candidates - 1;
             let hi = best.map_or(range.1, |b| b.s);
-            let corners = &db.comoving[at + i];
+            let corners = &db.comoving.triangle(run.vertices, at + i);
             let exact = intersect_prism(corners, ray, run.stretch.span, (range.0, hi));
             if let Ok(found) = exact {
                 best = Some(nearer(best, hit(o, d, p0 + items[i], found)));
@@ -310,7 +310,7 @@ impl<'a, T: Trace> Tester<'a, T> {
             return self.keyframe_prism(run, p, range);
         }
         self.prepare(k);
-        let corners = &self.db.comoving[run.slot + j as usize];
+        let corners = &(self.db.comoving).triangle(run.vertices, run.slot + j as usize);
         let result = match &self.comoving {
             None => Err(Miss::Parallel),
             Some(c) => intersect_prism(corners, c, run.stretch.span, range)

@@ -60,15 +60,15 @@ pub(crate) fn reach(triangles: impl IntoIterator<Item = [DVec3; 3]>) -> f64 {
 }
 
 impl CornerRows {
-    /// The rows of `triangles`, in their order; none (and no filtering)
-    /// when the rows would not be indexed by u32.
-    pub(crate) fn new(triangles: &[[DVec3; 3]]) -> CornerRows {
-        let stride = triangles.len() + LANES - 1;
+    /// The rows of the `count` triangles `triangles` gives, in their order;
+    /// none (and no filtering) when the rows would not be indexed by u32.
+    pub(crate) fn new(count: usize, triangles: impl Iterator<Item = [DVec3; 3]>) -> CornerRows {
+        let stride = count + LANES - 1;
         if 9 * stride > u32::MAX as usize {
             return CornerRows::default();
         }
         let mut rows = vec![0.0f32; 9 * stride];
-        for (t, corners) in triangles.iter().enumerate() {
+        for (t, corners) in triangles.take(count).enumerate() {
             for (c, corner) in corners.iter().enumerate() {
                 for (a, &v) in corner.to_array().iter().enumerate() {
                     rows[(3 * c + a) * stride + t] = v as f32;
@@ -211,7 +211,7 @@ mod tests {
                     let tris: Vec<[DVec3; 3]> = (0..LANES)
                         .map(|_| triangle(&mut rng, scale, size))
                         .collect();
-                    let rows = CornerRows::new(&tris);
+                    let rows = CornerRows::new(tris.len(), tris.iter().copied());
                     let reach = reach(tris.iter().copied());
                     let aim = (rng.next_u64() % LANES as u64) as usize;
                     let (o, d) = aimed(&mut rng, &tris[aim], size);
@@ -259,7 +259,7 @@ mod tests {
     /// A ray or stretch too far out for f32 is not filtered.
     #[test]
     fn far_rays_are_not_filtered() {
-        let rows = CornerRows::new(&[[DVec3::X, DVec3::Y, DVec3::Z]]);
+        let rows = CornerRows::new(1, [[DVec3::X, DVec3::Y, DVec3::Z]].into_iter());
         let ray = |o: DVec4| {
             ComovingRay::new(
                 o,
