@@ -14,6 +14,7 @@ mod spacetime {
     mod lightcone;
     mod packets;
     mod sphere;
+    mod storage;
     mod watertight;
 }
 

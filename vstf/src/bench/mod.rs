@@ -187,8 +187,8 @@ fn render_boxes(db: &Database, scene: &Scene, cam: &Camera) -> renderer::Image {
     )
 }
 
-/// Resident and peak memory of this process, bytes (Linux; zero elsewhere).
-/// This process's resident memory and its peak, bytes.
+/// This process's resident memory and its peak, bytes (Linux; zero
+/// elsewhere).
 fn memory() -> (u64, u64) {
     let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
     let field = |name: &str| {
