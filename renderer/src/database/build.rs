@@ -413,6 +413,18 @@ fn in_leaf_order(b: &Builder, accel: &TwoLevel) -> (ComovingMeshes, Vec<u32>) {
     (sorted, stored_at)
 }
 
+/// Every translation's comoving triangle in the order they are stored, run
+/// after run (each run's from its `slot` on).
+fn stored_triangles<'a>(
+    runs: &'a [Run],
+    comoving: &'a ComovingMeshes,
+) -> impl Iterator<Item = [DVec3; 3]> + 'a {
+    let translations = runs.iter().filter(|r| r.stretch.translation);
+    translations.flat_map(move |r| {
+        (r.slot..r.slot + r.stretch.prisms.len()).map(move |j| comoving.triangle(r.vertices, j))
+    })
+}
+
 impl Database {
     /// Temporally extrudes every object of `scene`. With `lorentz` on, V_obj
     /// objects are contracted along their velocity and their lifetimes and
@@ -433,12 +445,8 @@ impl Database {
             }
         });
         let (comoving, stored_at) = in_leaf_order(&b, &accel);
-        let translations = b.runs.iter().filter(|r| r.stretch.translation);
-        let in_order = translations.flat_map(|r| {
-            (r.slot..r.slot + r.stretch.prisms.len()).map(|j| comoving.triangle(r.vertices, j))
-        });
         Ok(Database {
-            rows: CornerRows::new(comoving.len(), in_order),
+            rows: CornerRows::new(comoving.len(), stored_triangles(&b.runs, &comoving)),
             records,
             runs: b.runs,
             comoving,

@@ -219,7 +219,8 @@ impl Database {
 
     /// The comoving triangle of prism `k` of translation `run`.
     fn triangle(&self, run: &Run, k: usize) -> [DVec3; 3] {
-        (self.comoving).triangle(run.vertices, run.slot + self.stored(run, k) as usize)
+        self.comoving
+            .triangle(run.vertices, run.slot + self.stored(run, k) as usize)
     }
 
     /// Prism `p`, by index in `0..prism_count()`: its object, triangle,

@@ -169,8 +169,8 @@ impl Shader<'_> {
     /// side facing the origin in the lab; see `Shader::facing`).
     pub fn facing_normal(&self, ray: &Ray, hit: &Hit) -> DVec3 {
         let surface = self.db.surface(hit);
-        self.facing(ray, &surface, self.db.motion_on(hit, &surface).0)
-            .0
+        let (velocity, _) = self.db.motion_on(hit, &surface);
+        self.facing(ray, &surface, velocity).0
     }
 
     /// The mirror ray leaving `hit`, and nu_surface / nu_lab for the light
