@@ -310,10 +310,8 @@ impl<'a, T: Trace> Tester<'a, T> {
             return self.keyframe_prism(run, p, range);
         }
         self.prepare(k);
-        let corners = &self
-            .db
-            .comoving
-            .triangle(run.vertices, run.slot + j as usize);
+        let stored = run.slot + j as usize;
+        let corners = &self.db.comoving.triangle(run.vertices, stored);
         let result = match &self.comoving {
             None => Err(Miss::Parallel),
             Some(c) => intersect_prism(corners, c, run.stretch.span, range)
