@@ -23,12 +23,41 @@ fn area(min: DVec4, max: DVec4) -> f64 {
     d.x * d.y * d.z + d.w * (d.x * d.y + d.y * d.z + d.z * d.x)
 }
 
-/// An item while the hierarchy is built: its bounds beside its index, so
-/// that every pass over a node's items reads them in order.
+/// An item while the hierarchy is built: its box over the first `A` axes
+/// beside its index, so that every pass over a node's items reads them in
+/// order. The box's other axes are the same for every item of the build
+/// (t, for the prisms of one stretch, which all live over its lab times)
+/// and kept once, in the build's [`Shared`] box.
 #[derive(Clone, Copy, Debug)]
-struct Item {
-    bounds: Bounds4,
+struct Item<const A: usize> {
+    min: [f64; A],
+    max: [f64; A],
     index: u32,
+}
+
+/// The box every item of a build shares on the axes past the first `A`
+/// (the first item's, on those axes).
+type Shared = Bounds4;
+
+impl<const A: usize> Item<A> {
+    fn new(b: Bounds4, index: u32) -> Item<A> {
+        let first = |v: DVec4| std::array::from_fn(|axis| v[axis]);
+        Item {
+            min: first(b.min),
+            max: first(b.max),
+            index,
+        }
+    }
+
+    /// Its 4D box, the axes past the first `A` the `shared` box's: to the
+    /// bit the box it was made from.
+    #[inline(always)]
+    fn bounds(&self, shared: &Shared) -> Bounds4 {
+        let (mut min, mut max) = (shared.min.to_array(), shared.max.to_array());
+        min[..A].copy_from_slice(&self.min);
+        max[..A].copy_from_slice(&self.max);
+        Bounds4::new(DVec4::from_array(min), DVec4::from_array(max))
+    }
 }
 
 /// The box of a set of items and the box of their centroids.
@@ -57,9 +86,9 @@ impl Extent {
         self.cmax = self.cmax.max(c);
     }
 
-    fn of(items: &[Item]) -> Extent {
+    fn of<const A: usize>(items: &[Item<A>], shared: &Shared) -> Extent {
         let mut e = Extent::EMPTY;
-        items.iter().for_each(|i| e.add(&i.bounds));
+        items.iter().for_each(|i| e.add(&i.bounds(shared)));
         e
     }
 }
@@ -84,7 +113,11 @@ fn bin_at(x: f64) -> usize {
 /// axis; moves the left part first and returns its length and both parts'
 /// extents; `None` when no split beats a leaf. Deterministic: the same
 /// items in the same order give the same split and order.
-fn sah_split(items: &mut [Item], ext: &Extent) -> Option<(usize, Extent, Extent)> {
+fn sah_split<const A: usize>(
+    items: &mut [Item<A>],
+    shared: &Shared,
+    ext: &Extent,
+) -> Option<(usize, Extent, Extent)> {
     let (min, max, cmin, extent) = (ext.min, ext.max, ext.cmin, ext.cmax - ext.cmin);
     let scale = DVec4::select(extent.cmpgt(DVec4::ZERO), BINS as f64 / extent, DVec4::ZERO);
     // A centroid's place in the bins of every axis (an array: glam's own
@@ -95,12 +128,13 @@ fn sah_split(items: &mut [Item], ext: &Extent) -> Option<(usize, Extent, Extent)
     let mut bmin = [[DVec4::splat(f64::INFINITY); BINS]; 4];
     let mut bmax = [[DVec4::splat(f64::NEG_INFINITY); BINS]; 4];
     for item in items.iter() {
-        let c = place(item.bounds.centroid());
+        let bounds = item.bounds(shared);
+        let c = place(bounds.centroid());
         for &axis in &axes {
             let b = bin_at(c[axis]);
             count[axis][b] += 1;
-            bmin[axis][b] = bmin[axis][b].min(item.bounds.min);
-            bmax[axis][b] = bmax[axis][b].max(item.bounds.max);
+            bmin[axis][b] = bmin[axis][b].min(bounds.min);
+            bmax[axis][b] = bmax[axis][b].max(bounds.max);
         }
     }
     let parent = area(min, max).max(1e-300);
@@ -143,7 +177,7 @@ fn sah_split(items: &mut [Item], ext: &Extent) -> Option<(usize, Extent, Extent)
     let mut mid = 0;
     let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
     for i in 0..items.len() {
-        let b = items[i].bounds;
+        let b = items[i].bounds(shared);
         if bin_at(place(b.centroid())[axis]) < split {
             left.add(&b);
             items.swap(i, mid);
@@ -166,9 +200,9 @@ pub(super) fn pad(min: DVec4, max: DVec4) -> (DVec4, DVec4) {
 /// with its padded box. Large subtrees build their two halves on both
 /// threads, the second into nodes of its own appended after the first's:
 /// the same nodes in the same order as a build on one thread.
-fn build_into<N: PairNode>(
+fn build_into<N: PairNode, const A: usize>(
     nodes: &mut Vec<N>,
-    items: &mut [Item],
+    (items, shared): (&mut [Item<A>], &Shared),
     ext: Extent,
     (first, depth): (usize, usize),
 ) -> (Child, Bounds4) {
@@ -177,7 +211,7 @@ fn build_into<N: PairNode>(
     let split = if items.len() <= LEAF_SIZE || depth >= MAX_DEPTH {
         None
     } else {
-        sah_split(items, &ext)
+        sah_split(items, shared, &ext)
     };
     let Some((mid, lext, rext)) = split else {
         let leaf = Child {
@@ -191,17 +225,17 @@ fn build_into<N: PairNode>(
     let (at_left, at_right) = ((first, depth + 1), (first + mid, depth + 1));
     let (l, r) = if parallel {
         let (l, (r, own)) = rayon::join(
-            || build_into(nodes, left, lext, at_left),
+            || build_into(nodes, (left, shared), lext, at_left),
             || {
                 let mut own = Vec::new();
-                let r = build_into(&mut own, right, rext, at_right);
+                let r = build_into(&mut own, (right, shared), rext, at_right);
                 (r, own)
             },
         );
         (l, append(nodes, own, r))
     } else {
-        let l = build_into(nodes, left, lext, at_left);
-        (l, build_into(nodes, right, rext, at_right))
+        let l = build_into(nodes, (left, shared), lext, at_left);
+        (l, build_into(nodes, (right, shared), rext, at_right))
     };
     nodes.push(N::pair([l.1, r.1], [l.0, r.0]));
     let inner = Child {
@@ -235,21 +269,38 @@ fn append<N: PairNode>(
 }
 
 /// Builds a hierarchy over items given by their 4D bounds, in order: item i
-/// is the i-th bounds.
-pub(in crate::accel) fn build<N: PairNode>(bounds: impl Iterator<Item = Bounds4>) -> Built<N> {
-    let mut items: Vec<Item> = bounds
+/// is the i-th bounds. Every box must match the first on the axes past the
+/// first `A` (as a stretch's prisms all share its lab times), which the
+/// build keeps once.
+pub(in crate::accel) fn build<N: PairNode, const A: usize>(
+    bounds: impl Iterator<Item = Bounds4>,
+) -> Built<N> {
+    const { assert!(A <= 4) };
+    let mut bounds = bounds.peekable();
+    let shared: Shared = bounds
+        .peek()
+        .copied()
+        .unwrap_or(Bounds4::new(DVec4::ZERO, DVec4::ZERO));
+    let same_past = |a: DVec4, b: DVec4| {
+        let (a, b) = (a.to_array(), b.to_array());
+        (A..4).all(|axis| a[axis].to_bits() == b[axis].to_bits())
+    };
+    let mut items: Vec<Item<A>> = bounds
         .enumerate()
-        .map(|(i, bounds)| Item {
-            bounds,
-            index: i as u32,
+        .map(|(i, b)| {
+            assert!(
+                same_past(b.min, shared.min) && same_past(b.max, shared.max),
+                "item {i}'s box differs from the first's past axis {A}"
+            );
+            Item::new(b, i as u32)
         })
         .collect();
     let mut nodes = Vec::new();
     let root = if items.is_empty() {
         Child { index: 0, count: 0 }
     } else {
-        let ext = Extent::of(&items);
-        build_into(&mut nodes, &mut items, ext, (0, 0)).0
+        let ext = Extent::of(&items, &shared);
+        build_into(&mut nodes, (&mut items, &shared), ext, (0, 0)).0
     };
     Built {
         nodes,
@@ -328,12 +379,15 @@ mod tests {
             .collect()
     }
 
-    fn built_on(threads: usize, boxes: &[Bounds4]) -> Built<Node> {
-        let pool = rayon::ThreadPoolBuilder::new()
+    fn pool(threads: usize) -> rayon::ThreadPool {
+        rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
-            .unwrap();
-        pool.install(|| build(boxes.iter().copied()))
+            .unwrap()
+    }
+
+    fn built_on(threads: usize, boxes: &[Bounds4]) -> Built<Node> {
+        pool(threads).install(|| build::<Node, 4>(boxes.iter().copied()))
     }
 
     /// A build large enough to split on both threads gives the tree a build
@@ -350,6 +404,40 @@ mod tests {
         moved[7].min.x += 50.0;
         moved[7].max.x += 50.0;
         assert_ne!(built_on(2, &moved).nodes, one.nodes);
+    }
+
+    /// Boxes that share one time span (a stretch's prisms) build the same
+    /// tree, node for node and to the bit, when the build keeps their
+    /// space axes alone and the span once; the control, one box's span
+    /// changed, builds another tree over all four axes.
+    #[test]
+    fn keeping_the_shared_span_once_builds_the_same_tree() {
+        let spanned: Vec<Bounds4> = random_boxes(2 * PARALLEL_ITEMS, 11)
+            .into_iter()
+            .map(|b| Bounds4::new(b.min.truncate().extend(-2.5), b.max.truncate().extend(7.0)))
+            .collect();
+        let space = pool(2).install(|| build::<Node, 3>(spanned.iter().copied()));
+        let spacetime = pool(2).install(|| build::<Node, 4>(spanned.iter().copied()));
+        assert!(space.nodes.len() > 1000);
+        assert_eq!(space.nodes, spacetime.nodes);
+        assert_eq!((space.root, space.order), (spacetime.root, spacetime.order));
+        let mut longer = spanned.clone();
+        longer[3].max.w = 70.0;
+        let other = pool(2).install(|| build::<Node, 4>(longer.iter().copied()));
+        assert_ne!(other.nodes, spacetime.nodes);
+    }
+
+    /// A box whose span is not the others' cannot be built over space
+    /// alone: the build refuses it rather than give it the first's span.
+    #[test]
+    #[should_panic(expected = "differs from the first's past axis 3")]
+    fn a_box_of_another_span_is_refused_over_space() {
+        let mut boxes: Vec<Bounds4> = random_boxes(100, 12)
+            .into_iter()
+            .map(|b| Bounds4::new(b.min.truncate().extend(0.0), b.max.truncate().extend(1.0)))
+            .collect();
+        boxes[40].min.w = -1.0;
+        build::<Node, 3>(boxes.into_iter());
     }
 
     /// Every item sits in exactly one leaf, inside every box on its path.
