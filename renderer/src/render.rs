@@ -53,7 +53,7 @@ impl Default for RenderSettings {
 }
 
 /// Linear RGB pixels, row-major from the top left.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Image {
     /// Width, pixels.
     pub width: u32,
@@ -135,6 +135,21 @@ pub fn render_stoppable(
     frame: &Frame,
     stop: &AtomicBool,
 ) -> Option<Image> {
+    render_reusing(db, scene, frame, stop, Image::default())
+}
+
+/// [`render_stoppable`] into the memory of `spent`, an earlier frame's
+/// image (or none, [`Image::default`]): frame after frame, the same pages
+/// are written again rather than fresh ones asked of the system, which
+/// clears each before handing it out. Every pixel is rendered anew, so
+/// nothing of `spent` shows; the image is [`render`]'s to the bit.
+pub fn render_reusing(
+    db: &Database,
+    scene: &Scene,
+    frame: &Frame,
+    stop: &AtomicBool,
+    spent: Image,
+) -> Option<Image> {
     let shader = shader(db, scene, frame);
     let camera = &Camera {
         kinematics: Kinematics::of(frame.model),
@@ -142,7 +157,12 @@ pub fn render_stoppable(
     };
     let frame = Frame { camera, ..*frame };
     let (w, h) = (camera.width, camera.height);
-    let mut pixels = vec![DVec3::ZERO; w as usize * h as usize];
+    let n = w as usize * h as usize;
+    let mut pixels = spent.pixels;
+    if pixels.len() < n {
+        pixels = vec![DVec3::ZERO; n];
+    }
+    pixels.truncate(n);
     // Two rows at a time, in blocks of 2 x 2 pixels (one packet).
     const _: () = assert!(PACKET == 4, "a packet is a block of 2 x 2 pixels");
     pixels

@@ -6,13 +6,6 @@ use clap::Parser;
 use cli::args::{Cli, Command};
 use std::process::ExitCode;
 
-/// mimalloc, not the system's allocator: under `vstf serve`, glibc's kept
-/// the memory of evicted databases (up to 758 MiB at a 512 MiB cache
-/// budget) where mimalloc gives it back (at most 546 MiB); the figures and
-/// the alternatives measured are in docs/security.md, 'Limits'.
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 fn main() -> ExitCode {
     cli::quiet_on_closed_pipe();
     let Cli { root, command } = Cli::parse();

@@ -69,6 +69,42 @@ fn a_moving_scene_differs_between_models() {
     assert_ne!(render(Model::INFINITE), render(Model::CLASSICAL));
 }
 
+/// A frame rendered into an earlier frame's image (larger, every pixel
+/// NaN) is the frame rendered alone, to the bit, in the same memory: flat,
+/// in packets, and bent, pixel by pixel. The control: a spent image too
+/// small for the frame is not reused, and the frame is the same again.
+#[test]
+fn a_frame_rendered_into_a_spent_image_is_the_frame_rendered_alone() {
+    for name in ["flange", "black-hole"] {
+        let f = workspace_tests::fixture(name);
+        let view = vstf::run::view(&f, &small(None)).unwrap();
+        let db = vstf::run::database(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+        let alone = vstf::run::render_with(&db, &f, &view).unwrap();
+        let spent = |w: u32, h: u32| Image {
+            width: w,
+            height: h,
+            pixels: vec![DVec3::NAN; (w * h) as usize],
+        };
+        let (large, small) = (spent(100, 80), spent(10, 10));
+        let (at_large, at_small) = (large.pixels.as_ptr(), small.pixels.as_ptr());
+        let reused = vstf::run::render_reusing(&db, &f, &view, large).unwrap();
+        assert_eq!(bits(&reused), bits(&alone), "{name}");
+        assert_eq!((reused.width, reused.height), (alone.width, alone.height));
+        assert_eq!(
+            reused.pixels.as_ptr(),
+            at_large,
+            "{name}: not rendered in place"
+        );
+        let fresh = vstf::run::render_reusing(&db, &f, &view, small).unwrap();
+        assert_eq!(bits(&fresh), bits(&alone), "{name}");
+        assert_ne!(
+            fresh.pixels.as_ptr(),
+            at_small,
+            "{name}: a too small image reused"
+        );
+    }
+}
+
 #[test]
 fn images_do_not_depend_on_thread_count() {
     // Flat, bent by a mass (chord by chord, pixel by pixel), and bent

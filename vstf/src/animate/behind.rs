@@ -4,14 +4,14 @@
 //! an animation holds at most three frames in memory (one tracing, one
 //! waiting, one being written) however long it is. A frame is made 8-bit
 //! and labelled where it was traced: its linear image, eight times the
-//! size, is freed by the thread that made it, which then reuses the
-//! memory for the next frame.
+//! size, stays with the thread that made it, which renders the next frame
+//! into the same memory.
 
 use super::{frame_path, time_label};
 use crate::fixture::{Fixture, View};
 use crate::output::write_png;
 use image::RgbImage;
-use renderer::Database;
+use renderer::{Database, Image};
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
@@ -64,6 +64,7 @@ impl Frames<'_> {
                     done(k);
                 }
             };
+            let mut spent = Image::default();
             for &i in owned {
                 if stop.load(Ordering::SeqCst) {
                     break;
@@ -71,7 +72,7 @@ impl Frames<'_> {
                 let image = if (self.kept)(i) {
                     None
                 } else {
-                    Some(self.render(times[i])?)
+                    Some(self.render(times[i], &mut spent)?)
                 };
                 let frame = Handed { index: i, image };
                 if to_writer.send(frame).is_err() {
@@ -89,14 +90,16 @@ impl Frames<'_> {
     }
 
     /// The frame at camera time `t` in 8 bits, labelled with its time
-    /// when asked.
-    fn render(&self, t: f64) -> Result<RgbImage, String> {
+    /// when asked; its linear image is rendered into `spent`, the last
+    /// frame's, and left there for the next.
+    fn render(&self, t: f64, spent: &mut Image) -> Result<RgbImage, String> {
         let (f, view, db) = self.scene;
         let frame = View {
             camera_t: t,
             ..*view
         };
-        let mut img = crate::output::rgb8(&crate::run::render_with(db, f, &frame)?);
+        *spent = crate::run::render_reusing(db, f, &frame, std::mem::take(spent))?;
+        let mut img = crate::output::rgb8(spent);
         if self.label {
             let scale = crate::label::label_scale(img.width());
             crate::label::draw_label(&mut img, &format!("t = {}", time_label(t)), scale);
@@ -160,15 +163,16 @@ mod tests {
             "a kept frame is not rewritten"
         );
         for i in [0, 1, 3] {
-            let alone = frames.render(times[i]).unwrap();
+            let alone = frames.render(times[i], &mut Image::default()).unwrap();
             let written = image::open(frame_path(&dir, i)).unwrap().to_rgb8();
             assert_eq!(written, alone, "frame {i}");
         }
         // Negative control: neighbouring frames differ, so the comparison
         // would see a frame written in another's place.
+        let mut spent = Image::default();
         assert_ne!(
-            frames.render(times[0]).unwrap(),
-            frames.render(times[3]).unwrap()
+            frames.render(times[0], &mut spent).unwrap(),
+            frames.render(times[3], &mut spent).unwrap()
         );
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -14,7 +14,7 @@
 
 use super::tori;
 use crate::fixture::{Fixture, Overrides};
-use renderer::Traversal;
+use renderer::{Image, Traversal};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -84,9 +84,11 @@ pub fn measure(path: &Path, frames: usize) -> Result<Measured, String> {
         trace_cpu: f64::INFINITY,
         ..Measured::default()
     };
+    let mut spent = Image::default();
     for k in 0..frames.max(1) {
         let c = cpu_seconds();
-        let img = crate::output::rgb8(&crate::run::render_with(&db, &f, &view)?);
+        spent = crate::run::render_reusing(&db, &f, &view, spent)?;
+        let img = crate::output::rgb8(&spent);
         m.frame_cpu = m.frame_cpu.min(cpu_seconds() - c);
         crate::output::encode_png(&img).map_err(|e| format!("cannot encode PNG: {e}"))?;
         m.delivered_cpu = m.delivered_cpu.min(cpu_seconds() - c);

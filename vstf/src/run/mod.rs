@@ -56,6 +56,17 @@ pub fn render_with(db: &Database, fixture: &Fixture, view: &View) -> Result<Imag
     render_until(db, fixture, view, &AtomicBool::new(false))
 }
 
+/// [`render_with`] into the memory of `spent`, an earlier frame's image
+/// ([`renderer::render_reusing`]): how a run of frames renders.
+pub fn render_reusing(
+    db: &Database,
+    fixture: &Fixture,
+    view: &View,
+    spent: Image,
+) -> Result<Image, Error> {
+    render_into(db, fixture, view, &AtomicBool::new(false), spent)
+}
+
 /// [`render_with`], stopped with [`Error::Interrupted`] once `stop` is set
 /// (a front end's Ctrl-C), within a row's time.
 pub fn render_until(
@@ -63,6 +74,17 @@ pub fn render_until(
     fixture: &Fixture,
     view: &View,
     stop: &AtomicBool,
+) -> Result<Image, Error> {
+    render_into(db, fixture, view, stop, Image::default())
+}
+
+/// [`render_until`] into the memory of `spent`.
+fn render_into(
+    db: &Database,
+    fixture: &Fixture,
+    view: &View,
+    stop: &AtomicBool,
+    spent: Image,
 ) -> Result<Image, Error> {
     let view = &fixture
         .spec
@@ -74,11 +96,12 @@ pub fn render_until(
         model: view.model,
         settings: &view.settings,
     };
-    let image = renderer::render_stoppable(db, &fixture.scene, &frame, stop).ok_or_else(|| {
-        Error::Interrupted {
-            message: format!("{}: the render was interrupted", fixture.file.display()),
-        }
-    })?;
+    let image =
+        renderer::render_reusing(db, &fixture.scene, &frame, stop, spent).ok_or_else(|| {
+            Error::Interrupted {
+                message: format!("{}: the render was interrupted", fixture.file.display()),
+            }
+        })?;
     match image.pixels.iter().position(|p| !p.is_finite()) {
         None => Ok(image),
         Some(i) => Err(Error::NonFinite {

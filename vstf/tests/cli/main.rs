@@ -28,6 +28,9 @@ mod render;
 /// A new user's scenes, their views at solved camera times, checked
 /// outside any project.
 mod scenes;
+/// `vstf serve` as a process: the allocator setting it runs with.
+#[cfg(target_os = "linux")]
+mod serve;
 /// Sharded `animate` and `check` runs and `vstf merge`.
 mod shards;
 /// How a run ends when interrupted or when its reader goes away.
