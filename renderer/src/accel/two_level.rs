@@ -168,7 +168,7 @@ impl TwoLevel {
     /// prism: `comoving_box(k, p)`.
     pub(crate) fn build<'a>(
         stretches: impl Iterator<Item = &'a StretchPrisms>,
-        comoving_box: impl Fn(usize, usize) -> (DVec3, DVec3),
+        comoving_box: impl Fn(usize, usize) -> (DVec3, DVec3) + Sync,
     ) -> TwoLevel {
         let mut built = Vec::new();
         let mut all_slices = Vec::new();
@@ -181,10 +181,10 @@ impl TwoLevel {
                 lo = lo.min(a);
                 hi = hi.max(b);
             }
-            let tree = SpaceBvh::build(g.prisms.clone().map(|p| {
-                let (a, b) = comoving_box(k, p);
+            let tree = SpaceBvh::build(g.prisms.len(), |i| {
+                let (a, b) = comoving_box(k, g.prisms.start + i);
                 Bounds4::new(a.extend(t0), b.extend(t1))
-            }));
+            });
             let cut = slices(g, lo, hi);
             let alone = cut.len() == 1;
             for bounds in cut {
@@ -203,7 +203,7 @@ impl TwoLevel {
             });
         }
         TwoLevel {
-            top: SliceBvh::build(slice_bounds.into_iter()),
+            top: SliceBvh::build(slice_bounds.len(), |i| slice_bounds[i]),
             stretches: built,
             slices: all_slices,
         }

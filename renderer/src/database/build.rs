@@ -413,16 +413,21 @@ fn in_leaf_order(b: &Builder, accel: &TwoLevel) -> (ComovingMeshes, Vec<u32>) {
     (sorted, stored_at)
 }
 
-/// Every translation's comoving triangle in the order they are stored, run
-/// after run (each run's from its `slot` on).
-fn stored_triangles<'a>(
-    runs: &'a [Run],
+/// The comoving triangle stored at each place `j`: translations' runs hold
+/// the places from their `slot` on, in order, each with its vertices from
+/// its `vertices` on.
+fn stored_triangle<'a>(
+    runs: &[Run],
     comoving: &'a ComovingMeshes,
-) -> impl Iterator<Item = [DVec3; 3]> + 'a {
-    let translations = runs.iter().filter(|r| r.stretch.translation);
-    translations.flat_map(move |r| {
-        (r.slot..r.slot + r.stretch.prisms.len()).map(move |j| comoving.triangle(r.vertices, j))
-    })
+) -> impl Fn(usize) -> [DVec3; 3] + Sync + 'a {
+    let starts: Vec<(usize, usize)> = (runs.iter())
+        .filter(|r| r.stretch.translation)
+        .map(|r| (r.slot, r.vertices))
+        .collect();
+    move |j| {
+        let run = starts.partition_point(|&(slot, _)| slot <= j) - 1;
+        comoving.triangle(starts[run].1, j)
+    }
 }
 
 impl Database {
@@ -446,7 +451,7 @@ impl Database {
         });
         let (comoving, stored_at) = in_leaf_order(&b, &accel);
         Ok(Database {
-            rows: CornerRows::new(comoving.len(), stored_triangles(&b.runs, &comoving)),
+            rows: CornerRows::new(comoving.len(), stored_triangle(&b.runs, &comoving)),
             records,
             runs: b.runs,
             comoving,

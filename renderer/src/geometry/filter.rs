@@ -24,6 +24,7 @@
 
 use super::triangle::ComovingRay;
 use glam::DVec3;
+use rayon::prelude::*;
 use wide::{f32x4, CmpGt, CmpLt};
 
 /// Triangles a test covers.
@@ -59,22 +60,36 @@ pub(crate) fn reach(triangles: impl IntoIterator<Item = [DVec3; 3]>) -> f64 {
         .fold(0.0f64, |m, c| m.max(c.abs().max_element()))
 }
 
+/// Triangles a task of [`CornerRows::new`] writes into the rows.
+const FILL_CHUNK: usize = 1 << 14;
+
 impl CornerRows {
-    /// The rows of the `count` triangles `triangles` gives, in their order;
-    /// none (and no filtering) when the rows would not be indexed by u32.
-    pub(crate) fn new(count: usize, triangles: impl Iterator<Item = [DVec3; 3]>) -> CornerRows {
+    /// The rows of triangles 0 to `count` - 1, triangle t being
+    /// `triangle(t)`; none (and no filtering) when the rows would not be
+    /// indexed by u32. Filled on every thread, each task a run of
+    /// triangles in all nine rows.
+    pub(crate) fn new(count: usize, triangle: impl Fn(usize) -> [DVec3; 3] + Sync) -> CornerRows {
         let stride = count + LANES - 1;
         if 9 * stride > u32::MAX as usize {
             return CornerRows::default();
         }
         let mut rows = vec![0.0f32; 9 * stride];
-        for (t, corners) in triangles.take(count).enumerate() {
-            for (c, corner) in corners.iter().enumerate() {
-                for (a, &v) in corner.to_array().iter().enumerate() {
-                    rows[(3 * c + a) * stride + t] = v as f32;
+        let mut runs: Vec<_> = (rows.chunks_mut(stride))
+            .map(|row| row[..count].chunks_mut(FILL_CHUNK))
+            .collect();
+        let tasks: Vec<Vec<&mut [f32]>> = (0..count.div_ceil(FILL_CHUNK))
+            .map(|_| runs.iter_mut().filter_map(Iterator::next).collect())
+            .collect();
+        tasks.into_par_iter().enumerate().for_each(|(k, mut task)| {
+            for t in 0..task[0].len() {
+                let corners = triangle(k * FILL_CHUNK + t);
+                for (c, corner) in corners.iter().enumerate() {
+                    for (a, &v) in corner.to_array().iter().enumerate() {
+                        task[3 * c + a][t] = v as f32;
+                    }
                 }
             }
-        }
+        });
         CornerRows { stride, rows }
     }
 
@@ -211,7 +226,7 @@ mod tests {
                     let tris: Vec<[DVec3; 3]> = (0..LANES)
                         .map(|_| triangle(&mut rng, scale, size))
                         .collect();
-                    let rows = CornerRows::new(tris.len(), tris.iter().copied());
+                    let rows = CornerRows::new(tris.len(), |t| tris[t]);
                     let reach = reach(tris.iter().copied());
                     let aim = (rng.next_u64() % LANES as u64) as usize;
                     let (o, d) = aimed(&mut rng, &tris[aim], size);
@@ -256,10 +271,39 @@ mod tests {
         assert!(wrong > 0);
     }
 
+    /// Rows filled on two threads hold, at row 3 c + a and column t,
+    /// coordinate a of corner c of triangle t rounded to f32, as rows
+    /// filled on one thread do; the control, one triangle moved, changes
+    /// them.
+    #[test]
+    fn rows_hold_each_corner_whatever_the_threads() {
+        let mut rng = SplitMix64::new(3);
+        let tris: Vec<[DVec3; 3]> = (0..3 * FILL_CHUNK + 5)
+            .map(|_| triangle(&mut rng, 1.0, 0.1))
+            .collect();
+        let on = |threads: usize, tris: &[[DVec3; 3]]| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+            pool.unwrap()
+                .install(|| CornerRows::new(tris.len(), |t| tris[t]))
+        };
+        let (one, two) = (on(1, &tris), on(2, &tris));
+        assert_eq!(one.rows, two.rows);
+        for (t, corners) in tris.iter().enumerate() {
+            for (c, corner) in corners.iter().enumerate() {
+                for a in 0..3 {
+                    assert_eq!(two.rows[(3 * c + a) * two.stride + t], corner[a] as f32);
+                }
+            }
+        }
+        let mut moved = tris.clone();
+        moved[2 * FILL_CHUNK + 1][2].y += 1.0;
+        assert_ne!(on(2, &moved).rows, two.rows);
+    }
+
     /// A ray or stretch too far out for f32 is not filtered.
     #[test]
     fn far_rays_are_not_filtered() {
-        let rows = CornerRows::new(1, [[DVec3::X, DVec3::Y, DVec3::Z]].into_iter());
+        let rows = CornerRows::new(1, |_| [DVec3::X, DVec3::Y, DVec3::Z]);
         let ray = |o: DVec4| {
             ComovingRay::new(
                 o,

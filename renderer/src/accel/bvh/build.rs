@@ -9,6 +9,7 @@
 
 use super::{rounding_margin, Bounds4, Built, Child, PairNode};
 use glam::DVec4;
+use rayon::prelude::*;
 
 const LEAF_SIZE: usize = 4;
 /// Deeper subtrees become leaves (a bound on the recursion of the build).
@@ -268,33 +269,36 @@ fn append<N: PairNode>(
     (child, bounds)
 }
 
-/// Builds a hierarchy over items given by their 4D bounds, in order: item i
-/// is the i-th bounds. Every box must match the first on the axes past the
+/// Builds a hierarchy over `count` items given by their 4D bounds: item i's
+/// is `bounds(i)`. Every box must match the first on the axes past the
 /// first `A` (as a stretch's prisms all share its lab times), which the
 /// build keeps once.
 pub(in crate::accel) fn build<N: PairNode, const A: usize>(
-    bounds: impl Iterator<Item = Bounds4>,
+    count: usize,
+    bounds: impl Fn(usize) -> Bounds4 + Sync,
 ) -> Built<N> {
     const { assert!(A <= 4) };
-    let mut bounds = bounds.peekable();
-    let shared: Shared = bounds
-        .peek()
-        .copied()
-        .unwrap_or(Bounds4::new(DVec4::ZERO, DVec4::ZERO));
+    let shared: Shared = match count {
+        0 => Bounds4::new(DVec4::ZERO, DVec4::ZERO),
+        _ => bounds(0),
+    };
     let same_past = |a: DVec4, b: DVec4| {
         let (a, b) = (a.to_array(), b.to_array());
         (A..4).all(|axis| a[axis].to_bits() == b[axis].to_bits())
     };
-    let mut items: Vec<Item<A>> = bounds
-        .enumerate()
-        .map(|(i, b)| {
-            assert!(
-                same_past(b.min, shared.min) && same_past(b.max, shared.max),
-                "item {i}'s box differs from the first's past axis {A}"
-            );
-            Item::new(b, i as u32)
-        })
-        .collect();
+    let item = |i: usize| {
+        let b = bounds(i);
+        assert!(
+            same_past(b.min, shared.min) && same_past(b.max, shared.max),
+            "item {i}'s box differs from the first's past axis {A}"
+        );
+        Item::new(b, i as u32)
+    };
+    let mut items: Vec<Item<A>> = if count >= PARALLEL_ITEMS {
+        (0..count).into_par_iter().map(item).collect()
+    } else {
+        (0..count).map(item).collect()
+    };
     let mut nodes = Vec::new();
     let root = if items.is_empty() {
         Child { index: 0, count: 0 }
@@ -387,7 +391,7 @@ mod tests {
     }
 
     fn built_on(threads: usize, boxes: &[Bounds4]) -> Built<Node> {
-        pool(threads).install(|| build::<Node, 4>(boxes.iter().copied()))
+        pool(threads).install(|| build::<Node, 4>(boxes.len(), |i| boxes[i]))
     }
 
     /// A build large enough to split on both threads gives the tree a build
@@ -416,14 +420,14 @@ mod tests {
             .into_iter()
             .map(|b| Bounds4::new(b.min.truncate().extend(-2.5), b.max.truncate().extend(7.0)))
             .collect();
-        let space = pool(2).install(|| build::<Node, 3>(spanned.iter().copied()));
-        let spacetime = pool(2).install(|| build::<Node, 4>(spanned.iter().copied()));
+        let space = pool(2).install(|| build::<Node, 3>(spanned.len(), |i| spanned[i]));
+        let spacetime = pool(2).install(|| build::<Node, 4>(spanned.len(), |i| spanned[i]));
         assert!(space.nodes.len() > 1000);
         assert_eq!(space.nodes, spacetime.nodes);
         assert_eq!((space.root, space.order), (spacetime.root, spacetime.order));
         let mut longer = spanned.clone();
         longer[3].max.w = 70.0;
-        let other = pool(2).install(|| build::<Node, 4>(longer.iter().copied()));
+        let other = pool(2).install(|| build::<Node, 4>(longer.len(), |i| longer[i]));
         assert_ne!(other.nodes, spacetime.nodes);
     }
 
@@ -437,7 +441,7 @@ mod tests {
             .map(|b| Bounds4::new(b.min.truncate().extend(0.0), b.max.truncate().extend(1.0)))
             .collect();
         boxes[40].min.w = -1.0;
-        build::<Node, 3>(boxes.into_iter());
+        build::<Node, 3>(boxes.len(), |i| boxes[i]);
     }
 
     /// Every item sits in exactly one leaf, inside every box on its path.

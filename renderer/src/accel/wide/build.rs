@@ -41,12 +41,12 @@ impl<const A: usize> PairNode for Node<A> {
 }
 
 impl<const A: usize> WideBvh<A> {
-    /// Builds the hierarchy over items given by their 4D bounds (of which
-    /// its nodes keep the first `A` axes), in order: item i is the i-th
-    /// bounds. With `A` = 3 every box shares the first's lab times (a
+    /// Builds the hierarchy over `count` items given by their 4D bounds
+    /// (of which its nodes keep the first `A` axes): item i's is
+    /// `bounds(i)`. With `A` = 3 every box shares the first's lab times (a
     /// stretch's prisms), which the build holds once.
-    pub(crate) fn build(bounds: impl Iterator<Item = Bounds4>) -> WideBvh<A> {
-        let built = build::<Node<A>, A>(bounds);
+    pub(crate) fn build(count: usize, bounds: impl Fn(usize) -> Bounds4 + Sync) -> WideBvh<A> {
+        let built = build::<Node<A>, A>(count, bounds);
         let mut nodes = Vec::with_capacity(built.nodes.len() / 2 + 1);
         let root = if built.root.count == 0 && !built.nodes.is_empty() {
             Child {
