@@ -175,17 +175,11 @@ impl TwoLevel {
         let mut slice_bounds = Vec::new();
         for (k, g) in stretches.enumerate() {
             let (t0, t1) = g.span;
-            let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-            for p in g.prisms.clone() {
-                let (a, b) = comoving_box(k, p);
-                lo = lo.min(a);
-                hi = hi.max(b);
-            }
-            let tree = SpaceBvh::build(g.prisms.len(), |i| {
+            let (tree, extent) = SpaceBvh::build(g.prisms.len(), |i| {
                 let (a, b) = comoving_box(k, g.prisms.start + i);
                 Bounds4::new(a.extend(t0), b.extend(t1))
             });
-            let cut = slices(g, lo, hi);
+            let cut = slices(g, extent.min.truncate(), extent.max.truncate());
             let alone = cut.len() == 1;
             for bounds in cut {
                 slice_bounds.push(bounds);
@@ -203,7 +197,7 @@ impl TwoLevel {
             });
         }
         TwoLevel {
-            top: SliceBvh::build(slice_bounds.len(), |i| slice_bounds[i]),
+            top: SliceBvh::build(slice_bounds.len(), |i| slice_bounds[i]).0,
             stretches: built,
             slices: all_slices,
         }

@@ -300,16 +300,17 @@ pub(in crate::accel) fn build<N: PairNode, const A: usize>(
         (0..count).map(item).collect()
     };
     let mut nodes = Vec::new();
+    let ext = Extent::of(&items, &shared);
     let root = if items.is_empty() {
         Child { index: 0, count: 0 }
     } else {
-        let ext = Extent::of(&items, &shared);
         build_into(&mut nodes, (&mut items, &shared), ext, (0, 0)).0
     };
     Built {
         nodes,
         root,
         order: items.iter().map(|i| i.index).collect(),
+        extent: Bounds4::new(ext.min, ext.max),
     }
 }
 

@@ -107,12 +107,14 @@ pub(super) trait PairNode: Send {
     fn children_mut(&mut self) -> &mut [Child; 2];
 }
 
-/// A hierarchy as built: inner nodes children first, the root apart, and
-/// the item order its leaves index.
+/// A hierarchy as built: inner nodes children first, the root apart, the
+/// item order its leaves index, and the box of all its items, unpadded
+/// (lower above upper when there are none).
 pub(super) struct Built<N> {
     pub(super) nodes: Vec<N>,
     pub(super) root: Child,
     pub(super) order: Vec<u32>,
+    pub(super) extent: Bounds4,
 }
 
 /// A traversal's stack of (child, entry parameter): a small array, zeroed

@@ -44,54 +44,79 @@ impl<const A: usize> WideBvh<A> {
     /// Builds the hierarchy over `count` items given by their 4D bounds
     /// (of which its nodes keep the first `A` axes): item i's is
     /// `bounds(i)`. With `A` = 3 every box shares the first's lab times (a
-    /// stretch's prisms), which the build holds once.
-    pub(crate) fn build(count: usize, bounds: impl Fn(usize) -> Bounds4 + Sync) -> WideBvh<A> {
+    /// stretch's prisms), which the build holds once. Also gives the box
+    /// of all the items (lower above upper when there are none).
+    pub(crate) fn build(
+        count: usize,
+        bounds: impl Fn(usize) -> Bounds4 + Sync,
+    ) -> (WideBvh<A>, Bounds4) {
         let built = build::<Node<A>, A>(count, bounds);
-        let mut nodes = Vec::with_capacity(built.nodes.len() / 2 + 1);
-        let root = if built.root.count == 0 && !built.nodes.is_empty() {
-            Child {
+        let (nodes, root) = if built.root.count == 0 && !built.nodes.is_empty() {
+            let mut nodes = Vec::with_capacity(built.nodes.len() / 2 + 1);
+            let root = Child {
                 index: collapse(&built.nodes, built.root.index, &mut nodes),
                 count: 0,
-            }
+            };
+            (nodes, root)
         } else {
-            built.root
+            (Vec::new(), built.root)
         };
-        WideBvh {
+        let bvh = WideBvh {
             nodes,
             root,
             order: built.order,
-        }
+        };
+        (bvh, built.extent)
     }
 }
 
-/// Collapses the binary subtree under inner node `n` into nodes of eight
-/// children appended to `out` (a node before its children); returns its
-/// index. A node takes the binary node's two children and opens the
-/// largest inner ones among them (by [`area`]) until it has eight, so the
-/// same leaves hold the same items.
-fn collapse<const A: usize>(binary: &[Node<A>], n: u32, out: &mut Vec<WideNode<A>>) -> u32 {
-    let mut slots: Vec<(Child, Faces<A>)> = binary[n as usize].halves().into();
-    while slots.len() < WIDTH {
-        let open = (0..slots.len())
+/// A wide node's children with their boxes, in slot order, and how many.
+type Slots<const A: usize> = ([(Child, Faces<A>); WIDTH], usize);
+
+/// The children of the wide node over binary inner node `n`: the binary
+/// node's two, the largest inner ones among them (by [`area`]) opened in
+/// place until there are eight, so the same leaves hold the same items.
+fn opened<const A: usize>(binary: &[Node<A>], n: u32) -> Slots<A> {
+    let mut slots = [(NO_CHILD, [[0.0; A]; 2]); WIDTH];
+    [slots[0], slots[1]] = binary[n as usize].halves();
+    let mut len = 2;
+    while len < WIDTH {
+        let open = (0..len)
             .filter(|&i| slots[i].0.count == 0)
             .max_by(|&a, &b| area(&slots[a].1).total_cmp(&area(&slots[b].1)));
         let Some(i) = open else { break };
-        let (child, _) = slots.remove(i);
-        let halves = binary[child.index as usize].halves();
-        slots.splice(i..i, halves);
+        let halves = binary[slots[i].0.index as usize].halves();
+        slots.copy_within(i + 1..len, i + 2);
+        [slots[i], slots[i + 1]] = halves;
+        len += 1;
     }
-    let at = out.len();
-    out.push(WideNode {
-        faces: [[f32x8::ZERO; A]; 2],
-        children: [NO_CHILD; WIDTH],
-    });
+    (slots, len)
+}
+
+/// The wide node of `slots`, its children `children`.
+fn wide_node<const A: usize>((slots, len): &Slots<A>, children: [Child; WIDTH]) -> WideNode<A> {
     let mut faces = [[[f32::INFINITY; WIDTH]; A], [[f32::NEG_INFINITY; WIDTH]; A]];
-    for (slot, (child, bounds)) in slots.into_iter().enumerate() {
+    for (slot, (_, bounds)) in slots[..*len].iter().enumerate() {
         for side in 0..2 {
             for axis in 0..A {
                 faces[side][axis][slot] = bounds[side][axis];
             }
         }
+    }
+    WideNode {
+        faces: faces.map(|side| side.map(f32x8::from)),
+        children,
+    }
+}
+
+/// Collapses the binary subtree under inner node `n` into nodes of eight
+/// children appended to `out` (a node before its children); returns its
+/// index.
+fn collapse<const A: usize>(binary: &[Node<A>], n: u32, out: &mut Vec<WideNode<A>>) -> u32 {
+    let slots = opened(binary, n);
+    let at = out.len();
+    out.push(wide_node(&slots, [NO_CHILD; WIDTH]));
+    for (slot, &(child, _)) in slots.0[..slots.1].iter().enumerate() {
         out[at].children[slot] = if child.count > 0 {
             child
         } else {
@@ -101,7 +126,6 @@ fn collapse<const A: usize>(binary: &[Node<A>], n: u32, out: &mut Vec<WideNode<A
             }
         };
     }
-    out[at].faces = faces.map(|side| side.map(f32x8::from));
     at as u32
 }
 

@@ -144,7 +144,7 @@ mod tests {
         scale: f64,
     ) -> (Vec<Box64<A>>, WideBvh<A>) {
         let items: Vec<Box64<A>> = (0..2000).map(|_| random_box(rng, scale)).collect();
-        let bvh = WideBvh::build(items.len(), |i| {
+        let (bvh, _) = WideBvh::build(items.len(), |i| {
             let (mut min, mut max) = (DVec4::ZERO, DVec4::ONE);
             for a in 0..A {
                 (min[a], max[a]) = (items[i][0][a], items[i][1][a]);
