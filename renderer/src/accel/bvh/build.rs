@@ -124,43 +124,63 @@ fn sah_split<const A: usize>(
     // A centroid's place in the bins of every axis (an array: glam's own
     // index is a branch on the axis).
     let place = |c: DVec4| ((c - cmin) * scale).to_array();
-    let axes: Vec<usize> = (0..4).filter(|&a| extent[a] > 0.0).collect();
-    let mut count = [[0usize; BINS]; 4];
-    let mut bmin = [[DVec4::splat(f64::INFINITY); BINS]; 4];
-    let mut bmax = [[DVec4::splat(f64::NEG_INFINITY); BINS]; 4];
+    // The axes the centroids spread along (of the first `A`: the others
+    // are the same for every item), binned side by side (the k-th such
+    // axis's bins at k).
+    let (mut axes, mut spread) = ([0usize; A], 0);
+    for a in (0..A).filter(|&a| extent[a] > 0.0) {
+        (axes[spread], spread) = (a, spread + 1);
+    }
+    let axes = &axes[..spread];
+    let mut count = [[0usize; BINS]; A];
+    let mut bmin = [[DVec4::splat(f64::INFINITY); BINS]; A];
+    let mut bmax = [[DVec4::splat(f64::NEG_INFINITY); BINS]; A];
+    let (count, bmin, bmax) = (
+        &mut count[..spread],
+        &mut bmin[..spread],
+        &mut bmax[..spread],
+    );
     for item in items.iter() {
         let bounds = item.bounds(shared);
         let c = place(bounds.centroid());
-        for &axis in &axes {
+        for (k, &axis) in axes.iter().enumerate() {
             let b = bin_at(c[axis]);
-            count[axis][b] += 1;
-            bmin[axis][b] = bmin[axis][b].min(bounds.min);
-            bmax[axis][b] = bmax[axis][b].max(bounds.max);
+            count[k][b] += 1;
+            bmin[k][b] = bmin[k][b].min(bounds.min);
+            bmax[k][b] = bmax[k][b].max(bounds.max);
         }
     }
     let parent = area(min, max).max(1e-300);
     let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins on the left)
-    for &axis in &axes {
-        let (count, bmin, bmax) = (&count[axis], &bmin[axis], &bmax[axis]);
-        // Sweep from the right to know each right part's box.
+    for (k, &axis) in axes.iter().enumerate() {
+        let (count, bmin, bmax) = (&count[k], &bmin[k], &bmax[k]);
+        // Sweep from the right to know each right part's box. An empty
+        // bin changes neither part: its split is the one before it, whose
+        // area and cost are the same to the bit, and is passed over.
         let mut right_area = [0.0; BINS];
         let mut rcount = [0usize; BINS];
         let (mut rmin, mut rmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
-        let mut n = 0;
+        let (mut n, mut right) = (0, area(rmin, rmax));
         for b in (1..BINS).rev() {
-            rmin = rmin.min(bmin[b]);
-            rmax = rmax.max(bmax[b]);
-            n += count[b];
-            right_area[b] = area(rmin, rmax);
+            if count[b] > 0 {
+                rmin = rmin.min(bmin[b]);
+                rmax = rmax.max(bmax[b]);
+                n += count[b];
+                right = area(rmin, rmax);
+            }
+            right_area[b] = right;
             rcount[b] = n;
         }
         let (mut lmin, mut lmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
         let mut lcount = 0;
         for split in 1..BINS {
+            if count[split - 1] == 0 {
+                continue;
+            }
             lmin = lmin.min(bmin[split - 1]);
             lmax = lmax.max(bmax[split - 1]);
             lcount += count[split - 1];
-            if lcount == 0 || rcount[split] == 0 {
+            if rcount[split] == 0 {
                 continue;
             }
             let cost = 1.0
