@@ -6,6 +6,7 @@ mod error;
 mod material;
 mod mesh;
 mod motion;
+mod obj;
 mod texture;
 
 pub(crate) use error::Fault;
