@@ -290,6 +290,7 @@ impl Camera {
 
     /// Unit direction (lab frame, from the camera into the scene) of the line
     /// of sight through the continuous pixel position (px, py).
+    #[inline]
     pub fn direction(&self, px: f64, py: f64) -> DVec3 {
         self.sight_to_lab(self.camera_direction(px, py))
     }
