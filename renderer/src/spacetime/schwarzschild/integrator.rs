@@ -41,12 +41,31 @@ impl Invariants {
     }
 }
 
+/// What every trial step from one state shares: the orbit's invariants
+/// there and the derivative at the state itself (every Runge-Kutta
+/// method's first stage), found once however many step lengths are tried.
+#[derive(Clone, Copy)]
+pub(super) struct Outset {
+    orbit: Invariants,
+    slope: (DVec3, DVec3, f64),
+}
+
 impl Geodesic {
-    /// One classical Runge-Kutta step of `h` in lambda from (x, v).
-    pub(super) fn rk4(&self, h: f64) -> (DVec3, DVec3, f64) {
+    /// The shared start of the trial steps from the geodesic's state.
+    pub(super) fn outset(&self) -> Outset {
+        let orbit = Invariants::of(self.mass, self.x, self.v);
+        Outset {
+            orbit,
+            slope: orbit.derivative(self.x, self.v),
+        }
+    }
+
+    /// One classical Runge-Kutta step of `h` in lambda from (x, v), whose
+    /// start is `outset`.
+    pub(super) fn rk4(&self, outset: &Outset, h: f64) -> (DVec3, DVec3, f64) {
         let (x, v) = (self.x, self.v);
-        let orbit = Invariants::of(self.mass, x, v);
-        let (k1x, k1v, k1t) = orbit.derivative(x, v);
+        let orbit = outset.orbit;
+        let (k1x, k1v, k1t) = outset.slope;
         let (k2x, k2v, k2t) = orbit.derivative(x + k1x * (h / 2.0), v + k1v * (h / 2.0));
         let (k3x, k3v, k3t) = orbit.derivative(x + k2x * (h / 2.0), v + k2v * (h / 2.0));
         let (k4x, k4v, k4t) = orbit.derivative(x + k3x * h, v + k3v * h);
@@ -56,10 +75,10 @@ impl Geodesic {
         (x + dx, v + dv, dt)
     }
 
-    /// One Dormand-Prince step of `h` in lambda from (x, v): the fifth
-    /// order solution, and the difference from the embedded fourth order
-    /// one in x and in v (the step's error estimate).
-    pub(super) fn dopri(&self, h: f64) -> ((DVec3, DVec3, f64), DVec3, DVec3) {
+    /// One Dormand-Prince step of `h` in lambda from (x, v), whose start is
+    /// `outset`: the fifth order solution, and the difference from the
+    /// embedded fourth order one in x and in v (the step's error estimate).
+    pub(super) fn dopri(&self, outset: &Outset, h: f64) -> ((DVec3, DVec3, f64), DVec3, DVec3) {
         const A: [[f64; 6]; 6] = [
             [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
             [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
@@ -98,13 +117,13 @@ impl Geodesic {
             11.0 / 84.0 - 187.0 / 2100.0,
             -1.0 / 40.0,
         ];
-        let orbit = Invariants::of(self.mass, self.x, self.v);
+        let orbit = outset.orbit;
         let mut k = Stages {
             x: [DVec3::ZERO; 7],
             v: [DVec3::ZERO; 7],
             t: [0.0; 7],
         };
-        (k.x[0], k.v[0], k.t[0]) = orbit.derivative(self.x, self.v);
+        (k.x[0], k.v[0], k.t[0]) = outset.slope;
         // Stage by stage, each summing a fixed number of terms, so that
         // every sum is unrolled.
         let start = (self.x, self.v);

@@ -3,6 +3,7 @@
 //! bounded, docs/physics.md "Chords"), longer steps where the arc keeps
 //! clear of the box holding every object.
 
+use super::integrator::Outset;
 use super::{Geodesic, Leg, CHORD_TOLERANCE, PIXEL_FRACTION};
 use crate::spacetime::{Event, FourVector, Ray};
 use glam::DVec3;
@@ -123,7 +124,8 @@ impl Geodesic {
         let tol = self.tolerance();
         let allowed =
             |nearest: f64| longest_chord(m, nearest - tol, h2, c, tol).min(LONGEST_STEP * r);
-        if let Some(leg) = self.clear_step(LONGEST_STEP * r, h2, c, tol) {
+        let outset = self.outset();
+        if let Some(leg) = self.clear_step(&outset, LONGEST_STEP * r, h2, c, tol) {
             return leg;
         }
         let ahead = self.v / speed;
@@ -133,7 +135,7 @@ impl Geodesic {
         }
         let mut h = 0.95 * len / speed;
         for _ in 0..40 {
-            let (x, v, dt) = self.rk4(h);
+            let (x, v, dt) = self.rk4(&outset, h);
             let len = (x - self.x).length();
             if len > 0.0 && len <= allowed(distance_to_segment(self.x, x)) && x.is_finite() {
                 self.cleared = false;
@@ -155,7 +157,7 @@ impl Geodesic {
     /// was no longer than a chord, half as long again). `None` where no
     /// such step is longer than `len`, where the straight line ahead
     /// meets the box, and for a geodesic not sized to a pixel.
-    fn clear_step(&mut self, len: f64, h2: f64, c: f64, tol: f64) -> Option<Leg> {
+    fn clear_step(&mut self, outset: &Outset, len: f64, h2: f64, c: f64, tol: f64) -> Option<Leg> {
         let turning = self.pixel_angle * CLEAR_ERROR;
         let r = self.x.length();
         let speed = self.v.length();
@@ -172,7 +174,7 @@ impl Geodesic {
             if segment_meets_box(self.x, ahead, (lo - margin, hi + margin)) {
                 return None;
             }
-            let ((x, v, dt), ex, ev) = self.dopri(clear / speed);
+            let ((x, v, dt), ex, ev) = self.dopri(outset, clear / speed);
             let error = (ex.length() / (tol * CLEAR_ERROR)).max(ev.length() / (speed * turning));
             let scale = (0.9 / error.sqrt().sqrt()).clamp(0.2, 2.0);
             self.clear_fraction = (self.clear_fraction * scale).min(CLEAR_STEP);
