@@ -14,7 +14,7 @@ use crate::database::Database;
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
 use crate::shading::{Effects, Shader};
-use crate::spacetime::{Event, Ray, Spacetime};
+use crate::spacetime::Spacetime;
 use crate::trace::{NoTrace, Step, Trace};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -238,27 +238,25 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
     let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
     // Each sample's camera where it is not `camera` itself (Camera::at_in).
     let mut moved: [Option<Camera>; PACKET] = [None, None, None, None];
-    // Every lane in use is set before it is searched.
-    let unset = Ray::backwards(
-        Event::new(camera_t, DVec3::ZERO),
-        DVec3::Z,
-        model.light_speed,
-    );
-    let mut rays = [unset; PACKET];
     let mut hits = [None; PACKET];
     let mut colors = [DVec3::ZERO; PACKET];
     for k in 0..settings.spp.max(1) {
+        // Each lane's pixel position and lab time (px, py, t).
+        let mut samples = [(0.0, 0.0, camera_t); PACKET];
         for j in 0..m {
             let (x, y) = at[j];
-            let (px, py, t) = if settings.spp <= 1 {
+            samples[j] = if settings.spp <= 1 {
                 (f64::from(x) + 0.5, f64::from(y) + 0.5, camera_t)
             } else {
                 stratified(&mut rngs[j], (x, y), (k, n), frame)
             };
-            rays[j] = camera
-                .at_in(t, &mut moved[j])
-                .ray(px, py, t, model.light_speed);
+            camera.at_in(samples[j].2, &mut moved[j]);
         }
+        let last = samples[m - 1];
+        samples[m..].fill(last);
+        let cameras: [&Camera; PACKET] =
+            std::array::from_fn(|j| moved[j.min(m - 1)].as_ref().unwrap_or(camera));
+        let rays = Camera::rays(&cameras, &samples, model.light_speed);
         shader
             .db
             .closest_hits(&rays[..m], (0.0, f64::INFINITY), &mut hits[..m]);

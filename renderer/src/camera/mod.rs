@@ -216,6 +216,7 @@ impl Camera {
     }
 
     /// A line of sight from the camera's rest frame into the lab.
+    #[inline]
     fn sight_to_lab(&self, n: DVec3) -> DVec3 {
         let v = self.velocity;
         match self.kinematics {
@@ -280,6 +281,7 @@ impl Camera {
 
     /// Unit direction in the camera's own frame through the continuous
     /// pixel position (px, py).
+    #[inline]
     pub fn camera_direction(&self, px: f64, py: f64) -> DVec3 {
         let th = self.tan_half_v();
         let aspect = f64::from(self.width) / f64::from(self.height);
@@ -329,6 +331,26 @@ impl Camera {
             self.direction(px, py),
             light,
         )
+    }
+
+    /// [`Camera::ray`] of each lane: `cameras[j]` through its pixel position
+    /// and lab time `at[j]` = (px, py, t), the same rays to the bit. Each
+    /// stage is taken for every lane before the next, so that the lanes'
+    /// chains of divisions and square roots are in flight together rather
+    /// than one after another.
+    #[inline]
+    pub(crate) fn rays<const N: usize>(
+        cameras: &[&Camera; N],
+        at: &[(f64, f64, f64); N],
+        light: LightSpeed,
+    ) -> [Ray; N] {
+        let own: [DVec3; N] =
+            std::array::from_fn(|j| cameras[j].camera_direction(at[j].0, at[j].1));
+        let lab: [DVec3; N] = std::array::from_fn(|j| cameras[j].sight_to_lab(own[j]));
+        std::array::from_fn(|j| {
+            let t = at[j].2;
+            Ray::backwards(Event::new(t, cameras[j].position_at(t)), lab[j], light)
+        })
     }
 }
 
@@ -460,5 +482,45 @@ mod tests {
             8
         )
         .is_none());
+    }
+
+    /// Each lane of `Camera::rays` is `Camera::ray` of its own camera to
+    /// the bit: at rest, moving (Galilean and Lorentz, two speeds) and
+    /// without light travel, lanes mixed in one call.
+    #[test]
+    fn rays_of_several_lanes_are_each_lanes_own_ray() {
+        let at_rest = cam(Attitude::LookAt {
+            look_at: DVec3::ZERO,
+            up: DVec3::Y,
+        });
+        let v = DVec3::new(0.3, -0.5, 0.6);
+        let lanes = [
+            at_rest,
+            at_rest.moving(v, Model::CLASSICAL).unwrap(),
+            at_rest.moving(v, Model::RELATIVISTIC).unwrap(),
+            at_rest.moving(v * 0.5, Model::RELATIVISTIC).unwrap(),
+            at_rest.moving(v, Model::INFINITE).unwrap(),
+        ];
+        let at = [
+            (0.5, 0.5, 0.0),
+            (32.0, 24.0, 1.5),
+            (63.2, 10.7, -2.0),
+            (12.25, 47.9, 0.25),
+            (5.0, 6.0, 3.0),
+        ];
+        for light in [LightSpeed::Finite, LightSpeed::Infinite] {
+            let rays = Camera::rays(&lanes.each_ref(), &at, light);
+            for ((c, &(px, py, t)), ray) in lanes.iter().zip(&at).zip(rays) {
+                let own = c.ray(px, py, t, light);
+                assert_eq!(format!("{own:?}"), format!("{ray:?}"));
+            }
+            // Control: the Lorentz camera's ray through the Galilean lane's
+            // pixel is not the Galilean lane's ray.
+            let swapped = Camera::rays(&[&lanes[2]], &[at[1]], light)[0];
+            assert_ne!(
+                format!("{swapped:?}"),
+                format!("{:?}", lanes[1].ray(32.0, 24.0, 1.5, light))
+            );
+        }
     }
 }
