@@ -49,35 +49,65 @@ fn centre(img: &RgbImage, camera: &Pinhole) -> (DVec3, DVec3) {
     )
 }
 
-/// The factor D by which the blackbody `source` must be shifted (sampled
-/// at D lambda) to have the chromaticity of `rgb`: a scan, then golden-section refinement.
-pub(super) fn factor_from_colour(
-    source: &Blackbody,
-    rgb: DVec3,
-    (lo, hi): (f64, f64),
-) -> Option<f64> {
-    let target = Chromaticity::of(xyz_of_rgb(rgb))?;
-    let miss = |d: f64| {
-        Chromaticity::of(source.xyz_shifted(d))
-            .map_or(f64::INFINITY, |c| c.distance_squared(target))
-    };
-    let steps = 2700;
-    let grid = |i: usize| lo * (hi / lo).powf(i as f64 / steps as f64);
-    let misses: Vec<f64> = (0..=steps).map(|i| miss(grid(i))).collect();
-    let best = (0..=steps)
-        .min_by(|&a, &b| misses[a].total_cmp(&misses[b]))
-        .unwrap();
-    let (mut a, mut b) = (grid(best.saturating_sub(1)), grid((best + 1).min(steps)));
-    let r = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..80 {
-        let (c, d) = (b - r * (b - a), a + r * (b - a));
-        if miss(c) < miss(d) {
-            b = d;
-        } else {
-            a = c;
-        }
+/// Steps of the scan over the range of factors, evenly spaced in log D.
+const SCAN_STEPS: usize = 2700;
+
+/// The chromaticity of a blackbody shifted by each factor of a scan over a
+/// range: they depend on the source and the range alone, so a reading and
+/// the readings of its quantisation's eight neighbouring colours share them.
+pub(super) struct ColourScan<'s> {
+    source: &'s Blackbody,
+    range: (f64, f64),
+    chromaticities: Vec<Option<Chromaticity>>,
+}
+
+impl<'s> ColourScan<'s> {
+    /// The scan of `source` shifted by factors from `lo` to `hi`.
+    pub(super) fn new(source: &'s Blackbody, (lo, hi): (f64, f64)) -> ColourScan<'s> {
+        let mut scan = ColourScan {
+            source,
+            range: (lo, hi),
+            chromaticities: Vec::new(),
+        };
+        scan.chromaticities = (0..=SCAN_STEPS)
+            .map(|i| Chromaticity::of(source.xyz_shifted(scan.grid(i))))
+            .collect();
+        scan
     }
-    Some(0.5 * (a + b))
+
+    /// The scan's `i`-th factor.
+    fn grid(&self, i: usize) -> f64 {
+        let (lo, hi) = self.range;
+        lo * (hi / lo).powf(i as f64 / SCAN_STEPS as f64)
+    }
+
+    /// The factor D by which the source must be shifted (sampled at D
+    /// lambda) to have the chromaticity of `rgb`: the scan's nearest, then
+    /// golden-section refinement.
+    pub(super) fn factor(&self, rgb: DVec3) -> Option<f64> {
+        let target = Chromaticity::of(xyz_of_rgb(rgb))?;
+        let distance =
+            |c: Option<Chromaticity>| c.map_or(f64::INFINITY, |c| c.distance_squared(target));
+        let miss = |d: f64| distance(Chromaticity::of(self.source.xyz_shifted(d)));
+        let misses: Vec<f64> = self.chromaticities.iter().map(|&c| distance(c)).collect();
+        let best = (0..=SCAN_STEPS)
+            .min_by(|&a, &b| misses[a].total_cmp(&misses[b]))
+            .unwrap();
+        let (mut a, mut b) = (
+            self.grid(best.saturating_sub(1)),
+            self.grid((best + 1).min(SCAN_STEPS)),
+        );
+        let r = (5f64.sqrt() - 1.0) / 2.0;
+        for _ in 0..80 {
+            let (c, d) = (b - r * (b - a), a + r * (b - a));
+            if miss(c) < miss(d) {
+                b = d;
+            } else {
+                a = c;
+            }
+        }
+        Some(0.5 * (a + b))
+    }
 }
 
 /// The largest change of `f(rgb)` when each channel moves by half an 8-bit step.
@@ -431,12 +461,15 @@ impl Panel {
                     .collect::<Vec<_>>()
             ));
         }
-        let from_colour = |rgb: DVec3| factor_from_colour(&self.source, rgb, (0.3, 3.0));
         let reading = match from {
-            DopplerFrom::Colour => Reading {
-                value: from_colour(shifted).unwrap_or(f64::NAN),
-                tolerance: quantisation(shifted, from_colour),
-            },
+            DopplerFrom::Colour => {
+                let scan = ColourScan::new(&self.source, (0.3, 3.0));
+                let from_colour = |rgb: DVec3| scan.factor(rgb);
+                Reading {
+                    value: from_colour(shifted).unwrap_or(f64::NAN),
+                    tolerance: quantisation(shifted, from_colour),
+                }
+            }
             DopplerFrom::SearchlightShifted => searchlight_factor(shifted_lit, shifted, 5.0),
             DopplerFrom::SearchlightRgb => searchlight_factor(rgb_lit, plain, 4.0),
         };

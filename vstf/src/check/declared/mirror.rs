@@ -11,7 +11,7 @@
 //! the factor is the temperature ratio of the blackbody whose chromaticity
 //! the pixel shows (tolerance from its 8-bit quantisation).
 
-use super::doppler::{factor_from_colour, quantisation};
+use super::doppler::{quantisation, ColourScan};
 use crate::check::probe::Effort;
 use crate::check::row::{Reading, Unit};
 use crate::check::traced_edge::{Edge, EdgeTrace};
@@ -235,7 +235,8 @@ fn doppler(
         })?;
     let rgb = measure::color(&img, column, r.row);
     let range = (0.2, 5.0);
-    let from_colour = |c: DVec3| factor_from_colour(&source, c, range);
+    let scan = ColourScan::new(&source, range);
+    let from_colour = |c: DVec3| scan.factor(c);
     let reading = Reading {
         value: from_colour(rgb).unwrap_or(f64::NAN),
         tolerance: quantisation(rgb, from_colour),
