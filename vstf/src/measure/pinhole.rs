@@ -81,8 +81,10 @@ pub struct Pinhole {
     pub right: DVec3,
     /// Unit vector along the image's columns, upwards.
     pub up: DVec3,
-    /// Vertical field of view, degrees.
-    pub vfov_deg: f64,
+    /// tan(vfov / 2) of the vertical field of view: the image plane's
+    /// half-height at unit distance (found once: a measurement projects
+    /// millions of points).
+    tan_half_v: f64,
     /// Image width, pixels.
     pub width: u32,
     /// Image height, pixels.
@@ -146,7 +148,7 @@ impl Pinhole {
             forward,
             right,
             up: right.cross(forward),
-            vfov_deg,
+            tan_half_v: (vfov_deg.to_radians() / 2.0).tan(),
             width,
             height,
             velocity: DVec3::ZERO,
@@ -175,7 +177,7 @@ impl Pinhole {
 
     /// tan(vfov / 2): the image plane's half-height at unit distance.
     fn tan_half_v(&self) -> f64 {
-        (self.vfov_deg.to_radians() / 2.0).tan()
+        self.tan_half_v
     }
 
     fn aspect(&self) -> f64 {
