@@ -215,8 +215,11 @@ impl Snapshot<'_> {
         let (here, next) = (self.depth_in(b, p, g), self.depth_in(b, p, g + 1));
         let step = here - next;
         let mut k = if step > 0.0 && step.is_finite() {
-            let predicted = (g as f64 + (here - dz) / step).ceil();
-            predicted.clamp(0.0, (count - 1) as f64) as usize
+            let predicted = (g as f64 + (here - dz) / step).clamp(0.0, (count - 1) as f64);
+            // Rounded up (as an integer conversion and a comparison, where
+            // `ceil` is a library call on the baseline x86-64).
+            let below = predicted as usize;
+            below + usize::from((below as f64) < predicted)
         } else {
             g
         };
@@ -267,7 +270,9 @@ impl Snapshot<'_> {
                     let Some((px, py)) = camera.pixel_of((at - self.camera) / rho) else {
                         continue;
                     };
-                    let (cx, cy) = ((px * f64::from(n)).floor(), (py * f64::from(n)).floor());
+                    // The cell's column and row: the integer parts of (cx, cy),
+                    // which are not negative once past this test.
+                    let (cx, cy) = (px * f64::from(n), py * f64::from(n));
                     if cx < 0.0 || cy < 0.0 || cx >= f64::from(cw) || cy >= f64::from(ch) {
                         continue;
                     }
