@@ -206,10 +206,11 @@ impl Snapshot<'_> {
     }
 
     /// The first slice whose gate admits the point at `p` (depth below dz),
+    /// with where the point stands for it and its distance from the camera;
     /// or `count` if none: predicted from the depths at `guess` and the next
     /// slice (the depth is nearly linear in k), then settled by stepping,
     /// so the answer rests on the depths of whole slices alone.
-    fn first_slice(&self, b: &Body, p: DVec3, guess: usize) -> usize {
+    fn first_slice(&self, b: &Body, p: DVec3, guess: usize) -> (usize, Option<(DVec3, f64)>) {
         let (dz, count) = (self.gate.thickness, self.gate.count);
         let g = guess.min(count - 1);
         let (here, next) = (self.depth_in(b, p, g), self.depth_in(b, p, g + 1));
@@ -226,10 +227,16 @@ impl Snapshot<'_> {
         while k > 0 && self.depth_in(b, p, k - 1) < dz {
             k -= 1;
         }
-        while k < count && self.depth_in(b, p, k) >= dz {
-            k += 1;
+        while k < count {
+            let at = self.placed(b, p, k as f64);
+            let rho = at.distance(self.camera);
+            if self.depth_at(rho, k as f64) >= dz {
+                k += 1;
+                continue;
+            }
+            return (k, Some((at, rho)));
         }
-        k
+        (k, None)
     }
 
     /// The image of the bodies in cells of 1/`n` pixel: for each cell of the
@@ -254,12 +261,14 @@ impl Snapshot<'_> {
             // Neighbouring points enter the gate in neighbouring slices.
             let mut guess = self.gate.count / 2;
             b.each_surface_point(spacing, |p| {
-                let first = self.first_slice(b, p, guess);
+                let (first, mut placed) = self.first_slice(b, p, guess);
                 guess = first;
                 // The slices whose gate admits the point: depth in [0, dz).
                 for k in first..self.gate.count {
-                    let at = self.placed(b, p, k as f64);
-                    let rho = at.distance(self.camera);
+                    let (at, rho) = placed.take().unwrap_or_else(|| {
+                        let at = self.placed(b, p, k as f64);
+                        (at, at.distance(self.camera))
+                    });
                     let depth = self.depth_at(rho, k as f64);
                     if depth.is_nan() || depth < 0.0 {
                         break;
@@ -368,7 +377,14 @@ mod tests {
                     .unwrap_or(gate.count);
                 admitted_somewhere |= scan < gate.count && snap.depth_in(&body, p, scan) >= 0.0;
                 for guess in [0, 1, 57, 200, 399, 1000] {
-                    assert_eq!(snap.first_slice(&body, p, guess), scan, "v {v}, point {i}");
+                    let (first, placed) = snap.first_slice(&body, p, guess);
+                    assert_eq!(first, scan, "v {v}, point {i}");
+                    // Where the point stands for that slice, as placed anew.
+                    let want = (first < gate.count).then(|| {
+                        let at = snap.placed(&body, p, first as f64);
+                        (at, at.distance(snap.camera))
+                    });
+                    assert_eq!(placed, want, "v {v}, point {i}");
                 }
             }
             assert!(
