@@ -207,13 +207,21 @@ impl Snapshot<'_> {
 
     /// The first slice whose gate admits the point at `p` (depth below dz),
     /// with where the point stands for it and its distance from the camera;
-    /// or `count` if none: predicted from the depths at `guess` and the next
-    /// slice (the depth is nearly linear in k), then settled by stepping,
-    /// so the answer rests on the depths of whole slices alone.
+    /// or `count` if none: `guess` itself where it admits the point and the
+    /// slice before does not (most often, for a neighbour's slice);
+    /// otherwise predicted from the depths at `guess` and the next slice
+    /// (the depth is nearly linear in k), then settled by stepping, so the
+    /// answer rests on the depths of whole slices alone.
     fn first_slice(&self, b: &Body, p: DVec3, guess: usize) -> (usize, Option<(DVec3, f64)>) {
         let (dz, count) = (self.gate.thickness, self.gate.count);
         let g = guess.min(count - 1);
-        let (here, next) = (self.depth_in(b, p, g), self.depth_in(b, p, g + 1));
+        let at = self.placed(b, p, g as f64);
+        let rho = at.distance(self.camera);
+        let here = self.depth_at(rho, g as f64);
+        if here < dz && (g == 0 || self.depth_in(b, p, g - 1) >= dz) {
+            return (g, Some((at, rho)));
+        }
+        let next = self.depth_in(b, p, g + 1);
         let step = here - next;
         let mut k = if step > 0.0 && step.is_finite() {
             let predicted = (g as f64 + (here - dz) / step).clamp(0.0, (count - 1) as f64);
