@@ -10,6 +10,11 @@ use glam::DVec3;
 /// Steps of the scan over the range of factors, evenly spaced in log D.
 const SCAN_STEPS: usize = 2700;
 
+/// The scan's `i`-th factor over `(lo, hi)`.
+fn grid((lo, hi): (f64, f64), i: usize) -> f64 {
+    lo * (hi / lo).powf(i as f64 / SCAN_STEPS as f64)
+}
+
 /// The chromaticity of a blackbody shifted by each factor of a scan over a
 /// range: they depend on the source and the range alone, so a reading and
 /// the readings of its quantisation's eight neighbouring colours share them.
@@ -23,23 +28,16 @@ impl<'s> ColourScan<'s> {
     /// The scan of `source` shifted by factors from `lo` to `hi`.
     pub(in crate::check::declared) fn new(
         source: &'s Blackbody,
-        (lo, hi): (f64, f64),
+        range: (f64, f64),
     ) -> ColourScan<'s> {
-        let mut scan = ColourScan {
-            source,
-            range: (lo, hi),
-            chromaticities: Vec::new(),
-        };
-        scan.chromaticities = (0..=SCAN_STEPS)
-            .map(|i| Chromaticity::of(source.xyz_shifted(scan.grid(i))))
+        let chromaticities = (0..=SCAN_STEPS)
+            .map(|i| Chromaticity::of(source.xyz_shifted(grid(range, i))))
             .collect();
-        scan
-    }
-
-    /// The scan's `i`-th factor.
-    fn grid(&self, i: usize) -> f64 {
-        let (lo, hi) = self.range;
-        lo * (hi / lo).powf(i as f64 / SCAN_STEPS as f64)
+        ColourScan {
+            source,
+            range,
+            chromaticities,
+        }
     }
 
     /// The factor D by which the source must be shifted (sampled at D
@@ -55,8 +53,8 @@ impl<'s> ColourScan<'s> {
             .min_by(|&a, &b| misses[a].total_cmp(&misses[b]))
             .unwrap();
         let (mut a, mut b) = (
-            self.grid(best.saturating_sub(1)),
-            self.grid((best + 1).min(SCAN_STEPS)),
+            grid(self.range, best.saturating_sub(1)),
+            grid(self.range, (best + 1).min(SCAN_STEPS)),
         );
         let r = (5f64.sqrt() - 1.0) / 2.0;
         for _ in 0..80 {
