@@ -18,7 +18,7 @@ fn grid((lo, hi): (f64, f64), i: usize) -> f64 {
 /// The chromaticity of a blackbody shifted by each factor of a scan over a
 /// range: they depend on the source and the range alone, so a reading and
 /// the readings of its quantisation's eight neighbouring colours share them.
-pub(in crate::check::declared) struct ColourScan<'s> {
+pub(crate) struct ColourScan<'s> {
     source: &'s Blackbody,
     range: (f64, f64),
     chromaticities: Vec<Option<Chromaticity>>,
@@ -26,10 +26,7 @@ pub(in crate::check::declared) struct ColourScan<'s> {
 
 impl<'s> ColourScan<'s> {
     /// The scan of `source` shifted by factors from `lo` to `hi`.
-    pub(in crate::check::declared) fn new(
-        source: &'s Blackbody,
-        range: (f64, f64),
-    ) -> ColourScan<'s> {
+    pub(crate) fn new(source: &'s Blackbody, range: (f64, f64)) -> ColourScan<'s> {
         let chromaticities = (0..=SCAN_STEPS)
             .map(|i| Chromaticity::of(source.xyz_shifted(grid(range, i))))
             .collect();
@@ -43,7 +40,7 @@ impl<'s> ColourScan<'s> {
     /// The factor D by which the source must be shifted (sampled at D
     /// lambda) to have the chromaticity of `rgb`: the scan's nearest, then
     /// golden-section refinement.
-    pub(in crate::check::declared) fn factor(&self, rgb: DVec3) -> Option<f64> {
+    pub(crate) fn factor(&self, rgb: DVec3) -> Option<f64> {
         let target = Chromaticity::of(xyz_of_rgb(rgb))?;
         let distance =
             |c: Option<Chromaticity>| c.map_or(f64::INFINITY, |c| c.distance_squared(target));
@@ -70,10 +67,7 @@ impl<'s> ColourScan<'s> {
 }
 
 /// The largest change of `f(rgb)` when each channel moves by half an 8-bit step.
-pub(in crate::check::declared) fn quantisation(
-    rgb: DVec3,
-    f: impl Fn(DVec3) -> Option<f64>,
-) -> f64 {
+pub(crate) fn quantisation(rgb: DVec3, f: impl Fn(DVec3) -> Option<f64>) -> f64 {
     let h = 0.5 / 255.0;
     let at = f(rgb).unwrap_or(f64::NAN);
     (0..8)
