@@ -98,8 +98,8 @@ pub use color::{
 pub use database::{Database, Packing, Traversal};
 pub use geometry::{Barycentric, Hit, PrimitiveId, Tetrahedron};
 pub use render::{
-    pixel, pixel_traced, render, render_reusing, render_stoppable, shader, Frame, Image,
-    RenderSettings,
+    pixel, pixel_traced, render, render_reusing, render_stoppable, render_window, shader, Frame,
+    Image, RenderSettings, Window,
 };
 pub use rng::SplitMix64;
 pub use scene::{

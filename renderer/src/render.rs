@@ -150,13 +150,73 @@ pub fn render_reusing(
     stop: &AtomicBool,
     spent: Image,
 ) -> Option<Image> {
+    let whole = Window::whole(frame.camera.width, frame.camera.height);
+    render_window(db, scene, frame, whole, stop, spent)
+}
+
+/// A rectangle of an image's pixels: columns `x..x + width` and rows
+/// `y..y + height`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Window {
+    /// The first column.
+    pub x: u32,
+    /// The first row.
+    pub y: u32,
+    /// Columns, at least 1.
+    pub width: u32,
+    /// Rows, at least 1.
+    pub height: u32,
+}
+
+impl Window {
+    /// Every pixel of a `width` x `height` image.
+    pub fn whole(width: u32, height: u32) -> Window {
+        Window {
+            x: 0,
+            y: 0,
+            width,
+            height,
+        }
+    }
+
+    /// This window cut to a `width` x `height` image (`None` when nothing
+    /// of it is left).
+    pub fn within(&self, width: u32, height: u32) -> Option<Window> {
+        let (x0, y0) = (self.x.min(width), self.y.min(height));
+        let x1 = self.x.saturating_add(self.width).min(width);
+        let y1 = self.y.saturating_add(self.height).min(height);
+        (x1 > x0 && y1 > y0).then_some(Window {
+            x: x0,
+            y: y0,
+            width: x1 - x0,
+            height: y1 - y0,
+        })
+    }
+}
+
+/// The pixels of `window` (cut to the camera's image) of the frame
+/// [`render_reusing`] renders, the same to the bit: an image `window.width`
+/// x `window.height` whose pixel (i, j) is the frame's (x + i, y + j). A
+/// pixel's samples depend on nothing but its place in the whole image, so
+/// a measurement that reads only part of a frame renders only that part.
+pub fn render_window(
+    db: &Database,
+    scene: &Scene,
+    frame: &Frame,
+    window: Window,
+    stop: &AtomicBool,
+    spent: Image,
+) -> Option<Image> {
     let shader = shader(db, scene, frame);
     let camera = &Camera {
         kinematics: Kinematics::of(frame.model),
         ..*frame.camera
     };
     let frame = Frame { camera, ..*frame };
-    let (w, h) = (camera.width, camera.height);
+    let window = window
+        .within(camera.width, camera.height)
+        .unwrap_or(Window::whole(0, 0));
+    let (w, h) = (window.width, window.height);
     let n = w as usize * h as usize;
     let mut pixels = spent.pixels;
     if pixels.len() < n {
@@ -166,33 +226,36 @@ pub fn render_reusing(
     // Two rows at a time, in blocks of 2 x 2 pixels (one packet).
     const _: () = assert!(PACKET == 4, "a packet is a block of 2 x 2 pixels");
     pixels
-        .par_chunks_mut(2 * w as usize)
+        .par_chunks_mut(2 * w.max(1) as usize)
         .enumerate()
         .for_each(|(pair, rows)| {
             if stop.load(Ordering::Relaxed) {
                 return;
             }
-            let y0 = 2 * pair as u32;
+            let y0 = window.y + 2 * pair as u32;
+            let (x0, x_end, y_end) = (window.x, window.x + w, window.y + h);
+            // Pixel (x, y)'s place in `rows`.
+            let at = |x: u32, y: u32| ((y - y0) * w + (x - x0)) as usize;
             if shader.spacetime != Spacetime::Flat {
                 // Bent rays are searched chord by chord, one pixel at a time.
                 for (i, c) in rows.iter_mut().enumerate() {
-                    let (x, y) = (i as u32 % w, y0 + i as u32 / w);
+                    let (x, y) = (x0 + i as u32 % w, y0 + i as u32 / w);
                     *c = pixel(&shader, &frame, x, y);
                 }
                 return;
             }
-            for x0 in (0..w).step_by(2) {
+            for bx in (x0..x_end).step_by(2) {
                 let mut block = [(0, 0); PACKET];
                 let mut n = 0;
-                for y in y0..(y0 + 2).min(h) {
-                    for x in x0..(x0 + 2).min(w) {
+                for y in y0..(y0 + 2).min(y_end) {
+                    for x in bx..(bx + 2).min(x_end) {
                         block[n] = (x, y);
                         n += 1;
                     }
                 }
                 let colors = pixels_packed(&shader, &frame, &block[..n]);
                 for (&(x, y), c) in block[..n].iter().zip(colors) {
-                    rows[((y - y0) * w + x) as usize] = c;
+                    rows[at(x, y)] = c;
                 }
             }
         });

@@ -177,7 +177,22 @@ impl Observer<'_> {
         max_depth: u32,
     ) -> Result<(RgbImage, Pinhole), String> {
         let probe = self.fixture.only(keep).map_err(|e| e.to_string())?;
-        self.probe_render(probe, (width, height), spp, max_depth)
+        self.probe_render(probe, (width, height), (spp, max_depth), None)
+    }
+
+    /// The pixels of `window` of [`Observer::measuring_render_bouncing`],
+    /// the same to the bit, in an image of the window's size (its pixel
+    /// (i, j) is the whole image's (x + i, y + j)); the pinhole is the
+    /// whole image's. Nothing else is rendered.
+    pub(crate) fn measuring_window(
+        &self,
+        keep: &[&str],
+        size: (u32, u32),
+        (spp, max_depth): (u32, u32),
+        window: renderer::Window,
+    ) -> Result<(RgbImage, Pinhole), String> {
+        let probe = self.fixture.only(keep).map_err(|e| e.to_string())?;
+        self.probe_render(probe, size, (spp, max_depth), Some(window))
     }
 
     /// [`Observer::measuring_render`] of the fixture's sky alone: no
@@ -186,31 +201,35 @@ impl Observer<'_> {
         let mut probe = self.fixture.only(&[]).map_err(|e| e.to_string())?;
         probe.spec.sky.clone_from(&self.fixture.spec.sky);
         probe.scene.sky.clone_from(&self.fixture.scene.sky);
-        self.probe_render(probe, size, 1, 0)
+        self.probe_render(probe, size, (1, 0), None)
     }
 
     /// `probe` rendered through the camera at this observer's time, model
-    /// and size, without shutter time or shadows.
+    /// and size, without shutter time or shadows (only `window` of it, if
+    /// given).
     fn probe_render(
         &self,
         mut probe: crate::fixture::Fixture,
         (width, height): (u32, u32),
-        spp: u32,
-        max_depth: u32,
+        (spp, max_depth): (u32, u32),
+        window: Option<renderer::Window>,
     ) -> Result<(RgbImage, Pinhole), String> {
         let image = &mut probe.spec.image;
         (image.shutter, image.seed, image.max_depth, image.shadows) = (0.0, 1, max_depth, false);
-        let view = crate::run::view(
-            &probe,
-            &Overrides {
-                model: Some(self.model),
-                camera_t: Some(self.camera_t),
-                width: Some(width),
-                height: Some(height),
-                spp: Some(spp),
-                ..Overrides::default()
-            },
-        )?;
+        let view = crate::fixture::View {
+            window,
+            ..crate::run::view(
+                &probe,
+                &Overrides {
+                    model: Some(self.model),
+                    camera_t: Some(self.camera_t),
+                    width: Some(width),
+                    height: Some(height),
+                    spp: Some(spp),
+                    ..Overrides::default()
+                },
+            )?
+        };
         let img = crate::run::render_shared(&probe, &view, Traversal::Bvh)?;
         Ok((crate::output::rgb8(&img), self.pinhole((width, height))?))
     }

@@ -96,11 +96,13 @@ fn render_into(
         model: view.model,
         settings: &view.settings,
     };
-    let image =
-        renderer::render_reusing(db, &fixture.scene, &frame, stop, spent).ok_or_else(|| {
-            Error::Interrupted {
-                message: format!("{}: the render was interrupted", fixture.file.display()),
-            }
+    let window = view.window.unwrap_or(renderer::Window::whole(
+        view.camera.width,
+        view.camera.height,
+    ));
+    let image = renderer::render_window(db, &fixture.scene, &frame, window, stop, spent)
+        .ok_or_else(|| Error::Interrupted {
+            message: format!("{}: the render was interrupted", fixture.file.display()),
         })?;
     match image.pixels.iter().position(|p| !p.is_finite()) {
         None => Ok(image),
@@ -114,7 +116,9 @@ fn render_into(
 /// value, how many more there are, the object its primary ray hits and the
 /// command that shows every variable along its rays.
 fn non_finite(db: &Database, fixture: &Fixture, view: &View, image: &Image, i: usize) -> String {
-    let (x, y) = (i as u32 % image.width, i as u32 / image.width);
+    // (A window's pixel i is the frame's pixel at the window's corner plus i's place.)
+    let (x0, y0) = view.window.map_or((0, 0), |w| (w.x, w.y));
+    let (x, y) = (x0 + i as u32 % image.width, y0 + i as u32 / image.width);
     let count = image.pixels.iter().filter(|p| !p.is_finite()).count();
     let log = crate::debug::trace_pixel(fixture, view, db, x, y).ok();
     let steps = log.as_ref().map_or(&[][..], |l| &l.steps[..]);

@@ -35,7 +35,7 @@ use crate::oracle::schwarzschild as gr;
 use crate::oracle::{body_point, doppler_factor, gamma_of_squared, retarded};
 use glam::DVec3;
 use image::RgbImage;
-use renderer::{Shape, Spectrum};
+use renderer::{Shape, Spectrum, Window};
 
 /// The fixture with the colour effects set.
 fn with_effects(f: &Fixture, doppler: bool, searchlight: bool) -> Fixture {
@@ -83,6 +83,47 @@ fn panel_pixels(
         seen.push(centre(&img, &camera));
     }
     Ok((seen.iter().map(|s| s.0).collect(), seen[0].1))
+}
+
+/// The colour of `name`'s inner centroid pixel under each variant of the
+/// colour effects (in the order of `variants`), rendered alone through
+/// the fixture's camera at `size`, and that pixel. The first variant's
+/// whole image finds the pixel; the others render only it.
+fn spot_pixels(
+    measuring: &Observer,
+    name: &str,
+    size: (u32, u32),
+) -> Result<(Vec<DVec3>, (u32, u32)), String> {
+    let bg = measuring.fixture.spec.background;
+    let mut pixels = Vec::new();
+    let mut spot = None;
+    for variant in variants(measuring.fixture) {
+        let s = Observer {
+            fixture: &variant,
+            ..*measuring
+        };
+        let pixel = match spot {
+            Some((x, y)) => {
+                let only = Window {
+                    x,
+                    y,
+                    width: 1,
+                    height: 1,
+                };
+                let (img, _) = s.measuring_window(&[name], size, (1, 0), only)?;
+                measure::color(&img, 0, 0)
+            }
+            None => {
+                let (img, _) = s.measuring_render(&[name], size, 1)?;
+                let (x, y) = *spot.insert(inner_centroid(&img, bg).ok_or_else(|| {
+                    format!("{name:?} is not seen over 3 x 3 pixels in the view")
+                })?);
+                measure::color(&img, x, y)
+            }
+        };
+        pixels.push(pixel);
+    }
+    Ok((pixels, spot.expect("four variants were rendered")))
 }
 
 /// The four variants of the colour effects, in the order of [`Panel`]'s pixels.
@@ -249,24 +290,7 @@ impl Panel {
             .at(described.camera_t)
             .ok_or("the view is outside the camera's keyframes")?;
         let size = measuring.size(effort.probe);
-        let bg = measuring.fixture.spec.background;
-        let mut pixels = Vec::new();
-        let mut spot = None;
-        for variant in variants(measuring.fixture) {
-            let s = Observer {
-                fixture: &variant,
-                ..*measuring
-            };
-            let (img, _) = s.measuring_render(&[name], size, 1)?;
-            let (x, y) = match spot {
-                Some(p) => p,
-                None => *spot.insert(inner_centroid(&img, bg).ok_or_else(|| {
-                    format!("{name:?} is not seen over 3 x 3 pixels in the view")
-                })?),
-            };
-            pixels.push(measure::color(&img, x, y));
-        }
-        let (x, y) = spot.expect("four variants were rendered");
+        let (pixels, (x, y)) = spot_pixels(measuring, name, size)?;
         let pinhole = super::marker_angle::rest_pinhole(measuring, size)?;
         let factor = |dx: f64, dy: f64| {
             let n = pinhole.rest_direction(f64::from(x) + dx, f64::from(y) + dy);
