@@ -23,6 +23,7 @@
 pub mod findings;
 pub mod row;
 
+mod cropped;
 mod path;
 mod probe;
 mod traced_edge;

@@ -59,7 +59,7 @@ pub(super) fn measure(
     let (expected, _) = seen_circle(theta, alpha, beta)
         .ok_or("the marker's outline holds the line of the camera's motion")?;
     let size = measuring.size(2 * effort.probe);
-    let (img, _) = measuring.measuring_render(&[&m.object], size, effort.spp)?;
+    let (img, _) = measuring.measuring_cropped(&[&m.object], size, effort.spp)?;
     let pinhole = rest_pinhole(measuring, size)?;
     let bg = measuring.fixture.spec.background;
     let dirs = outline(&img, &pinhole, |c| crate::observer::is_background(c, bg));
