@@ -21,7 +21,7 @@ use crate::measure::{self, Pinhole, Scan};
 use crate::observer::{background, is_background, motion_of, Observer};
 use crate::oracle::mirror::{bounce, Bounce, Marker, MovingMirror};
 use glam::DVec3;
-use renderer::{Shape, Spectrum};
+use renderer::{Shape, Spectrum, Window};
 
 /// A row's reading, its expectation and unit, and the lab direction to mark.
 type Found = ((Reading, f64, Unit), DVec3);
@@ -158,7 +158,16 @@ fn column(
     let spp = view.spp.unwrap_or(effort.spp);
     let depth = measuring.fixture.spec.image.max_depth;
     let keep = [r.mirror.as_str(), r.marker.as_str()];
-    let (img, camera) = measuring.measuring_render_bouncing(&keep, size, spp, depth)?;
+    // Only the band of rows the edge is traced along is rendered.
+    let band = (size.1 / 20).max(4);
+    let rows = r.row.saturating_sub(band)..=(r.row + band).min(size.1 - 1);
+    let window = Window {
+        x: 0,
+        y: *rows.start(),
+        width: size.0,
+        height: rows.end() + 1 - rows.start(),
+    };
+    let (img, camera) = measuring.measuring_window(&keep, size, (spp, depth), window)?;
     let yc = f64::from(r.row) + 0.5;
     let expected = expected_column(optics, described, &camera, (size.0, yc))?;
     // Scan from the side of the edge where the mirror shows no marker.
@@ -174,13 +183,11 @@ fn column(
     } else {
         (i64::from(size.0) - 1, -1)
     };
-    let band = (size.1 / 20).max(4);
-    let rows = r.row.saturating_sub(band)..=(r.row + band).min(size.1 - 1);
     let points = rows
         .filter_map(|y| {
             let scan = Scan {
                 horizontal: true,
-                at: y,
+                at: y - window.y,
             };
             let u = measure::edge(&img, scan, from, step, |c| is_background(c, bg))?;
             Some((f64::from(y) + 0.5, u))
@@ -221,8 +228,15 @@ fn doppler(
     let size = view_size(&measuring.fixture.spec, view);
     let depth = measuring.fixture.spec.image.max_depth;
     let keep = [r.mirror.as_str(), r.marker.as_str()];
-    let (img, camera) = setup.measuring_render_bouncing(&keep, size, 1, depth)?;
     let column = r.column.unwrap_or(0);
+    // Only the pixel read is rendered.
+    let only = Window {
+        x: column,
+        y: r.row,
+        width: 1,
+        height: 1,
+    };
+    let (img, camera) = setup.measuring_window(&keep, size, (1, depth), only)?;
     let centre = (f64::from(column) + 0.5, f64::from(r.row) + 0.5);
     let path = optics
         .bounce(described, &camera, centre)
@@ -233,7 +247,7 @@ fn doppler(
                 r.row
             )
         })?;
-    let rgb = measure::color(&img, column, r.row);
+    let rgb = measure::color(&img, 0, 0);
     let range = (0.2, 5.0);
     let scan = ColourScan::new(&source, range);
     let from_colour = |c: DVec3| scan.factor(c);
