@@ -24,6 +24,7 @@ pub mod findings;
 pub mod row;
 
 mod cropped;
+mod lazy;
 mod path;
 mod probe;
 mod traced_edge;

@@ -9,6 +9,7 @@
 //! view sees; the full view is rendered for the report.
 
 use crate::check::findings::ViewReport;
+use crate::check::lazy::LazyImage;
 use crate::fixture::solve::line_of_sight;
 use crate::fixture::{Overrides, View};
 use crate::measure::{self, Pinhole};
@@ -121,6 +122,20 @@ impl Observer<'_> {
     /// measurements' own model of the probe camera, built from the same
     /// parameters.
     pub(crate) fn probe(&self, p: &Probe) -> Result<(RgbImage, Pinhole), String> {
+        let (probe, view, pinhole) = self.probe_view(p)?;
+        let img = crate::run::render_shared(&probe, &view, Traversal::Bvh)?;
+        Ok((crate::output::rgb8(&img), pinhole))
+    }
+
+    /// [`Observer::probe`] rendered as it is read ([`LazyImage`]).
+    pub(crate) fn probe_lazy(&self, p: &Probe) -> Result<(LazyImage, Pinhole), String> {
+        let (probe, view, pinhole) = self.probe_view(p)?;
+        Ok((LazyImage::new(probe, view)?, pinhole))
+    }
+
+    /// The probe `p`'s fixture (its kept objects), its view, and the
+    /// measurements' model of its camera.
+    fn probe_view(&self, p: &Probe) -> Result<(crate::fixture::Fixture, View, Pinhole), String> {
         let (look_at, hfov_deg, (width, height)) = (p.look_at, p.hfov_deg, p.size);
         let aspect = f64::from(width) / f64::from(height);
         // libm: a probe renders the same pixels on every platform.
@@ -143,7 +158,6 @@ impl Observer<'_> {
                 ..Overrides::default()
             },
         )?;
-        let img = crate::run::render_shared(&probe, &view, Traversal::Bvh)?;
         let pinhole = Pinhole::looking_at(
             self.camera_x(),
             look_at,
@@ -153,7 +167,7 @@ impl Observer<'_> {
         )
         .and_then(|p| p.moving(velocity, self.kinematics()))
         .ok_or("degenerate probe camera")?;
-        Ok((crate::output::rgb8(&img), pinhole))
+        Ok((probe, view, pinhole))
     }
 
     /// Renders only the objects `keep` through the fixture's own camera

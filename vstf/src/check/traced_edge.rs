@@ -3,9 +3,10 @@
 //! camera onto a known plane, and fitted by a polynomial; values read off
 //! the fit carry the fit's prediction error.
 
+use crate::check::lazy::LazyImage;
 use crate::check::probe::{Effort, Probe};
 use crate::check::row::Reading;
-use crate::measure::{self, Pinhole, PolyFit, Scan};
+use crate::measure::{self, Pinhole, Pixels, PolyFit, Scan};
 use crate::observer::{background, is_background, Observer};
 use glam::DVec3;
 use image::RgbImage;
@@ -22,7 +23,7 @@ pub(super) struct EdgeTrace {
 
 /// Traces an edge down the image rows onto a plane (see [`EdgeTrace`]).
 pub(super) fn trace_rows(
-    img: &RgbImage,
+    img: &(impl Pixels + ?Sized),
     camera: &Pinhole,
     plane: measure::Plane,
     find: impl Fn(Scan) -> Option<f64>,
@@ -31,7 +32,7 @@ pub(super) fn trace_rows(
 ) -> EdgeTrace {
     let mut points = Vec::new();
     let mut fp = Vec::new();
-    for y in 0..img.height() {
+    for y in 0..img.dimensions().1 {
         let scan = Scan {
             horizontal: true,
             at: y,
@@ -57,11 +58,12 @@ pub(super) fn trace_rows(
     EdgeTrace { points, footprint }
 }
 
-/// A probe render ready for tracing edges: the image, the measurements'
-/// own model of its camera, and the fixture's background colour.
-pub(super) struct ProbeImage {
+/// A probe render ready for tracing edges: the image (whole, or rendered
+/// as it is read), the measurements' own model of its camera, and the
+/// fixture's background colour.
+pub(super) struct ProbeImage<I = RgbImage> {
     /// The probe image.
-    pub img: RgbImage,
+    pub img: I,
     /// The measurements' model of the probe camera.
     pub camera: Pinhole,
     bg: DVec3,
@@ -110,19 +112,63 @@ impl ProbeImage {
         margin: f64,
         effort: &Effort,
     ) -> Result<ProbeImage, String> {
-        let (look_at, hfov_deg) = setup.aim(keep, margin)?;
-        ProbeImage::render(
-            setup,
-            &Probe {
-                keep,
-                look_at,
-                hfov_deg,
-                size: (effort.probe, effort.probe),
-                spp: effort.spp,
-            },
-        )
+        ProbeImage::render(setup, &aimed(setup, keep, margin, effort)?)
+    }
+}
+
+impl ProbeImage<LazyImage> {
+    /// [`ProbeImage::aimed`], rendered as it is read: for edges traced
+    /// from the side ([`ProbeImage::fit`]), which never read the
+    /// objects' insides.
+    pub(super) fn aimed_lazy(
+        setup: &Observer,
+        keep: &[&str],
+        margin: f64,
+        effort: &Effort,
+    ) -> Result<ProbeImage<LazyImage>, String> {
+        let (img, camera) = setup.probe_lazy(&aimed(setup, keep, margin, effort)?)?;
+        Ok(ProbeImage {
+            img,
+            camera,
+            bg: background(setup.fixture),
+        })
     }
 
+    /// [`ProbeImage::fit`], failing if a tile it read could not be rendered.
+    pub(super) fn fit_checked(
+        &self,
+        on: &OnPlane<impl Fn(DVec3) -> (f64, f64)>,
+        sweep: Sweep,
+        inside: impl Fn(DVec3) -> bool,
+        effort: &Effort,
+    ) -> Result<Edge, String> {
+        let fitted = self.fit(on, sweep, inside, effort);
+        match self.img.failure() {
+            Some(failure) => Err(failure),
+            None => fitted,
+        }
+    }
+}
+
+/// A square probe at `effort` aimed at the objects `keep`, covering them
+/// with `margin` (fraction) to spare ([`Observer::aim`]).
+fn aimed<'k>(
+    setup: &Observer,
+    keep: &'k [&'k str],
+    margin: f64,
+    effort: &Effort,
+) -> Result<Probe<'k>, String> {
+    let (look_at, hfov_deg) = setup.aim(keep, margin)?;
+    Ok(Probe {
+        keep,
+        look_at,
+        hfov_deg,
+        size: (effort.probe, effort.probe),
+        spp: effort.spp,
+    })
+}
+
+impl<I: Pixels> ProbeImage<I> {
     /// Rows scanned rightwards from the left border.
     pub(super) fn sweep_rightwards(&self) -> Sweep {
         Sweep { from: 0, step: 1 }
@@ -131,7 +177,7 @@ impl ProbeImage {
     /// Rows scanned leftwards from the right border.
     pub(super) fn sweep_leftwards(&self) -> Sweep {
         Sweep {
-            from: i64::from(self.img.width()) - 1,
+            from: i64::from(self.img.dimensions().0) - 1,
             step: -1,
         }
     }
@@ -205,5 +251,56 @@ impl Edge {
     /// The edge's position at height `x`.
     pub(super) fn at(&self, x: f64) -> Reading {
         self.combine(&[(1.0, x)])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fixture::Fixture;
+    use crate::measure::Plane;
+    use std::path::Path;
+
+    #[test]
+    fn an_edge_traced_on_a_lazy_probe_is_the_whole_probes_and_skips_the_inside() {
+        let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/flange.json");
+        let f = Fixture::load(&file).unwrap();
+        let setup = Observer {
+            fixture: &f,
+            model: crate::observer::fixture_model(&f),
+            camera_t: f.spec.camera.t,
+        };
+        let effort = Effort { probe: 256, spp: 1 };
+        let keep = ["flange"];
+        let whole = ProbeImage::aimed(&setup, &keep, 0.15, &effort).unwrap();
+        let lazy = ProbeImage::aimed_lazy(&setup, &keep, 0.15, &effort).unwrap();
+        let on = OnPlane {
+            plane: Plane::z(2.0),
+            coords: |q: DVec3| (q.y, q.x),
+            range: (-1e9, 1e9),
+            degree: 2,
+        };
+        for (sweep, lazy_sweep) in [
+            (whole.sweep_rightwards(), lazy.sweep_rightwards()),
+            (whole.sweep_leftwards(), lazy.sweep_leftwards()),
+        ] {
+            let a = whole.trace(&on, sweep, whole.background());
+            let b = lazy.trace(&on, lazy_sweep, lazy.background());
+            assert!(!a.points.is_empty());
+            assert_eq!(format!("{:?}", a.points), format!("{:?}", b.points));
+            assert_eq!(a.footprint.to_bits(), b.footprint.to_bits());
+        }
+        assert_eq!(lazy.img.failure(), None);
+        // Both sides traced, and still the inside was never rendered.
+        let (done, all) = lazy.img.rendered();
+        assert!(done < all, "{done} of {all} tiles rendered");
+        // Negative control: a trace on the wrong plane reads other points.
+        let off = OnPlane {
+            plane: Plane::z(0.0),
+            ..on
+        };
+        let c = lazy.trace(&off, lazy.sweep_rightwards(), lazy.background());
+        let a = whole.trace(&on, whole.sweep_rightwards(), whole.background());
+        assert_ne!(format!("{:?}", a.points), format!("{:?}", c.points));
     }
 }

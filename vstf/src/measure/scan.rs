@@ -14,6 +14,25 @@ pub fn color(img: &RgbImage, x: u32, y: u32) -> DVec3 {
     DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2])) / 255.0
 }
 
+/// An image the scans read pixel by pixel: an [`RgbImage`], or one whose
+/// pixels are made as they are first read.
+pub trait Pixels {
+    /// Width and height, pixels.
+    fn dimensions(&self) -> (u32, u32);
+    /// The colour of pixel (x, y) in [0, 1]^3 ([`color`]).
+    fn color(&self, x: u32, y: u32) -> DVec3;
+}
+
+impl Pixels for RgbImage {
+    fn dimensions(&self) -> (u32, u32) {
+        RgbImage::dimensions(self)
+    }
+
+    fn color(&self, x: u32, y: u32) -> DVec3 {
+        color(self, x, y)
+    }
+}
+
 /// A line of pixels to scan: a row (`horizontal`) or a column, at index `at`.
 #[derive(Clone, Copy, Debug)]
 pub struct Scan {
@@ -24,19 +43,16 @@ pub struct Scan {
 }
 
 impl Scan {
-    fn len(&self, img: &RgbImage) -> i64 {
-        i64::from(if self.horizontal {
-            img.width()
-        } else {
-            img.height()
-        })
+    fn len(&self, img: &(impl Pixels + ?Sized)) -> i64 {
+        let (w, h) = img.dimensions();
+        i64::from(if self.horizontal { w } else { h })
     }
 
-    fn get(&self, img: &RgbImage, i: i64) -> DVec3 {
+    fn get(&self, img: &(impl Pixels + ?Sized), i: i64) -> DVec3 {
         if self.horizontal {
-            color(img, i as u32, self.at)
+            img.color(i as u32, self.at)
         } else {
-            color(img, self.at, i as u32)
+            img.color(self.at, i as u32)
         }
     }
 
@@ -61,7 +77,7 @@ const HALF: i64 = 3;
 /// image, or the colours just beyond the window are not flat (another edge
 /// nearby), so that the area method would be biased.
 pub fn edge(
-    img: &RgbImage,
+    img: &(impl Pixels + ?Sized),
     scan: Scan,
     from: i64,
     step: i64,

@@ -165,7 +165,7 @@ fn plane_edge(
             p.level, e.view, range.0, range.1
         )
     })?;
-    let probe = ProbeImage::aimed(setup, keep, e.margin, effort)?;
+    let probe = ProbeImage::aimed_lazy(setup, keep, e.margin, effort)?;
     let on = OnPlane {
         plane: plane_of(p.plane),
         coords: |q: DVec3| (along.of(q), read.of(q)),
@@ -177,7 +177,7 @@ fn plane_edge(
         _ => probe.sweep_leftwards(),
     };
     let fitted = probe
-        .fit(&on, sweep, probe.background(), effort)
+        .fit_checked(&on, sweep, probe.background(), effort)
         .map_err(|err| format!("the edge is not visible in view {:?}: {err}", e.view))?;
     let reading = fitted.at(p.level);
     let shift = seen.shift(s, &at);
