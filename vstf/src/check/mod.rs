@@ -24,7 +24,6 @@ pub mod findings;
 pub mod row;
 
 mod cropped;
-mod lazy;
 mod path;
 mod probe;
 mod traced_edge;

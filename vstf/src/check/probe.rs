@@ -9,14 +9,15 @@
 //! view sees; the full view is rendered for the report.
 
 use crate::check::findings::ViewReport;
-use crate::check::lazy::LazyImage;
 use crate::fixture::solve::line_of_sight;
 use crate::fixture::{Overrides, View};
 use crate::measure::{self, Pinhole};
 use crate::observer::{is_background, Observer};
+use crate::run::LazyImage;
 use glam::DVec3;
 use image::RgbImage;
 use renderer::Traversal;
+use std::sync::Arc;
 
 /// A box of pixels: first column, first row, last column, last row.
 type PixelBox = (u32, u32, u32, u32);
@@ -128,9 +129,9 @@ impl Observer<'_> {
     }
 
     /// [`Observer::probe`] rendered as it is read ([`LazyImage`]).
-    pub(crate) fn probe_lazy(&self, p: &Probe) -> Result<(LazyImage, Pinhole), String> {
+    pub(crate) fn probe_lazy(&self, p: &Probe) -> Result<(Arc<LazyImage>, Pinhole), String> {
         let (probe, view, pinhole) = self.probe_view(p)?;
-        Ok((LazyImage::new(probe, view)?, pinhole))
+        Ok((crate::run::render_lazy(&probe, &view)?, pinhole))
     }
 
     /// The probe `p`'s fixture (its kept objects), its view, and the
@@ -224,28 +225,50 @@ impl Observer<'_> {
     fn probe_render(
         &self,
         mut probe: crate::fixture::Fixture,
-        (width, height): (u32, u32),
+        size: (u32, u32),
         (spp, max_depth): (u32, u32),
         window: Option<renderer::Window>,
     ) -> Result<(RgbImage, Pinhole), String> {
-        let image = &mut probe.spec.image;
-        (image.shutter, image.seed, image.max_depth, image.shadows) = (0.0, 1, max_depth, false);
-        let view = crate::fixture::View {
+        let view = View {
             window,
-            ..crate::run::view(
-                &probe,
-                &Overrides {
-                    model: Some(self.model),
-                    camera_t: Some(self.camera_t),
-                    width: Some(width),
-                    height: Some(height),
-                    spp: Some(spp),
-                    ..Overrides::default()
-                },
-            )?
+            ..self.measuring_view(&mut probe, size, (spp, max_depth))?
         };
         let img = crate::run::render_shared(&probe, &view, Traversal::Bvh)?;
-        Ok((crate::output::rgb8(&img), self.pinhole((width, height))?))
+        Ok((crate::output::rgb8(&img), self.pinhole(size)?))
+    }
+
+    /// [`Observer::measuring_render`], rendered as it is read ([`LazyImage`]).
+    pub(crate) fn measuring_lazy(
+        &self,
+        keep: &[&str],
+        size: (u32, u32),
+        spp: u32,
+    ) -> Result<(Arc<LazyImage>, Pinhole), String> {
+        let mut probe = self.fixture.only(keep).map_err(|e| e.to_string())?;
+        let view = self.measuring_view(&mut probe, size, (spp, 0))?;
+        Ok((crate::run::render_lazy(&probe, &view)?, self.pinhole(size)?))
+    }
+
+    /// The view of `probe` through the camera at this observer's time,
+    /// model and size, without shutter time or shadows (which it takes off
+    /// `probe`).
+    fn measuring_view(
+        &self,
+        probe: &mut crate::fixture::Fixture,
+        (width, height): (u32, u32),
+        (spp, max_depth): (u32, u32),
+    ) -> Result<View, String> {
+        let image = &mut probe.spec.image;
+        (image.shutter, image.seed, image.max_depth, image.shadows) = (0.0, 1, max_depth, false);
+        let overrides = Overrides {
+            model: Some(self.model),
+            camera_t: Some(self.camera_t),
+            width: Some(width),
+            height: Some(height),
+            spp: Some(spp),
+            ..Overrides::default()
+        };
+        Ok(crate::run::view(probe, &overrides)?)
     }
 
     /// Aims a probe at the kept objects: a coarse wide render finds their

@@ -3,13 +3,14 @@
 //! camera onto a known plane, and fitted by a polynomial; values read off
 //! the fit carry the fit's prediction error.
 
-use crate::check::lazy::LazyImage;
 use crate::check::probe::{Effort, Probe};
 use crate::check::row::Reading;
 use crate::measure::{self, Pinhole, Pixels, PolyFit, Scan};
 use crate::observer::{background, is_background, Observer};
+use crate::run::LazyImage;
 use glam::DVec3;
 use image::RgbImage;
+use std::sync::Arc;
 
 /// An edge traced down the image: for every row, the sub-pixel boundary
 /// found by `find`, mapped onto `plane`, as (height coordinate, position
@@ -116,7 +117,7 @@ impl ProbeImage {
     }
 }
 
-impl ProbeImage<LazyImage> {
+impl ProbeImage<Arc<LazyImage>> {
     /// [`ProbeImage::aimed`], rendered as it is read: for edges traced
     /// from the side ([`ProbeImage::fit`]), which never read the
     /// objects' insides.
@@ -125,7 +126,7 @@ impl ProbeImage<LazyImage> {
         keep: &[&str],
         margin: f64,
         effort: &Effort,
-    ) -> Result<ProbeImage<LazyImage>, String> {
+    ) -> Result<ProbeImage<Arc<LazyImage>>, String> {
         let (img, camera) = setup.probe_lazy(&aimed(setup, keep, margin, effort)?)?;
         Ok(ProbeImage {
             img,
@@ -133,20 +134,19 @@ impl ProbeImage<LazyImage> {
             bg: background(setup.fixture),
         })
     }
+}
 
-    /// [`ProbeImage::fit`], failing if a tile it read could not be rendered.
-    pub(super) fn fit_checked(
-        &self,
-        on: &OnPlane<impl Fn(DVec3) -> (f64, f64)>,
-        sweep: Sweep,
-        inside: impl Fn(DVec3) -> bool,
-        effort: &Effort,
-    ) -> Result<Edge, String> {
-        let fitted = self.fit(on, sweep, inside, effort);
-        match self.img.failure() {
-            Some(failure) => Err(failure),
-            None => fitted,
-        }
+impl Pixels for LazyImage {
+    fn dimensions(&self) -> (u32, u32) {
+        LazyImage::dimensions(self)
+    }
+
+    fn color(&self, x: u32, y: u32) -> DVec3 {
+        measure::color_of(self.pixel(x, y))
+    }
+
+    fn failure(&self) -> Option<String> {
+        LazyImage::failure(self)
     }
 }
 
@@ -214,7 +214,11 @@ impl<I: Pixels> ProbeImage<I> {
         inside: impl Fn(DVec3) -> bool,
         effort: &Effort,
     ) -> Result<Edge, String> {
-        Edge::fit(&self.trace(on, sweep, inside), on.degree, effort)
+        let trace = self.trace(on, sweep, inside);
+        match self.img.failure() {
+            Some(failure) => Err(failure),
+            None => Edge::fit(&trace, on.degree, effort),
+        }
     }
 }
 

@@ -19,5 +19,5 @@ pub mod sky;
 
 pub use fit::PolyFit;
 pub use pinhole::{azimuth, elevation, Kinematics, Pinhole, Plane};
-pub use scan::{color, edge, Pixels, Scan};
+pub use scan::{color, color_of, edge, Pixels, Scan};
 pub use sky::SkyCircle;

@@ -10,8 +10,13 @@ use image::RgbImage;
 
 /// The colour of pixel (x, y) in [0, 1]^3.
 pub fn color(img: &RgbImage, x: u32, y: u32) -> DVec3 {
-    let p = img.get_pixel(x, y).0;
-    DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2])) / 255.0
+    color_of(*img.get_pixel(x, y))
+}
+
+/// An 8-bit pixel's colour in [0, 1]^3.
+pub fn color_of(p: image::Rgb<u8>) -> DVec3 {
+    let [r, g, b] = p.0;
+    DVec3::new(f64::from(r), f64::from(g), f64::from(b)) / 255.0
 }
 
 /// An image the scans read pixel by pixel: an [`RgbImage`], or one whose
@@ -21,6 +26,25 @@ pub trait Pixels {
     fn dimensions(&self) -> (u32, u32);
     /// The colour of pixel (x, y) in [0, 1]^3 ([`color`]).
     fn color(&self, x: u32, y: u32) -> DVec3;
+    /// Why a pixel read could not be made (then read as black), if one
+    /// could not: a reading made on the image is not to be trusted.
+    fn failure(&self) -> Option<String> {
+        None
+    }
+}
+
+impl<P: Pixels + ?Sized> Pixels for std::sync::Arc<P> {
+    fn dimensions(&self) -> (u32, u32) {
+        P::dimensions(self)
+    }
+
+    fn color(&self, x: u32, y: u32) -> DVec3 {
+        P::color(self, x, y)
+    }
+
+    fn failure(&self) -> Option<String> {
+        P::failure(self)
+    }
 }
 
 impl Pixels for RgbImage {

@@ -15,6 +15,7 @@
 //! several times over (a one-off timing on the benchmark's 1M tori gave
 //! about a quarter of a second).
 
+use super::lazy::LazyImage;
 use crate::fixture::{Fixture, View};
 use renderer::{Image, Traversal};
 use std::collections::HashMap;
@@ -38,6 +39,7 @@ pub struct Renders {
 struct Kept {
     bytes: usize,
     images: HashMap<u128, Arc<Image>>,
+    lazy: HashMap<u128, Arc<LazyImage>>,
     reused: usize,
 }
 
@@ -118,6 +120,26 @@ impl Renders {
         if kept.bytes + size <= self.budget && !kept.images.contains_key(&key.0) {
             kept.bytes += size;
             kept.images.insert(key.0, Arc::clone(image));
+        }
+    }
+
+    /// The image rendered as it is read kept under `key`, if any.
+    pub(crate) fn get_lazy(&self, key: Key) -> Option<Arc<LazyImage>> {
+        let mut kept = self.lock();
+        let image = kept.lazy.get(&key.0).cloned();
+        kept.reused += usize::from(image.is_some());
+        image
+    }
+
+    /// Keeps `image`, rendered as it is read, under `key` while the budget
+    /// allows (counted as its whole image, and its database as nothing:
+    /// a probe's few kept objects).
+    pub(crate) fn keep_lazy(&self, key: Key, image: &Arc<LazyImage>) {
+        let size = image.bytes();
+        let mut kept = self.lock();
+        if kept.bytes + size <= self.budget && !kept.lazy.contains_key(&key.0) {
+            kept.bytes += size;
+            kept.lazy.insert(key.0, Arc::clone(image));
         }
     }
 

@@ -7,7 +7,9 @@ use renderer::{Database, Image, Traversal};
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
+mod lazy;
 mod memo;
+pub use lazy::LazyImage;
 pub use memo::Renders;
 
 /// A fixture's database for one Lorentz setting.
@@ -46,6 +48,19 @@ pub fn render_shared(
     let db = database(fixture, view.model.lorentz, traversal)?;
     let image = Arc::new(render_with(&db, fixture, view)?);
     fixture.renders.keep(key, &image);
+    Ok(image)
+}
+
+/// `view` of `fixture` rendered as it is read ([`LazyImage`]), or the one
+/// this fixture (or a copy of it) made already for the same scene, spec
+/// and view, with what of it was read so far.
+pub fn render_lazy(fixture: &Fixture, view: &View) -> Result<Arc<LazyImage>, Error> {
+    let key = fixture.renders.key(fixture, view, Traversal::Bvh);
+    if let Some(image) = fixture.renders.get_lazy(key) {
+        return Ok(image);
+    }
+    let image = Arc::new(LazyImage::new(fixture.clone(), *view)?);
+    fixture.renders.keep_lazy(key, &image);
     Ok(image)
 }
 

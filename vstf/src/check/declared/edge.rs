@@ -11,11 +11,12 @@ use crate::fixture::checks::{
     edge_ends, view_size, Axis, AxisValue, CornerEdge, CornerSpec, EdgeAt, EdgeSpec, ImageReport,
     PixelAxis, PlaneAt, Side, ViewSpec,
 };
-use crate::measure::{self, azimuth, elevation, Pinhole, Plane, Scan};
+use crate::measure::{self, azimuth, elevation, Pinhole, Pixels, Plane, Scan};
 use crate::observer::{background, is_background, Observer};
 use crate::oracle::{first_root, Retarded};
+use crate::run::LazyImage;
 use glam::DVec3;
-use image::RgbImage;
+use std::sync::Arc;
 
 /// A row's reading, its expectation and unit.
 type Row = (Reading, f64, Unit);
@@ -177,7 +178,7 @@ fn plane_edge(
         _ => probe.sweep_leftwards(),
     };
     let fitted = probe
-        .fit_checked(&on, sweep, probe.background(), effort)
+        .fit(&on, sweep, probe.background(), effort)
         .map_err(|err| format!("the edge is not visible in view {:?}: {err}", e.view))?;
     let reading = fitted.at(p.level);
     let shift = seen.shift(s, &at);
@@ -189,16 +190,18 @@ fn plane_edge(
 }
 
 /// The measuring image of a view: the kept objects through the
-/// fixture's own camera at the view's size, and the measurements' pinhole.
+/// fixture's own camera at the view's size, rendered as it is read (a
+/// line's scan reads it from the side to the edge), and the measurement's
+/// pinhole.
 fn measuring_image(
     setup: &Observer,
     keep: &[&str],
     view: &ViewSpec,
     effort: &Effort,
-) -> Result<(RgbImage, Pinhole, u32), String> {
+) -> Result<(Arc<LazyImage>, Pinhole, u32), String> {
     let size = view_size(&setup.fixture.spec, view);
     let spp = view.spp.unwrap_or(effort.spp);
-    let (img, camera) = setup.measuring_render(keep, size, spp)?;
+    let (img, camera) = setup.measuring_lazy(keep, size, spp)?;
     Ok((img, camera, spp))
 }
 
@@ -206,16 +209,17 @@ fn measuring_image(
 /// across the image, as (line centre, boundary) pairs for the lines whose
 /// centre lies in `range`, scanned from `side`, and fitted by a polynomial
 /// of `degree` with the area method's resolution at `spp` as its floor.
-struct LineTrace<'i> {
-    img: &'i RgbImage,
+struct LineTrace<'i, I> {
+    img: &'i I,
     bg: DVec3,
     horizontal: bool,
     range: (f64, f64),
 }
 
-impl LineTrace<'_> {
+impl<I: Pixels> LineTrace<'_, I> {
     fn fit(&self, side: Side, degree: usize, spp: u32) -> Result<Edge, String> {
-        let (w, h) = (i64::from(self.img.width()), i64::from(self.img.height()));
+        let (w, h) = self.img.dimensions();
+        let (w, h) = (i64::from(w), i64::from(h));
         let sweep = match side {
             Side::Left | Side::Top => Sweep { from: 0, step: 1 },
             Side::Right => Sweep {
@@ -227,11 +231,7 @@ impl LineTrace<'_> {
                 step: -1,
             },
         };
-        let lines = if self.horizontal {
-            self.img.height()
-        } else {
-            self.img.width()
-        };
+        let lines = if self.horizontal { h as u32 } else { w as u32 };
         let points: Vec<(f64, f64)> = (0..lines)
             .filter(|&i| (self.range.0..=self.range.1).contains(&(f64::from(i) + 0.5)))
             .filter_map(|i| {
@@ -245,6 +245,9 @@ impl LineTrace<'_> {
                 Some((f64::from(i) + 0.5, u))
             })
             .collect();
+        if let Some(failure) = self.img.failure() {
+            return Err(failure);
+        }
         let trace = EdgeTrace {
             points,
             footprint: 1.0,
@@ -344,7 +347,7 @@ fn wrapped(d: f64) -> f64 {
 /// One edge of a corner, fitted (position against height in the image),
 /// and the keyframe bound of its path at the corner, pixels.
 fn corner_edge(
-    img: &RgbImage,
+    img: &Arc<LazyImage>,
     camera: &Pinhole,
     described: &Observer,
     object: &str,

@@ -1,13 +1,11 @@
-//! Probe images rendered as they are read: an edge traced from the image's
+//! Images rendered as they are read: an edge traced from the image's
 //! side reads the background up to the edge and a few pixels past it,
-//! never the object's inside, so only the tiles a scan reaches are
+//! never the object's inside, so only the tiles a scan reaches need be
 //! rendered. A tile is a window of the whole render
 //! ([`renderer::render_window`]), each pixel the same to the bit, so a
 //! reading is the same as on the whole image.
 
 use crate::fixture::{Fixture, View};
-use crate::measure::{color, Pixels};
-use glam::DVec3;
 use image::RgbImage;
 use renderer::{Database, Traversal, Window};
 use std::sync::{Mutex, OnceLock};
@@ -17,7 +15,7 @@ const TILE: u32 = 16;
 
 /// A view of a fixture whose pixels are rendered a tile at a time, as
 /// they are first read.
-pub(crate) struct LazyImage {
+pub struct LazyImage {
     fixture: Fixture,
     view: View,
     db: Database,
@@ -29,9 +27,8 @@ pub(crate) struct LazyImage {
 
 impl LazyImage {
     /// `view` of `fixture`, its database built, nothing rendered yet.
-    pub(crate) fn new(fixture: Fixture, view: View) -> Result<LazyImage, String> {
-        let db = crate::run::database(&fixture, view.model.lorentz, Traversal::Bvh)
-            .map_err(|e| e.to_string())?;
+    pub(crate) fn new(fixture: Fixture, view: View) -> Result<LazyImage, crate::error::Error> {
+        let db = crate::run::database(&fixture, view.model.lorentz, Traversal::Bvh)?;
         let (w, h) = (view.camera.width, view.camera.height);
         let count = w.div_ceil(TILE) as usize * h.div_ceil(TILE) as usize;
         Ok(LazyImage {
@@ -54,6 +51,22 @@ impl LazyImage {
     pub(crate) fn rendered(&self) -> (usize, usize) {
         let done = self.tiles.iter().filter(|t| t.get().is_some()).count();
         (done, self.tiles.len())
+    }
+
+    /// Width and height, pixels.
+    pub(crate) fn dimensions(&self) -> (u32, u32) {
+        (self.view.camera.width, self.view.camera.height)
+    }
+
+    /// Pixel (x, y) in 8 bits, its tile rendered if it was not.
+    pub(crate) fn pixel(&self, x: u32, y: u32) -> image::Rgb<u8> {
+        *self.tile(x, y).get_pixel(x % TILE, y % TILE)
+    }
+
+    /// Bytes of the pixels once all are rendered.
+    pub(crate) fn bytes(&self) -> usize {
+        let (w, h) = self.dimensions();
+        3 * w as usize * h as usize
     }
 
     /// The tile holding pixel (x, y), rendered if it was not.
@@ -86,16 +99,6 @@ impl LazyImage {
     }
 }
 
-impl Pixels for LazyImage {
-    fn dimensions(&self) -> (u32, u32) {
-        (self.view.camera.width, self.view.camera.height)
-    }
-
-    fn color(&self, x: u32, y: u32) -> DVec3 {
-        color(self.tile(x, y), x % TILE, y % TILE)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -117,14 +120,31 @@ mod tests {
         let lazy = LazyImage::new(f.clone(), view).unwrap();
         assert_eq!(lazy.rendered(), (0, 3 * 3));
         // One pixel renders one tile (the last, cut to the image).
-        assert_eq!(lazy.color(44, 36), color(&whole, 44, 36));
+        assert_eq!(lazy.pixel(44, 36), *whole.get_pixel(44, 36));
         assert_eq!(lazy.rendered(), (1, 9));
-        for (x, y, _) in whole.enumerate_pixels() {
-            assert_eq!(lazy.color(x, y), color(&whole, x, y), "({x}, {y})");
+        for (x, y, p) in whole.enumerate_pixels() {
+            assert_eq!(lazy.pixel(x, y), *p, "({x}, {y})");
         }
         assert_eq!(lazy.rendered(), (9, 9));
         assert_eq!(lazy.failure(), None);
         // Negative control: the image is not one colour.
         assert!(whole.pixels().any(|p| p != whole.get_pixel(0, 0)));
+    }
+
+    #[test]
+    fn a_lazy_image_is_shared_by_the_renders_of_the_same_view() {
+        let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fixtures/flange.json");
+        let f = Fixture::load(&file).unwrap();
+        let view = crate::run::view(&f, &Overrides::default()).unwrap();
+        let a = crate::run::render_lazy(&f, &view).unwrap();
+        let b = crate::run::render_lazy(&f.clone(), &view).unwrap();
+        assert!(std::sync::Arc::ptr_eq(&a, &b));
+        // Negative control: another time is another image.
+        let later = View {
+            camera_t: view.camera_t + 1.0,
+            ..view
+        };
+        let c = crate::run::render_lazy(&f, &later).unwrap();
+        assert!(!std::sync::Arc::ptr_eq(&a, &c));
     }
 }
