@@ -159,7 +159,7 @@ fn flange_feet(setup: &Observer, band: &str, fl: &Flange, effort: &Effort) -> Re
     let (model, tc, cam) = (setup.model, setup.camera_t, setup.camera_x());
     let m = motion_of(setup.fixture, fl.front, model)?;
     let (start, v) = (m.start, m.velocity);
-    let probe = ProbeImage::aimed(setup, &[fl.front, fl.side], 0.1, effort)?;
+    let probe = ProbeImage::aimed_lazy(setup, &[fl.front, fl.side], 0.1, effort)?;
     let front = OnPlane {
         plane: Plane::z(start.x.z + DEPTH),
         coords: |p: DVec3| (p.y - start.x.y, p.x),

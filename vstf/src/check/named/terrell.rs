@@ -64,7 +64,7 @@ fn measure_edges(
     effort: &Effort,
 ) -> Result<Edges, String> {
     let name = &setup.fixture.name;
-    let probe = ProbeImage::aimed(setup, &[faces.front, faces.side], 0.1, effort)?;
+    let probe = ProbeImage::aimed_lazy(setup, &[faces.front, faces.side], 0.1, effort)?;
     let start = m.start;
     let face = |z: f64| OnPlane {
         plane: Plane::z(z),
