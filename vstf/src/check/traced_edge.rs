@@ -127,7 +127,15 @@ impl ProbeImage<Arc<LazyImage>> {
         margin: f64,
         effort: &Effort,
     ) -> Result<ProbeImage<Arc<LazyImage>>, String> {
-        let (img, camera) = setup.probe_lazy(&aimed(setup, keep, margin, effort)?)?;
+        ProbeImage::render_lazy(setup, &aimed(setup, keep, margin, effort)?)
+    }
+
+    /// [`ProbeImage::render`], rendered as it is read.
+    pub(super) fn render_lazy(
+        setup: &Observer,
+        p: &Probe,
+    ) -> Result<ProbeImage<Arc<LazyImage>>, String> {
+        let (img, camera) = setup.probe_lazy(p)?;
         Ok(ProbeImage {
             img,
             camera,

@@ -7,7 +7,7 @@ use super::cases::{azimuth_deg, CUBE, NAME};
 use crate::check::probe::{Effort, Probe};
 use crate::check::row::Reading;
 use crate::check::traced_edge::{Edge, EdgeTrace, OnPlane, ProbeImage};
-use crate::measure::{Pinhole, Plane};
+use crate::measure::{Pinhole, Pixels, Plane};
 use crate::observer::{background, is_background, Observer};
 use glam::DVec3;
 
@@ -24,7 +24,7 @@ fn measure_edge(
     let look = DVec3::new(libm::sin(a), 0.0, -libm::cos(a));
     // A strip 3 degrees wide and 0.6 tall across the horizon, half the
     // probe's width: the angle targets (0.05 deg) are met ~100x over.
-    let mut probe = ProbeImage::render(
+    let mut probe = ProbeImage::render_lazy(
         setup,
         &Probe {
             keep: &[CUBE],
@@ -50,6 +50,9 @@ fn measure_edge(
         degree: 2,
     };
     let trace = probe.trace(&sphere, sweep, probe.background());
+    if let Some(failure) = probe.img.failure() {
+        return Err(format!("{NAME}: edge near {near_deg:.2} deg: {failure}"));
+    }
     let trace = EdgeTrace {
         footprint: measure_angular(&probe.camera),
         ..trace
