@@ -328,14 +328,7 @@ fn bvh_and_brute_force_agree_on_many_moving_boxes() {
 fn a_render_gives_each_pixel_the_colour_it_has_alone() {
     for name in workspace_tests::repo().fixture_names() {
         let f = workspace_tests::fixture(&name);
-        // An accelerating camera (rocket) a while after its worldline's
-        // start, so that the shutter's proper time lies on it.
-        let camera_t = f
-            .spec
-            .camera
-            .worldline
-            .as_ref()
-            .map(|_| f.spec.camera.t + 10.0);
+        let camera_t = on_its_worldline(&f);
         let mut view = vstf::run::view(
             &f,
             &Overrides {
@@ -377,6 +370,16 @@ fn a_render_gives_each_pixel_the_colour_it_has_alone() {
     }
 }
 
+/// For an accelerating camera (rocket), a time a while after its
+/// worldline's start, so that a shutter's proper time lies on it.
+fn on_its_worldline(f: &vstf::fixture::Fixture) -> Option<f64> {
+    f.spec
+        .camera
+        .worldline
+        .as_ref()
+        .map(|_| f.spec.camera.t + 10.0)
+}
+
 /// The pixels (x0..x0 + w, y0..y0 + h) of `img`, as bits.
 fn crop(img: &Image, (x0, y0, w, h): (u32, u32, u32, u32)) -> Vec<[u64; 3]> {
     let all = bits(img);
@@ -394,16 +397,10 @@ fn a_window_of_a_frame_is_that_part_of_the_whole_frame() {
     let mut shifted_differs = false;
     for name in workspace_tests::repo().fixture_names() {
         let f = workspace_tests::fixture(&name);
-        let camera_t = f
-            .spec
-            .camera
-            .worldline
-            .as_ref()
-            .map(|_| f.spec.camera.t + 10.0);
         let overrides = Overrides {
             width: Some(23),
             height: Some(17),
-            camera_t,
+            camera_t: on_its_worldline(&f),
             ..Default::default()
         };
         let mut view = vstf::run::view(&f, &overrides).unwrap();
