@@ -106,7 +106,9 @@ impl ProbeImage {
     }
 
     /// A square probe at `effort` aimed at the objects `keep`, covering
-    /// them with `margin` (fraction) to spare ([`Observer::aim`]).
+    /// them with `margin` (fraction) to spare ([`Observer::aim`]), whole:
+    /// what [`ProbeImage::aimed_lazy`] is tested against.
+    #[cfg(test)]
     pub(super) fn aimed(
         setup: &Observer,
         keep: &[&str],
@@ -118,9 +120,11 @@ impl ProbeImage {
 }
 
 impl ProbeImage<Arc<LazyImage>> {
-    /// [`ProbeImage::aimed`], rendered as it is read: for edges traced
-    /// from the side ([`ProbeImage::fit`]), which never read the
-    /// objects' insides.
+    /// A square probe at `effort` aimed at the objects `keep`, covering
+    /// them with `margin` (fraction) to spare ([`Observer::aim`]), rendered
+    /// as it is read: for edges traced from the side
+    /// ([`ProbeImage::fit`]) and outlines, which never read the objects'
+    /// insides.
     pub(super) fn aimed_lazy(
         setup: &Observer,
         keep: &[&str],

@@ -26,7 +26,7 @@ use crate::check::row::{Reading, Unit};
 use crate::check::traced_edge::ProbeImage;
 use crate::fixture::checks::OutlineRead;
 use crate::fixture::Fixture;
-use crate::measure::{azimuth, edge, elevation, Scan, SkyCircle};
+use crate::measure::{azimuth, edge, elevation, Pixels, Scan, SkyCircle};
 use crate::observer::Observer;
 use crate::oracle::{aberrate_lorentz, extremes_on_loop, to_frame_of};
 use glam::DVec3;
@@ -44,18 +44,15 @@ fn measured_outline(
     object: &str,
     effort: &Effort,
 ) -> Result<(Vec<DVec3>, Vec<DVec3>, f64), String> {
-    let probe = ProbeImage::aimed(setup, &[object], 0.15, effort)?;
+    let probe = ProbeImage::aimed_lazy(setup, &[object], 0.15, effort)?;
     let (img, camera) = (&probe.img, &probe.camera);
     let outside = probe.background();
-    let (w, h) = (i64::from(img.width()), i64::from(img.height()));
+    let (width, height) = img.dimensions();
+    let (w, h) = (i64::from(width), i64::from(height));
     let (mut rows, mut cols) = (Vec::new(), Vec::new());
     for horizontal in [true, false] {
         let dirs = if horizontal { &mut rows } else { &mut cols };
-        let (n, len) = if horizontal {
-            (img.height(), w)
-        } else {
-            (img.width(), h)
-        };
+        let (n, len) = if horizontal { (height, w) } else { (width, h) };
         for at in 0..n {
             let scan = Scan { horizontal, at };
             for (from, step) in [(0, 1), (len - 1, -1)] {
@@ -66,12 +63,11 @@ fn measured_outline(
             }
         }
     }
+    if let Some(failure) = img.failure() {
+        return Err(failure);
+    }
     let px = camera
-        .angular_footprint(
-            f64::from(img.width()) / 2.0,
-            f64::from(img.height()) / 2.0,
-            true,
-        )
+        .angular_footprint(f64::from(width) / 2.0, f64::from(height) / 2.0, true)
         .to_degrees();
     Ok((rows, cols, px))
 }
