@@ -94,6 +94,8 @@ pub(super) struct Sweep {
     pub step: i64,
 }
 
+/// Whole probes: what the lazy ones are tested against.
+#[cfg(test)]
 impl ProbeImage {
     /// Renders the probe `p` of `setup`.
     pub(super) fn render(setup: &Observer, p: &Probe) -> Result<ProbeImage, String> {
@@ -106,9 +108,7 @@ impl ProbeImage {
     }
 
     /// A square probe at `effort` aimed at the objects `keep`, covering
-    /// them with `margin` (fraction) to spare ([`Observer::aim`]), whole:
-    /// what [`ProbeImage::aimed_lazy`] is tested against.
-    #[cfg(test)]
+    /// them with `margin` (fraction) to spare ([`Observer::aim`]), whole.
     pub(super) fn aimed(
         setup: &Observer,
         keep: &[&str],
@@ -134,7 +134,7 @@ impl ProbeImage<Arc<LazyImage>> {
         ProbeImage::render_lazy(setup, &aimed(setup, keep, margin, effort)?)
     }
 
-    /// [`ProbeImage::render`], rendered as it is read.
+    /// Renders the probe `p` of `setup` as it is read.
     pub(super) fn render_lazy(
         setup: &Observer,
         p: &Probe,

@@ -13,9 +13,11 @@ use crate::check::probe::{Effort, Probe};
 use crate::check::row::{difference, Quantity, Reading, Unit};
 use crate::check::traced_edge::{OnPlane, ProbeImage, Sweep};
 use crate::fixture::{Fixture, MeshSpec};
-use crate::measure::Plane;
+use crate::measure::{Pixels, Plane};
 use crate::observer::{fixture_model, Observer};
+use crate::run::LazyImage;
 use glam::DVec3;
+use std::sync::Arc;
 
 const NAME: &str = "stage";
 
@@ -146,8 +148,8 @@ fn strip(
     look_at: DVec3,
     hfov_deg: f64,
     effort: &Effort,
-) -> Result<ProbeImage, String> {
-    ProbeImage::render(
+) -> Result<ProbeImage<Arc<LazyImage>>, String> {
+    ProbeImage::render_lazy(
         setup,
         &Probe {
             keep,
@@ -201,7 +203,7 @@ fn grid_bar_right_edges(
             .ok_or("bar out of view")?
             .0
             .floor() as i64)
-            .clamp(0, i64::from(probe.img.width()) - 1);
+            .clamp(0, i64::from(probe.img.dimensions().0) - 1);
         Ok(probe
             .fit(&stage, Sweep { from, step: -1 }, probe.background(), effort)
             .map_err(|e| format!("{NAME}: bar x = {k}: {e}"))?
