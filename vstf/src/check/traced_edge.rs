@@ -201,21 +201,26 @@ impl<I: Pixels> ProbeImage<I> {
     }
 
     /// Traces an edge down the rows: each row scanned along `sweep` up to
-    /// where `inside` stops holding, onto the plane of `on`.
+    /// where `inside` stops holding, onto the plane of `on`; an error if a
+    /// pixel read could not be rendered ([`Pixels::failure`]).
     pub(super) fn trace(
         &self,
         on: &OnPlane<impl Fn(DVec3) -> (f64, f64)>,
         sweep: Sweep,
         inside: impl Fn(DVec3) -> bool,
-    ) -> EdgeTrace {
-        trace_rows(
+    ) -> Result<EdgeTrace, String> {
+        let trace = trace_rows(
             &self.img,
             &self.camera,
             on.plane,
             |s| measure::edge(&self.img, s, sweep.from, sweep.step, &inside),
             &on.coords,
             on.range,
-        )
+        );
+        match self.img.failure() {
+            Some(failure) => Err(failure),
+            None => Ok(trace),
+        }
     }
 
     /// Traces an edge (see [`ProbeImage::trace`]) and fits it.
@@ -226,11 +231,7 @@ impl<I: Pixels> ProbeImage<I> {
         inside: impl Fn(DVec3) -> bool,
         effort: &Effort,
     ) -> Result<Edge, String> {
-        let trace = self.trace(on, sweep, inside);
-        match self.img.failure() {
-            Some(failure) => Err(failure),
-            None => Edge::fit(&trace, on.degree, effort),
-        }
+        Edge::fit(&self.trace(on, sweep, inside)?, on.degree, effort)
     }
 }
 
@@ -300,8 +301,8 @@ mod tests {
             (whole.sweep_rightwards(), lazy.sweep_rightwards()),
             (whole.sweep_leftwards(), lazy.sweep_leftwards()),
         ] {
-            let a = whole.trace(&on, sweep, whole.background());
-            let b = lazy.trace(&on, lazy_sweep, lazy.background());
+            let a = whole.trace(&on, sweep, whole.background()).unwrap();
+            let b = lazy.trace(&on, lazy_sweep, lazy.background()).unwrap();
             assert!(!a.points.is_empty());
             assert_eq!(format!("{:?}", a.points), format!("{:?}", b.points));
             assert_eq!(a.footprint.to_bits(), b.footprint.to_bits());
@@ -315,8 +316,12 @@ mod tests {
             plane: Plane::z(0.0),
             ..on
         };
-        let c = lazy.trace(&off, lazy.sweep_rightwards(), lazy.background());
-        let a = whole.trace(&on, whole.sweep_rightwards(), whole.background());
+        let c = lazy
+            .trace(&off, lazy.sweep_rightwards(), lazy.background())
+            .unwrap();
+        let a = whole
+            .trace(&on, whole.sweep_rightwards(), whole.background())
+            .unwrap();
         assert_ne!(format!("{:?}", a.points), format!("{:?}", c.points));
     }
 }

@@ -7,7 +7,7 @@ use super::cases::{azimuth_deg, CUBE, NAME};
 use crate::check::probe::{Effort, Probe};
 use crate::check::row::Reading;
 use crate::check::traced_edge::{Edge, EdgeTrace, OnPlane, ProbeImage};
-use crate::measure::{Pinhole, Pixels, Plane};
+use crate::measure::{Pinhole, Plane};
 use crate::observer::{background, is_background, Observer};
 use glam::DVec3;
 
@@ -49,10 +49,9 @@ fn measure_edge(
         range: (-0.25, 0.25),
         degree: 2,
     };
-    let trace = probe.trace(&sphere, sweep, probe.background());
-    if let Some(failure) = probe.img.failure() {
-        return Err(format!("{NAME}: edge near {near_deg:.2} deg: {failure}"));
-    }
+    let trace = probe
+        .trace(&sphere, sweep, probe.background())
+        .map_err(|e| format!("{NAME}: edge near {near_deg:.2} deg: {e}"))?;
     let trace = EdgeTrace {
         footprint: measure_angular(&probe.camera),
         ..trace
