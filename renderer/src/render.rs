@@ -68,24 +68,35 @@ impl Image {
     /// the top left; values are stored linearly (no sRGB curve) so that a
     /// pixel's value is proportional to the coverage of an edge.
     pub fn to_rgb8_bytes(&self) -> Vec<u8> {
-        let q = |v: f64| round_half_up(v.clamp(0.0, 1.0) * 255.0);
         let mut out = Vec::with_capacity(3 * self.pixels.len());
-        for c in &self.pixels {
-            out.extend([q(c.x), q(c.y), q(c.z)]);
+        let mut quads = self.pixels.chunks_exact(4);
+        for quad in &mut quads {
+            let bytes: [u8; 12] = std::array::from_fn(|i| channel_byte(quad[i / 3][i % 3]));
+            out.extend_from_slice(&bytes);
+        }
+        for c in quads.remainder() {
+            out.extend([c.x, c.y, c.z].map(channel_byte));
         }
         out
     }
 }
 
-/// `x` in [0, 255] rounded to the nearest integer, halves away from zero:
-/// `x.round() as u8` to the bit (a NaN gives 0), without the call to the
-/// software `round` that the x86-64 baseline (no SSE4.1) makes of it. The
-/// fraction `x - trunc(x)` is exact: below 1 it is `x` itself, above it
-/// `x` and `trunc(x)` are within a factor of two (Sterbenz).
-fn round_half_up(x: f64) -> u8 {
-    let whole = x as u8;
-    let up = x - f64::from(whole) >= 0.5;
-    whole + u8::from(up)
+/// 2^52: added to a double in [0, 2^52), it leaves that double's nearest
+/// integer in the sum's low mantissa bits.
+const ROUNDING: f64 = 4_503_599_627_370_496.0;
+
+/// A linear channel value as a byte: clamped to [0, 1] (a NaN to 0),
+/// scaled to [0, 255] and rounded to the nearest integer, halves up;
+/// `(v.clamp(0.0, 1.0) * 255.0).round() as u8` to the bit. The rounding
+/// adds 2^52, which rounds to the nearest integer, ties to even, in every
+/// lane at once; a tie rounded down (the value exactly half an even
+/// integer's step above it, an exact difference) goes up by one.
+#[inline(always)]
+fn channel_byte(v: f64) -> u8 {
+    let x = if v >= 0.0 { v.min(1.0) } else { 0.0 } * 255.0;
+    let sum = x + ROUNDING;
+    let nearest = sum.to_bits() as u8;
+    nearest + u8::from(x - (sum - ROUNDING) == 0.5)
 }
 
 /// The shader for one render of `frame`: the database, the scene's light
@@ -403,36 +414,91 @@ pub fn pixel_traced<T: Trace>(
 
 #[cfg(test)]
 mod tests {
-    use super::round_half_up;
+    use super::channel_byte;
 
-    /// Every value of [0, 255] near an integer or a half (the steps of
-    /// `to_rgb8_bytes`), and a sweep between, rounds as `f64::round`.
-    #[test]
-    fn rounding_a_channel_matches_f64_round_at_every_half_and_integer() {
-        let mut xs = vec![0.0, 255.0, f64::MIN_POSITIVE, 1e-300];
-        for k in 0..=510u32 {
-            let x = f64::from(k) / 2.0;
-            let below = f64::from_bits(x.to_bits().saturating_sub(1));
-            let above = f64::from_bits(x.to_bits() + 1);
-            xs.extend(
-                [below, x, above]
-                    .into_iter()
-                    .filter(|x| (0.0..=255.0).contains(x)),
-            );
-        }
-        xs.extend((0..100_000).map(|i| f64::from(i) * 255.0 / 99_999.0));
-        for x in xs {
-            assert_eq!(round_half_up(x), x.round() as u8, "{x:e}");
-        }
-        assert_eq!(round_half_up(f64::NAN), f64::NAN.round() as u8);
+    /// `f64::round` on the clamped, scaled value: the definition.
+    fn rounded(v: f64) -> u8 {
+        (v.clamp(0.0, 1.0) * 255.0).round() as u8
     }
 
-    /// Negative control: adding a half and truncating, the usual shortcut,
-    /// rounds the largest double below one half up.
+    /// Channel values whose scaled value lies at or beside an integer or a
+    /// half (the steps of `to_rgb8_bytes`), a sweep between, and values out
+    /// of range or infinite.
+    fn awkward_channels() -> Vec<f64> {
+        let mut vs = vec![
+            0.0,
+            -0.0,
+            1.0,
+            f64::MIN_POSITIVE,
+            1e-300,
+            -1e-300,
+            1.5,
+            -3.0,
+        ];
+        vs.extend([f64::INFINITY, f64::NEG_INFINITY, 1.0f64.next_up()]);
+        for k in 0..=510u32 {
+            let x = f64::from(k) / 2.0;
+            for scaled in [x.next_down(), x, x.next_up()] {
+                let v = scaled / 255.0;
+                vs.extend([v.next_down(), v, v.next_up()]);
+            }
+        }
+        vs.extend((0..100_000).map(|i| f64::from(i) / 99_999.0));
+        vs
+    }
+
+    /// Each of them, and NaN, gives the byte of `f64::round`.
     #[test]
-    fn adding_a_half_before_truncating_is_not_the_same_rounding() {
-        let x = 0.5f64.next_down();
-        assert_eq!(round_half_up(x), 0);
-        assert_eq!((x + 0.5) as u8, 1);
+    fn a_channel_byte_is_the_rounded_channel_at_every_half_and_integer() {
+        for v in awkward_channels() {
+            assert_eq!(channel_byte(v), rounded(v), "{v:e}");
+        }
+        assert_eq!(channel_byte(f64::NAN), 0);
+        assert_eq!(channel_byte(-f64::NAN), 0);
+    }
+
+    /// Negative control: the sum's rounding alone (ties to even, without
+    /// the step up) gives another byte at some of them: the scaled values
+    /// that are an even integer and a half, exactly.
+    #[test]
+    fn ties_to_even_are_not_the_same_rounding() {
+        let ties_to_even = |v: f64| {
+            let x = if v >= 0.0 { v.min(1.0) } else { 0.0 } * 255.0;
+            (x + super::ROUNDING).to_bits() as u8
+        };
+        let differ: Vec<f64> = (awkward_channels().into_iter())
+            .filter(|&v| ties_to_even(v) != rounded(v))
+            .collect();
+        assert!(differ.len() > 10, "{}", differ.len());
+        assert!(differ.iter().all(|&v| (v * 255.0 - 0.5) % 2.0 == 0.0));
+    }
+
+    /// A whole image: every pixel's three bytes in order, the pixels past
+    /// the last four included; the control, one channel changed, differs.
+    #[test]
+    fn an_image_gives_each_pixels_rounded_bytes_in_order() {
+        use glam::DVec3;
+        let pixels: Vec<DVec3> = (0..4 * 7 + 3)
+            .map(|i| {
+                DVec3::new(
+                    f64::from(i) / 30.0,
+                    1.0 - f64::from(i) / 25.0,
+                    f64::from(i % 3) * 0.5,
+                )
+            })
+            .collect();
+        let image = super::Image {
+            width: 31,
+            height: 1,
+            pixels: pixels.clone(),
+        };
+        let bytes: Vec<u8> = pixels
+            .iter()
+            .flat_map(|c| c.to_array().map(rounded))
+            .collect();
+        assert_eq!(image.to_rgb8_bytes(), bytes);
+        let mut other = image.clone();
+        other.pixels[30].z = 0.2;
+        assert_ne!(other.to_rgb8_bytes(), bytes);
     }
 }
