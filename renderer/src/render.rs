@@ -88,9 +88,9 @@ const ROUNDING: f64 = 4_503_599_627_370_496.0;
 /// A linear channel value as a byte: clamped to [0, 1] (a NaN to 0),
 /// scaled to [0, 255] and rounded to the nearest integer, halves up;
 /// `(v.clamp(0.0, 1.0) * 255.0).round() as u8` to the bit. The rounding
-/// adds 2^52, which rounds to the nearest integer, ties to even, in every
-/// lane at once; a tie rounded down (the value exactly half an even
-/// integer's step above it, an exact difference) goes up by one.
+/// adds 2^52, which rounds to the nearest integer, ties to even, with no
+/// branch; a tie rounded down to the even integer below (x exactly a half
+/// above it, a difference computed exactly) goes up by one.
 #[inline(always)]
 fn channel_byte(v: f64) -> u8 {
     let x = if v >= 0.0 { v.min(1.0) } else { 0.0 } * 255.0;
