@@ -142,6 +142,13 @@ impl Database {
         self.packing = packing;
     }
 
+    /// How many time slices the top level of the hierarchy holds: each
+    /// stretch of an object's path cut so that a slice sweeps about its
+    /// own size (one for an object at rest).
+    pub fn time_slice_count(&self) -> usize {
+        self.accel.slice_count()
+    }
+
     /// Whether [`Database::closest_hits`] searches in packets.
     pub fn packs(&self) -> bool {
         let slices = self.accel.slice_count().max(1);

@@ -150,6 +150,49 @@ fn brute_force_packets_are_single_rays() {
     assert_packets_find_single_hits(&mut db, &rays[..400], "brute force");
 }
 
+/// One moving object is one stretch, searched without the top level's
+/// time slices (its own hierarchy culls every ray they would): its hits,
+/// one ray at a time and in packets, are brute force's, on rays aimed at
+/// it across its sweep and on rays from anywhere.
+#[test]
+fn one_moving_object_in_many_time_slices_finds_brute_forces_hits() {
+    let scene = vstf::bench::tessellated_boxes(1, 6, 12);
+    let mut db = Database::build(&scene, false).unwrap();
+    assert!(
+        db.time_slice_count() >= 16,
+        "{} slices: the box hardly moves",
+        db.time_slice_count()
+    );
+    let mut brute = Database::build(&scene, false).unwrap();
+    brute.set_traversal(Traversal::BruteForce);
+    let Motion::Extrusion { start, extrusion } = scene.objects[0].motion else {
+        unreachable!("the box moves uniformly")
+    };
+    let place = |t: f64| start.x + extrusion.x * ((t - start.t) / extrusion.t);
+    let mut rng = SplitMix64::new(13);
+    let mut rays = Vec::new();
+    for k in 0..4000 {
+        let at = Event::new(rng.range(-300.0, 100.0), point(&mut rng, 80.0));
+        // Where the box was when its light left it, roughly (or anywhere).
+        let seen = (0..3).fold(at.t, |t, _| at.t - (place(t) - at.x).length());
+        let aim = match k % 4 {
+            3 => unit(&mut rng),
+            _ => place(seen) + point(&mut rng, 1.0) - at.x,
+        };
+        rays.push(Ray::backwards(at, aim.normalize(), LightSpeed::Finite));
+    }
+    let mut hits = std::collections::BTreeSet::new();
+    for (k, ray) in rays.iter().enumerate() {
+        let exact = brute.closest_hit(ray, (0.0, f64::INFINITY));
+        let found = db.closest_hit(ray, (0.0, f64::INFINITY));
+        assert_eq!(format!("{found:?}"), format!("{exact:?}"), "ray {k}");
+        hits.extend(exact.map(|h| format!("{:?}", h.primitive)));
+    }
+    // Enough of the box is hit for the comparison to mean something.
+    assert!(hits.len() > 100, "{} prisms hit", hits.len());
+    assert_packets_find_single_hits(&mut db, &rays, "one moving box");
+}
+
 /// `Packing::Auto` packs rays over a large mesh in few time slices, and not
 /// over many small moving objects; `Single` and `Packets` are obeyed.
 #[test]
