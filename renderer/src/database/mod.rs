@@ -151,7 +151,7 @@ impl Database {
 
     /// Whether [`Database::closest_hits`] searches in packets.
     pub fn packs(&self) -> bool {
-        let slices = self.accel.slice_count().max(1);
+        let slices = self.time_slice_count().max(1);
         self.traversal == Traversal::Bvh
             && match self.packing {
                 Packing::Single => false,
