@@ -90,6 +90,7 @@ mod shading;
 mod spacetime;
 mod trace;
 
+pub use accel::SimdLevel;
 pub use camera::{Attitude, Camera, CameraWorldline, Kinematics, Model};
 pub use color::{
     band_nm, chromaticity, cmf, xyz, xyz_to_rgb, Spectrum, SpectrumError, SpectrumErrorKind,

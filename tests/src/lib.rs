@@ -4,7 +4,15 @@ use glam::DVec3;
 use renderer::{
     Event, FourVector, Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject, Shape,
 };
-use renderer::{Spacetime, SplitMix64};
+use renderer::{Image, Spacetime, SplitMix64};
+
+/// An image's pixels as their bits, for comparisons to the bit.
+pub fn bits(img: &Image) -> Vec<[u64; 3]> {
+    img.pixels
+        .iter()
+        .map(|p| p.to_array().map(f64::to_bits))
+        .collect()
+}
 
 /// A random point in the cube [-r, r]^3.
 pub fn point(rng: &mut SplitMix64, r: f64) -> DVec3 {

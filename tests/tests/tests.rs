@@ -19,11 +19,13 @@ mod spacetime {
 }
 
 /// Whole images and the shading of their pixels: light-speed models,
-/// determinism, retarded positions, shadows, mirrors, motion blur and clocks.
+/// determinism (whatever the vector level), retarded positions, shadows,
+/// mirrors, motion blur and clocks.
 mod rendering {
     mod bent;
     mod render;
     mod shading;
+    mod simd;
     mod sky;
     mod textures;
 }

@@ -7,7 +7,7 @@
 
 use super::bvh::{rounding_margin, Bounds4};
 use super::packet::{Lanes, PACKET};
-use super::wide::{down, up, AxisRay, SliceBvh, SpaceBvh};
+use super::wide::{at_level, down, up, AxisRay, Simd8, SimdLevel, SliceBvh, SpaceBvh};
 use crate::geometry::{comoving_line, nearer, Hit};
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
@@ -235,9 +235,24 @@ impl TwoLevel {
     /// first, side by side there) and the range shrunk to the best hit so
     /// far, and returns the best hit among them. With one stretch, the top
     /// level is passed by: the stretch's own boxes cull every ray its time
-    /// slices would.
+    /// slices would. The node tests run at the widest vector level `simd`
+    /// allows on this machine.
     pub(crate) fn closest(
         &self,
+        simd: SimdLevel,
+        o: DVec4,
+        d: DVec4,
+        range: (f64, f64),
+        leaf: impl FnMut(u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
+    ) -> Option<Hit> {
+        at_level!(simd, |s| self.closest_at(s, o, d, range, leaf))
+    }
+
+    /// [`TwoLevel::closest`] at the vector level of `s`.
+    #[inline(always)]
+    fn closest_at<S: Simd8>(
+        &self,
+        s: S,
         o: DVec4,
         d: DVec4,
         range: (f64, f64),
@@ -246,48 +261,50 @@ impl TwoLevel {
         if let [stretch] = &self.stretches[..] {
             // Its own hierarchy culls every ray the top level would.
             let r = window(stretch.span, o, d, range)?;
-            return stretch
-                .bvh
-                .closest(stretch.to_comoving(o, d), r, |first, items, r| {
-                    leaf(0, first, items, r)
-                });
+            let ray = stretch.to_comoving(o, d);
+            return (stretch.bvh).closest(s, ray, r, |first, items, r| leaf(0, first, items, r));
         }
         let inv = DVec4::ONE / d;
         let mut searched = Searched::default();
         let ray = (o.to_array(), inv.to_array());
-        self.top.closest(ray, range, |_, slices, r| {
-            let mut best: Option<Hit> = None;
-            for &k in slices {
-                let r = (r.0, best.map_or(r.1, |b| b.s));
-                let slice = &self.slices[k as usize];
-                let stretch = &self.stretches[slice.stretch as usize];
-                if !slice.alone {
-                    // A leaf of the top level may hold several slices, and
-                    // its box theirs. The first slice of a stretch the ray
-                    // enters has the stretch searched over all its lab
-                    // times: its hierarchy's boxes hold its prisms at every
-                    // one of them, so it is entered only where the ray
-                    // meets the stretch's sweep, and each prism is tested
-                    // once.
-                    if searched.holds(slice.stretch) || !slice.entered(o, inv, r) {
-                        continue;
+        self.top.closest(
+            s,
+            ray,
+            range,
+            #[inline(always)]
+            |_, slices, r| {
+                let mut best: Option<Hit> = None;
+                for &k in slices {
+                    let r = (r.0, best.map_or(r.1, |b| b.s));
+                    let slice = &self.slices[k as usize];
+                    let stretch = &self.stretches[slice.stretch as usize];
+                    if !slice.alone {
+                        // A leaf of the top level may hold several slices, and
+                        // its box theirs. The first slice of a stretch the ray
+                        // enters has the stretch searched over all its lab
+                        // times: its hierarchy's boxes hold its prisms at every
+                        // one of them, so it is entered only where the ray
+                        // meets the stretch's sweep, and each prism is tested
+                        // once.
+                        if searched.holds(slice.stretch) || !slice.entered(o, inv, r) {
+                            continue;
+                        }
+                        searched.add(slice.stretch);
                     }
-                    searched.add(slice.stretch);
-                }
-                let Some(r) = window(stretch.span, o, d, r) else {
-                    continue;
-                };
-                let found = stretch
-                    .bvh
-                    .closest(stretch.to_comoving(o, d), r, |first, items, r| {
+                    let Some(r) = window(stretch.span, o, d, r) else {
+                        continue;
+                    };
+                    let ray = stretch.to_comoving(o, d);
+                    let found = (stretch.bvh).closest(s, ray, r, |first, items, r| {
                         leaf(slice.stretch, first, items, r)
                     });
-                if let Some(h) = found {
-                    best = Some(nearer(best, h));
+                    if let Some(h) = found {
+                        best = Some(nearer(best, h));
+                    }
                 }
-            }
-            best
-        })
+                best
+            },
+        )
     }
 
     /// [`TwoLevel::closest`] for a packet of lab rays `rays[i]` = (o, d),
@@ -295,13 +312,27 @@ impl TwoLevel {
     /// range)` is called for ray i. Each ray finds the hit it finds alone.
     pub(crate) fn closest_packet(
         &self,
+        simd: SimdLevel,
+        rays: &[(DVec4, DVec4); PACKET],
+        lanes: Lanes,
+        range: (f64, f64),
+        leaf: impl FnMut(usize, u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
+    ) -> [Option<Hit>; PACKET] {
+        at_level!(simd, |s| self.packet_at(s, rays, lanes, range, leaf))
+    }
+
+    /// [`TwoLevel::closest_packet`] at the vector level of `s`.
+    #[inline(always)]
+    fn packet_at<S: Simd8>(
+        &self,
+        s: S,
         rays: &[(DVec4, DVec4); PACKET],
         lanes: Lanes,
         range: (f64, f64),
         mut leaf: impl FnMut(usize, u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> [Option<Hit>; PACKET] {
         if let [stretch] = &self.stretches[..] {
-            return only_stretch(stretch, rays, lanes, range, |i, first, items, r| {
+            return only_stretch(s, stretch, rays, lanes, range, |i, first, items, r| {
                 leaf(i, 0, first, items, r)
             });
         }
@@ -313,8 +344,13 @@ impl TwoLevel {
         }
         let mut searched: [Searched; PACKET] = Default::default();
         let mut best: [Option<Hit>; PACKET] = [None; PACKET];
-        self.top
-            .search_packet(&lab, lanes, range, |slices, lanes, hi| {
+        self.top.search_packet(
+            s,
+            &lab,
+            lanes,
+            range,
+            #[inline(always)]
+            |slices, lanes, hi| {
                 for &k in slices {
                     let slice = &self.slices[k as usize];
                     let stretch = &self.stretches[slice.stretch as usize];
@@ -341,6 +377,7 @@ impl TwoLevel {
                         continue;
                     }
                     let found = stretch.bvh.closest_packet(
+                        s,
                         &comoving,
                         lanes,
                         &windows,
@@ -353,7 +390,8 @@ impl TwoLevel {
                         }
                     }
                 }
-            });
+            },
+        );
         best
     }
 }
@@ -365,7 +403,8 @@ impl TwoLevel {
 /// stretch's lab times. (For a moving object the top level holds many
 /// slices, and the packet's search of them cost a tenth of its frame.)
 #[inline(always)]
-fn only_stretch(
+fn only_stretch<S: Simd8>(
+    s: S,
     stretch: &StretchBvh,
     rays: &[(DVec4, DVec4); PACKET],
     lanes: Lanes,
@@ -385,7 +424,9 @@ fn only_stretch(
     if lanes.is_empty() {
         return [None; PACKET];
     }
-    stretch.bvh.closest_packet(&comoving, lanes, &windows, leaf)
+    stretch
+        .bvh
+        .closest_packet(s, &comoving, lanes, &windows, leaf)
 }
 
 #[cfg(test)]
@@ -411,6 +452,22 @@ mod tests {
     /// slices inside their boxes: its stretch's tree is searched once, so
     /// each prism is tested once (searched slice by slice, each would be
     /// tested once a slice, 45 times).
+    /// How many times the ray `o + s d` tests each prism, the same at
+    /// every vector level the machine has.
+    fn times_tested(two: &TwoLevel, o: DVec4, d: DVec4) -> [u32; 20] {
+        let mut counts = SimdLevel::supported().into_iter().map(|level| {
+            let mut tested = [0; 20];
+            two.closest(level, o, d, (0.0, f64::INFINITY), |_, _, items, _| {
+                items.iter().for_each(|&p| tested[p as usize] += 1);
+                None
+            });
+            tested
+        });
+        let first = counts.next().unwrap_or_default();
+        counts.for_each(|c| assert_eq!(c, first));
+        first
+    }
+
     #[test]
     fn a_ray_crossing_a_moving_objects_slices_tests_each_prism_once() {
         let two = moving_cubes();
@@ -420,12 +477,7 @@ mod tests {
             DVec4::new(90.0, 0.0, 0.0, 100.0),
             DVec4::new(-0.9, 0.0, 1e-3, -1.0),
         );
-        let mut tested = [0; 20];
-        two.closest(o, d, (0.0, f64::INFINITY), |_, _, items, _| {
-            items.iter().for_each(|&p| tested[p as usize] += 1);
-            None
-        });
-        assert_eq!(tested, [1; 20]);
+        assert_eq!(times_tested(&two, o, d), [1; 20]);
     }
 
     /// A ray at one lab time (infinite light speed) meets one slice of
@@ -437,11 +489,6 @@ mod tests {
             DVec4::new(45.0, 0.0, 5.0, 50.5),
             DVec4::new(0.0, 0.0, -1.0, 0.0),
         );
-        let mut tested = [0; 20];
-        two.closest(o, d, (0.0, f64::INFINITY), |_, _, items, _| {
-            items.iter().for_each(|&p| tested[p as usize] += 1);
-            None
-        });
-        assert_eq!(tested, [1; 20]);
+        assert_eq!(times_tested(&two, o, d), [1; 20]);
     }
 }

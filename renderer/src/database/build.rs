@@ -3,6 +3,7 @@
 
 use super::worldlines::{resolve_hyperbolic, shared_cuts, Resolved, Shared};
 use super::{ComovingMeshes, Database, Keyframed, ObjectRecord, Packing, Run, Stretch, Traversal};
+use crate::accel::SimdLevel;
 use crate::accel::{rounding_margin, StretchPrisms, TwoLevel};
 use crate::geometry::{
     self, extrude_between, piece, CornerRows, Pose, PreparedTet, PrismCorners, Sphere,
@@ -461,6 +462,7 @@ impl Database {
             spheres: b.spheres,
             traversal: Traversal::Bvh,
             packing: Packing::Auto,
+            simd: SimdLevel::default(),
             reach: OnceLock::new(),
         })
     }

@@ -12,7 +12,7 @@ pub(crate) use object::{ObjectRecord, Stretch};
 
 use comoving::ComovingMeshes;
 
-use crate::accel::{StretchPrisms, TwoLevel};
+use crate::accel::{SimdLevel, StretchPrisms, TwoLevel};
 use crate::geometry::{
     corner_order, corners_between, piece, Barycentric, CornerRows, Hit, PreparedTet, PrimitiveId,
     Prism, PrismCorners, Sphere, Tetrahedron,
@@ -100,6 +100,7 @@ pub struct Database {
     spheres: Vec<Sphere>,
     traversal: Traversal,
     packing: Packing,
+    simd: SimdLevel,
     /// The lab-space box of all geometry ever, found when first asked for.
     reach: OnceLock<(DVec3, DVec3)>,
 }
@@ -140,6 +141,14 @@ impl Database {
     /// Chooses how [`Database::closest_hits`] searches its rays.
     pub fn set_packing(&mut self, packing: Packing) {
         self.packing = packing;
+    }
+
+    /// Limits the vector level of the hierarchies' node tests: the widest
+    /// the machine has up to `level` (the default, [`SimdLevel::X86V3`],
+    /// takes AVX2 where there is one). Every level finds the same hits, to
+    /// the bit.
+    pub fn set_simd(&mut self, level: SimdLevel) {
+        self.simd = level;
     }
 
     /// How many time slices the top level of the hierarchy holds: each

@@ -115,6 +115,7 @@ impl Database {
             *l = (t.o, t.d);
         }
         self.accel.closest_packet(
+            self.simd,
             &lab,
             Lanes::first(rays.len()),
             range,
@@ -151,9 +152,10 @@ impl Database {
             }
             Traversal::Bvh => {
                 let (o, d) = (tester.o, tester.d);
-                self.accel.closest(o, d, range, |run, first, items, r| {
-                    tester.leaf(run, first, items, r)
-                })
+                self.accel
+                    .closest(self.simd, o, d, range, |run, first, items, r| {
+                        tester.leaf(run, first, items, r)
+                    })
             }
         }
     }

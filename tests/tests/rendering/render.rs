@@ -10,7 +10,7 @@ use renderer::{
 };
 use vstf::fixture::Overrides;
 use vstf::oracle::{retarded, PointWorldline};
-use workspace_tests::{object, scene, unit};
+use workspace_tests::{bits, object, scene, unit};
 
 fn small(model: Option<Model>) -> Overrides {
     Overrides {
@@ -19,13 +19,6 @@ fn small(model: Option<Model>) -> Overrides {
         height: Some(72),
         ..Overrides::default()
     }
-}
-
-fn bits(img: &Image) -> Vec<[u64; 3]> {
-    img.pixels
-        .iter()
-        .map(|p| p.to_array().map(f64::to_bits))
-        .collect()
 }
 
 #[test]

@@ -25,9 +25,14 @@
 
 mod build;
 mod packets;
+mod simd;
 mod traverse;
 mod wide_ray;
 
+#[cfg(target_arch = "x86_64")]
+pub(crate) use simd::v3;
+pub use simd::SimdLevel;
+pub(crate) use simd::{at_level, Baseline, Simd8};
 pub(crate) use traverse::AxisRay;
 
 use super::bvh::Child;

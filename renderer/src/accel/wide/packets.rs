@@ -3,13 +3,13 @@
 //! whose leaves are searched by the rays that reach them together (the top
 //! level's time slices, each a stretch's hierarchy the packet searches on).
 
+use super::simd::Simd8;
 use super::traverse::AxisRay;
 use super::wide_ray::WideRay;
 use super::{down, up, WideBvh, WideNode, WIDTH};
 use crate::accel::bvh::{Child, Stack};
 use crate::accel::packet::{Lanes, PACKET};
 use crate::geometry::{nearer, Hit};
-use wide::f32x8;
 
 impl<const A: usize> WideBvh<A> {
     /// [`WideBvh::closest`] for a packet of rays `rays[i]` = (o, 1/d), those
@@ -17,9 +17,12 @@ impl<const A: usize> WideBvh<A> {
     /// later: `leaf(i, first, items, range)` is called for ray i at every
     /// leaf whose box it enters (or, once it has entered its parent, that
     /// another ray of the packet enters no later than its best hit so far).
-    /// Each ray finds the hit it finds alone.
-    pub(crate) fn closest_packet(
+    /// Each ray finds the hit it finds alone. The node tests run at the
+    /// vector level of `simd`.
+    #[inline(always)]
+    pub(crate) fn closest_packet<S: Simd8>(
         &self,
+        simd: S,
         rays: &[AxisRay<A>; PACKET],
         lanes: Lanes,
         ranges: &[(f64, f64); PACKET],
@@ -30,10 +33,10 @@ impl<const A: usize> WideBvh<A> {
             return best; // no items
         }
         if let Some(i) = lanes.single() {
-            best[i] = self.closest(rays[i], ranges[i], |f, it, r| leaf(i, f, it, r));
+            best[i] = self.closest(simd, rays[i], ranges[i], |f, it, r| leaf(i, f, it, r));
             return best;
         }
-        let wide = wide_rays(rays);
+        let wide = wide_rays(simd, rays);
         // (Loops rather than `map`, which is not inlined here.)
         let (mut lo32, mut hi32) = ([0.0; PACKET], [0.0; PACKET]);
         for i in 0..PACKET {
@@ -91,8 +94,11 @@ impl<const A: usize> WideBvh<A> {
     /// their best hit so far); `hi[i]` is the upper end of ray i's range,
     /// which `leaf` lowers to the ray's best hit so far. The rays never
     /// part: a leaf's items are searched by the packet that reaches it.
-    pub(crate) fn search_packet(
+    /// The node tests run at the vector level of `simd`.
+    #[inline(always)]
+    pub(crate) fn search_packet<S: Simd8>(
         &self,
+        simd: S,
         rays: &[AxisRay<A>; PACKET],
         lanes: Lanes,
         range: (f64, f64),
@@ -106,7 +112,7 @@ impl<const A: usize> WideBvh<A> {
         if self.root.count > 0 {
             return leaf(self.leaf_items(self.root), lanes, &mut hi);
         }
-        let wide = wide_rays(rays);
+        let wide = wide_rays(simd, rays);
         // hi32[i] is hi[i] rounded up.
         let (lo32, mut hi32) = ([down(range.0); PACKET], [up(range.1); PACKET]);
         let mut stack = Stack::new();
@@ -135,8 +141,11 @@ impl<const A: usize> WideBvh<A> {
 /// The packet's rays prepared for the slab test. (A lane not searched
 /// holds some ray, never used.)
 #[inline(always)]
-fn wide_rays<const A: usize>(rays: &[AxisRay<A>; PACKET]) -> [WideRay<A>; PACKET] {
-    let ray = |i: usize| WideRay::new(rays[i].0, rays[i].1);
+fn wide_rays<const A: usize, S: Simd8>(
+    simd: S,
+    rays: &[AxisRay<A>; PACKET],
+) -> [WideRay<A, S>; PACKET] {
+    let ray = |i: usize| WideRay::new(simd, rays[i].0, rays[i].1);
     // Built in place (`map` would copy them).
     [ray(0), ray(1), ray(2), ray(3)]
 }
@@ -146,25 +155,28 @@ fn wide_rays<const A: usize>(rays: &[AxisRay<A>; PACKET]) -> [WideRay<A>; PACKET
 /// nearest child any entered, the others pushed (see
 /// [`nearest_first_of_packet`]).
 #[inline(always)]
-fn packet_enters<const A: usize>(
+fn packet_enters<const A: usize, S: Simd8>(
     node: &WideNode<A>,
-    wide: &[WideRay<A>; PACKET],
+    wide: &[WideRay<A, S>; PACKET],
     lanes: Lanes,
     (lo32, hi32): (&[f32; PACKET], &[f32; PACKET]),
     stack: &mut Stack<Waiting>,
 ) -> Option<Waiting> {
     // Per child, the least entry of the rays that enter it, and which rays
     // do: byte i of `by_ray` for ray i, bit c for child c.
-    let mut least = f32x8::splat(f32::INFINITY);
+    let s = wide[0].simd();
+    let infinity = s.splat(f32::INFINITY);
+    let mut least = infinity;
     let mut by_ray = 0u32;
     for (i, ray) in wide.iter().enumerate() {
         if lanes.holds(i) {
             let (entry, inside) = ray.enter_lanes(node, (lo32[i], hi32[i]));
-            least = least.fast_min(inside.blend(entry, f32x8::splat(f32::INFINITY)));
-            by_ray |= (inside.move_mask() as u32) << (8 * i);
+            // (min(least, entered), as minps(least, entered): neither is NaN.)
+            least = s.min_dropping_nan(s.select(inside, entry, infinity), least);
+            by_ray |= s.bits(inside) << (8 * i);
         }
     }
-    nearest_first_of_packet(node, least.to_array(), by_ray, stack)
+    nearest_first_of_packet(node, s.to_array(least), by_ray, stack)
 }
 
 /// A child waiting on a packet's stack: the rays that entered it and the

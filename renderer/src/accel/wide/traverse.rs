@@ -1,6 +1,7 @@
 //! Searching a wide hierarchy with one ray, nearest child first (packets
 //! in `packets`, which part into this search where one ray is left).
 
+use super::simd::Simd8;
 use super::wide_ray::WideRay;
 use super::{down, up, WideBvh, WideNode, NO_CHILD, WIDTH};
 use crate::accel::bvh::{Child, Stack};
@@ -18,9 +19,12 @@ impl<const A: usize> WideBvh<A> {
     /// the best hit so far, and returns the best hit among its items. The
     /// nearest entered child is searched first, the others wait on a
     /// stack. Ties go to the lower primitive, whatever the order. The
-    /// range starts at zero or later (see [`WideRay`]).
-    pub(crate) fn closest(
+    /// range starts at zero or later (see [`WideRay`]). The node tests run
+    /// at the vector level of `simd`.
+    #[inline(always)]
+    pub(crate) fn closest<S: Simd8>(
         &self,
+        simd: S,
         (o, inv): AxisRay<A>,
         range: (f64, f64),
         mut leaf: impl FnMut(u32, &[u32], (f64, f64)) -> Option<Hit>,
@@ -37,17 +41,17 @@ impl<const A: usize> WideBvh<A> {
         // No test of the root's own box: the root node tests its
         // children's (and a stretch's, the top level has tested the time
         // slice's).
-        let ray = WideRay::new(o, inv);
+        let ray = WideRay::new(simd, o, inv);
         self.closest_below((self.root, down(range.0)), &ray, range, leaf)
     }
 
     /// [`WideBvh::closest`] of `ray` in the subtree `start.0`, entered at
     /// `start.1` (in f32, rounded down).
     #[inline(always)]
-    pub(super) fn closest_below(
+    pub(super) fn closest_below<S: Simd8>(
         &self,
         start: (Child, f32),
-        ray: &WideRay<A>,
+        ray: &WideRay<A, S>,
         range: (f64, f64),
         mut leaf: impl FnMut(u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
@@ -130,6 +134,7 @@ fn nearest_first<const A: usize>(
 
 #[cfg(test)]
 mod tests {
+    use super::super::simd::{wider, Baseline};
     use super::super::test_support::{aimed_ray, f64_entry, random_box, Box64};
     use super::*;
     use crate::accel::bvh::Bounds4;
@@ -193,8 +198,8 @@ mod tests {
     /// Every item whose box a ray enters is tested, through the collapsed
     /// tree, for rays aimed at the items' corners, edges and faces: alone,
     /// in a packet that parts, and in a packet that searches leaves
-    /// together.
-    fn every_item_whose_box_the_ray_enters_is_tested<const A: usize>(seed: u64) {
+    /// together; at the vector level of `simd`.
+    fn every_item_whose_box_the_ray_enters_is_tested<const A: usize>(simd: impl Simd8, seed: u64) {
         let mut rng = SplitMix64::new(seed);
         let range = (0.0, f64::INFINITY);
         for scale in [0.05, 1.0, 1e5] {
@@ -205,20 +210,20 @@ mod tests {
                 let untested = || std::array::from_fn(|_| vec![false; items.len()]);
                 let mut tested: [Vec<bool>; PACKET] = untested();
                 for i in lanes.iter() {
-                    bvh.closest(rays[i], range, |_, leaf, _| {
+                    bvh.closest(simd, rays[i], range, |_, leaf, _| {
                         leaf.iter().for_each(|&k| tested[i][k as usize] = true);
                         None
                     });
                 }
                 assert_every_entered_item_tested(&items, &rays, lanes, &tested);
                 let mut tested = untested();
-                bvh.closest_packet(&rays, lanes, &[range; PACKET], |i, _, leaf, _| {
+                bvh.closest_packet(simd, &rays, lanes, &[range; PACKET], |i, _, leaf, _| {
                     leaf.iter().for_each(|&k| tested[i][k as usize] = true);
                     None
                 });
                 assert_every_entered_item_tested(&items, &rays, lanes, &tested);
                 let mut tested = untested();
-                bvh.search_packet(&rays, lanes, range, |leaf, reached, _| {
+                bvh.search_packet(simd, &rays, lanes, range, |leaf, reached, _| {
                     assert_eq!(reached.0 & !lanes.0, 0, "a ray outside the packet");
                     for i in reached.iter() {
                         leaf.iter().for_each(|&k| tested[i][k as usize] = true);
@@ -232,13 +237,19 @@ mod tests {
     /// Comoving space (x, y, z): a stretch's prisms.
     #[test]
     fn every_space_box_the_ray_enters_is_tested() {
-        every_item_whose_box_the_ray_enters_is_tested::<3>(22);
+        every_item_whose_box_the_ray_enters_is_tested::<3>(Baseline, 22);
+        if let Some(wider) = wider() {
+            every_item_whose_box_the_ray_enters_is_tested::<3>(wider, 22);
+        }
     }
 
     /// Spacetime (x, y, z, t): the top level's time slices.
     #[test]
     fn every_spacetime_box_the_ray_enters_is_tested() {
-        every_item_whose_box_the_ray_enters_is_tested::<4>(24);
+        every_item_whose_box_the_ray_enters_is_tested::<4>(Baseline, 24);
+        if let Some(wider) = wider() {
+            every_item_whose_box_the_ray_enters_is_tested::<4>(wider, 24);
+        }
     }
 
     /// The control: a search told its best hit so far lies short of every
@@ -251,6 +262,7 @@ mod tests {
         let rays = aimed_packet(&mut rng, &items, 1.0);
         let (mut leaves, mut reached) = (0, 0);
         bvh.search_packet(
+            Baseline,
             &rays,
             Lanes::first(PACKET),
             (0.0, f64::INFINITY),
@@ -260,6 +272,7 @@ mod tests {
             },
         );
         bvh.search_packet(
+            Baseline,
             &rays,
             Lanes::first(PACKET),
             (0.0, f64::INFINITY),

@@ -1,8 +1,8 @@
 //! The eight-lane f32 slab test of a ray against a node's boxes, made
 //! conservative.
 
+use super::simd::Simd8;
 use super::{down, up, WideNode, WIDTH};
-use wide::{f32x8, CmpLe};
 
 /// Relative margin of the f32 slab parameters: each is (face - origin) *
 /// (1/d) with three roundings to nearest of at most 2^-24 each (the
@@ -35,14 +35,16 @@ const TINY: f32 = f32::MIN_POSITIVE;
 /// that axis, which can cull a box only when, on that axis, the box's face
 /// lies within 2^-128 times the longest searched ray parameter of the
 /// origin.
-pub(super) struct WideRay<const A: usize> {
+pub(super) struct WideRay<const A: usize, S: Simd8> {
+    /// The vector level the test runs at.
+    simd: S,
     /// Per axis: the origin for the near faces and for the far faces, and
     /// 1/d for each, moved by [`MARGIN`] toward zero (near) and away from
     /// it (far).
-    near_o: [f32x8; A],
-    far_o: [f32x8; A],
-    near_inv: [f32x8; A],
-    far_inv: [f32x8; A],
+    near_o: [S::F; A],
+    far_o: [S::F; A],
+    near_inv: [S::F; A],
+    far_inv: [S::F; A],
     /// Per axis, the index into a node's faces (see [`WideNode::face`]) of
     /// the near face and of the far one (lower then upper when the
     /// direction is positive).
@@ -50,23 +52,26 @@ pub(super) struct WideRay<const A: usize> {
     far: [usize; A],
 }
 
-impl<const A: usize> WideRay<A> {
-    /// The ray `o + s d` given `o` and `inv` = 1/d.
+impl<const A: usize, S: Simd8> WideRay<A, S> {
+    /// The ray `o + s d` given `o` and `inv` = 1/d, tested at the level of
+    /// `simd`.
     #[inline(always)]
-    pub(super) fn new(o: [f64; A], inv: [f64; A]) -> WideRay<A> {
+    pub(super) fn new(simd: S, o: [f64; A], inv: [f64; A]) -> WideRay<A, S> {
+        let zero = simd.splat(0.0);
         let mut ray = WideRay {
-            near_o: [f32x8::ZERO; A],
-            far_o: [f32x8::ZERO; A],
-            near_inv: [f32x8::ZERO; A],
-            far_inv: [f32x8::ZERO; A],
+            simd,
+            near_o: [zero; A],
+            far_o: [zero; A],
+            near_inv: [zero; A],
+            far_inv: [zero; A],
             near: std::array::from_fn(|a| a),
             far: std::array::from_fn(|a| a + A),
         };
         for a in 0..A {
-            let (lower, upper) = (f32x8::splat(down(o[a])), f32x8::splat(up(o[a])));
+            let (lower, upper) = (simd.splat(down(o[a])), simd.splat(up(o[a])));
             let inv32 = inv[a] as f32;
-            ray.near_inv[a] = f32x8::splat(inv32 * (1.0 - MARGIN));
-            ray.far_inv[a] = f32x8::splat(inv32 * (1.0 + MARGIN));
+            ray.near_inv[a] = simd.splat(inv32 * (1.0 - MARGIN));
+            ray.far_inv[a] = simd.splat(inv32 * (1.0 + MARGIN));
             // 1/(-0) = -inf: a direction of -0 is negative here.
             if inv[a].is_sign_negative() {
                 (ray.near_o[a], ray.far_o[a]) = (lower, upper);
@@ -83,54 +88,44 @@ impl<const A: usize> WideRay<A> {
     #[inline(always)]
     pub(super) fn enter(&self, node: &WideNode<A>, range: (f32, f32)) -> ([f32; WIDTH], u32) {
         let (entry, entered) = self.enter_lanes(node, range);
-        (entry.to_array(), entered.move_mask() as u32)
+        (self.simd.to_array(entry), self.simd.bits(entered))
     }
 
     /// [`WideRay::enter`] with the entries kept in lanes, and a lane of all
     /// ones for each box entered.
     #[inline(always)]
-    pub(super) fn enter_lanes(&self, node: &WideNode<A>, range: (f32, f32)) -> (f32x8, f32x8) {
-        let mut entry = f32x8::splat(range.0);
-        let mut exit = f32x8::splat(range.1);
+    pub(super) fn enter_lanes(&self, node: &WideNode<A>, range: (f32, f32)) -> (S::F, S::F) {
+        let s = self.simd;
+        let mut entry = s.splat(range.0);
+        let mut exit = s.splat(range.1);
         for a in 0..A {
-            let near = (node.face(self.near[a]) - self.near_o[a]) * self.near_inv[a];
-            let far = (node.face(self.far[a]) - self.far_o[a]) * self.far_inv[a];
-            entry = max_dropping_nan(entry, near);
-            exit = min_dropping_nan(exit, far);
+            let near_face = s.load(node.face(self.near[a]));
+            let far_face = s.load(node.face(self.far[a]));
+            let near = s.mul(s.sub(near_face, self.near_o[a]), self.near_inv[a]);
+            let far = s.mul(s.sub(far_face, self.far_o[a]), self.far_inv[a]);
+            entry = s.max_dropping_nan(entry, near);
+            exit = s.min_dropping_nan(exit, far);
         }
-        let tiny = f32x8::splat(TINY);
-        let (entry, exit) = (entry - tiny, exit + tiny);
-        (entry, entry.cmp_le(exit))
+        let tiny = s.splat(TINY);
+        let (entry, exit) = (s.sub(entry, tiny), s.add(exit, tiny));
+        (entry, s.le(entry, exit))
     }
-}
 
-/// Lanewise max(acc, t), a NaN lane of `t` dropped (`acc` is never NaN).
-#[inline(always)]
-fn max_dropping_nan(acc: f32x8, t: f32x8) -> f32x8 {
-    // SSE's maxps returns its second operand when either is NaN.
-    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
-    let m = t.fast_max(acc);
-    #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
-    let m = acc.max(t);
-    m
-}
-
-/// Lanewise min(acc, t), a NaN lane of `t` dropped (`acc` is never NaN).
-#[inline(always)]
-fn min_dropping_nan(acc: f32x8, t: f32x8) -> f32x8 {
-    #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
-    let m = t.fast_min(acc);
-    #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
-    let m = acc.min(t);
-    m
+    /// The vector level the test runs at.
+    #[inline(always)]
+    pub(super) fn simd(&self) -> S {
+        self.simd
+    }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::simd::{wider, Baseline};
     use super::super::test_support::{aimed_ray, f64_entry, random_box, Box64};
     use super::super::NO_CHILD;
     use super::*;
     use crate::rng::SplitMix64;
+    use wide::f32x8;
 
     /// The same slab test in f32 without care: origin and 1/d rounded to
     /// nearest, no margin (the negative control).
@@ -155,9 +150,10 @@ mod tests {
 
     /// Over `A` axes, rays aimed at the corners, edges and faces of boxes
     /// at scales from 0.05 to 1e5, parallel to an axis or not: the
-    /// eight-lane f32 test enters every box the f64 test enters, no later;
-    /// the naive f32 test (the negative control) culls some.
-    fn never_culls<const A: usize>(seed: u64) {
+    /// eight-lane f32 test enters every box the f64 test enters, no later,
+    /// at the vector level of `simd`; the naive f32 test (the negative
+    /// control) culls some.
+    fn never_culls<const A: usize>(simd: impl Simd8, seed: u64) {
         let mut rng = SplitMix64::new(seed);
         let (mut entered, mut naive_culled) = (0, 0);
         for n in 0..200_000 {
@@ -177,7 +173,8 @@ mod tests {
                 }),
                 children: [NO_CHILD; WIDTH],
             };
-            let (entries, mask) = WideRay::new(o, inv).enter(&node, (down(range.0), up(range.1)));
+            let (entries, mask) =
+                WideRay::new(simd, o, inv).enter(&node, (down(range.0), up(range.1)));
             for (k, b) in boxes.iter().enumerate() {
                 let Some(exact) = f64_entry(b, o, inv, range) else {
                     continue;
@@ -199,12 +196,18 @@ mod tests {
     /// Boxes of comoving space (x, y, z), as a stretch's hierarchy holds.
     #[test]
     fn the_f32_slab_test_never_culls_a_space_box_the_ray_enters() {
-        never_culls::<3>(21);
+        never_culls::<3>(Baseline, 21);
+        if let Some(wider) = wider() {
+            never_culls::<3>(wider, 21);
+        }
     }
 
     /// Boxes of spacetime (x, y, z, t), as the top level holds.
     #[test]
     fn the_f32_slab_test_never_culls_a_spacetime_box_the_ray_enters() {
-        never_culls::<4>(23);
+        never_culls::<4>(Baseline, 23);
+        if let Some(wider) = wider() {
+            never_culls::<4>(wider, 23);
+        }
     }
 }

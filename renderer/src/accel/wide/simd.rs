@@ -1,0 +1,369 @@
+//! The eight-lane f32 arithmetic of the node tests, at the vector level
+//! the machine offers, chosen when the search starts.
+//!
+//! The hierarchies are searched through [`Simd8`], a token whose methods
+//! are the few lanewise operations the slab test needs. [`Baseline`] is
+//! the `wide` crate's f32x8 as the build's target compiles it (two SSE2
+//! registers on every x86-64); [`pulp::x86::V3`] is one AVX register, a
+//! token that exists only where `pulp` has found AVX2 and FMA on the CPU,
+//! so that its safe intrinsics are sound. A search generic over the token
+//! is run inside [`pulp::x86::V3::vectorize`], which compiles what it
+//! inlines for those features (every step of the search down to the leaf
+//! callbacks is `#[inline(always)]`).
+//!
+//! Both levels run the same IEEE operations lane by lane (a subtraction,
+//! a product, the maximum and minimum of SSE's `maxps`/`minps`, which
+//! return their second operand where either is NaN, and an ordered
+//! less-or-equal), and no operation is fused, so every level finds the
+//! same boxes entered at the same parameters, and so the same hits to the
+//! bit.
+
+use wide::f32x8;
+
+/// How wide the node tests may go: the widest the machine has, up to the
+/// level given (see [`Database::set_simd`](crate::Database::set_simd)).
+/// Every level finds the same hits, to the bit.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
+pub enum SimdLevel {
+    /// The build's own target: SSE2 on x86-64 (two 4-lane registers a node
+    /// test).
+    Baseline,
+    /// x86-64-v3 (AVX2 and FMA) where the CPU has it: a node's eight boxes
+    /// in one 8-lane register.
+    #[default]
+    X86V3,
+}
+
+impl SimdLevel {
+    /// The levels this machine runs, the baseline first.
+    pub fn supported() -> Vec<SimdLevel> {
+        let mut levels = vec![SimdLevel::Baseline];
+        #[cfg(target_arch = "x86_64")]
+        if v3(SimdLevel::X86V3).is_some() {
+            levels.push(SimdLevel::X86V3);
+        }
+        levels
+    }
+}
+
+impl std::fmt::Display for SimdLevel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            SimdLevel::Baseline => "the build's baseline",
+            SimdLevel::X86V3 => "x86-64-v3 (AVX2)",
+        })
+    }
+}
+
+/// The AVX token where `level` allows it and the CPU has x86-64-v3 (found
+/// once, then cached by `pulp`).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(crate) fn v3(level: SimdLevel) -> Option<pulp::x86::V3> {
+    match level {
+        SimdLevel::Baseline => None,
+        SimdLevel::X86V3 => pulp::x86::V3::try_new(),
+    }
+}
+
+/// `$body` with `$s` the token of the widest vector level `$level` allows
+/// on this machine, compiled for that level: inside
+/// [`pulp::x86::V3::vectorize`] for x86-64-v3, so that what `$body` inlines
+/// is compiled for AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+macro_rules! at_level {
+    ($level:expr, |$s:ident| $body:expr) => {
+        match $crate::accel::wide::v3($level) {
+            Some(v3) => v3.vectorize(
+                #[inline(always)]
+                || {
+                    let $s = v3;
+                    $body
+                },
+            ),
+            None => {
+                let $s = $crate::accel::wide::Baseline;
+                $body
+            }
+        }
+    };
+}
+
+/// `$body` with `$s` the baseline's token: no wider level here.
+#[cfg(not(target_arch = "x86_64"))]
+macro_rules! at_level {
+    ($level:expr, |$s:ident| $body:expr) => {{
+        let _ = $level;
+        let $s = $crate::accel::wide::Baseline;
+        $body
+    }};
+}
+pub(crate) use at_level;
+
+/// Lanewise f32 operations on eight lanes, by a token of the vector
+/// level they run at.
+pub(crate) trait Simd8: Copy {
+    /// Eight f32 lanes.
+    type F: Copy;
+    /// Every lane `x`.
+    fn splat(self, x: f32) -> Self::F;
+    /// The lanes of a node's face as stored.
+    fn load(self, x: f32x8) -> Self::F;
+    /// `a * b`.
+    fn mul(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a - b`.
+    fn sub(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a + b`.
+    fn add(self, a: Self::F, b: Self::F) -> Self::F;
+    /// Lanewise max(acc, t), a NaN lane of `t` dropped (`acc` is never
+    /// NaN).
+    fn max_dropping_nan(self, acc: Self::F, t: Self::F) -> Self::F;
+    /// Lanewise min(acc, t), a NaN lane of `t` dropped (`acc` is never
+    /// NaN).
+    fn min_dropping_nan(self, acc: Self::F, t: Self::F) -> Self::F;
+    /// All ones where `a <= b` (ordered), zeros elsewhere.
+    fn le(self, a: Self::F, b: Self::F) -> Self::F;
+    /// Bit i set where lane i of the mask `m` is set.
+    fn bits(self, m: Self::F) -> u32;
+    /// `a` where the mask `m` is set, `b` elsewhere.
+    fn select(self, m: Self::F, a: Self::F, b: Self::F) -> Self::F;
+    /// The lanes.
+    fn to_array(self, a: Self::F) -> [f32; 8];
+}
+
+/// The build's own target's lanes: `wide`'s f32x8.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Baseline;
+
+impl Simd8 for Baseline {
+    type F = f32x8;
+
+    #[inline(always)]
+    fn splat(self, x: f32) -> f32x8 {
+        f32x8::splat(x)
+    }
+
+    #[inline(always)]
+    fn load(self, x: f32x8) -> f32x8 {
+        x
+    }
+
+    #[inline(always)]
+    fn mul(self, a: f32x8, b: f32x8) -> f32x8 {
+        a * b
+    }
+
+    #[inline(always)]
+    fn sub(self, a: f32x8, b: f32x8) -> f32x8 {
+        a - b
+    }
+
+    #[inline(always)]
+    fn add(self, a: f32x8, b: f32x8) -> f32x8 {
+        a + b
+    }
+
+    #[inline(always)]
+    fn max_dropping_nan(self, acc: f32x8, t: f32x8) -> f32x8 {
+        #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+        let m = t.fast_max(acc);
+        #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+        let m = acc.max(t);
+        m
+    }
+
+    #[inline(always)]
+    fn min_dropping_nan(self, acc: f32x8, t: f32x8) -> f32x8 {
+        #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+        let m = t.fast_min(acc);
+        #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+        let m = acc.min(t);
+        m
+    }
+
+    #[inline(always)]
+    fn le(self, a: f32x8, b: f32x8) -> f32x8 {
+        use wide::CmpLe;
+        a.cmp_le(b)
+    }
+
+    #[inline(always)]
+    fn bits(self, m: f32x8) -> u32 {
+        m.move_mask() as u32
+    }
+
+    #[inline(always)]
+    fn select(self, m: f32x8, a: f32x8, b: f32x8) -> f32x8 {
+        m.blend(a, b)
+    }
+
+    #[inline(always)]
+    fn to_array(self, a: f32x8) -> [f32; 8] {
+        a.to_array()
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+mod v3 {
+    use super::Simd8;
+    use core::arch::x86_64::{__m256, _CMP_LE_OQ};
+    use pulp::x86::V3;
+    use wide::f32x8;
+
+    /// One AVX register: the same operations as SSE's, eight lanes wide.
+    impl Simd8 for V3 {
+        type F = __m256;
+
+        #[inline(always)]
+        fn splat(self, x: f32) -> __m256 {
+            self.avx._mm256_set1_ps(x)
+        }
+
+        #[inline(always)]
+        fn load(self, x: f32x8) -> __m256 {
+            bytemuck::cast(x)
+        }
+
+        #[inline(always)]
+        fn mul(self, a: __m256, b: __m256) -> __m256 {
+            self.avx._mm256_mul_ps(a, b)
+        }
+
+        #[inline(always)]
+        fn sub(self, a: __m256, b: __m256) -> __m256 {
+            self.avx._mm256_sub_ps(a, b)
+        }
+
+        #[inline(always)]
+        fn add(self, a: __m256, b: __m256) -> __m256 {
+            self.avx._mm256_add_ps(a, b)
+        }
+
+        #[inline(always)]
+        fn max_dropping_nan(self, acc: __m256, t: __m256) -> __m256 {
+            // maxps returns its second operand when either is NaN.
+            self.avx._mm256_max_ps(t, acc)
+        }
+
+        #[inline(always)]
+        fn min_dropping_nan(self, acc: __m256, t: __m256) -> __m256 {
+            self.avx._mm256_min_ps(t, acc)
+        }
+
+        #[inline(always)]
+        fn le(self, a: __m256, b: __m256) -> __m256 {
+            self.avx._mm256_cmp_ps::<_CMP_LE_OQ>(a, b)
+        }
+
+        #[inline(always)]
+        fn bits(self, m: __m256) -> u32 {
+            self.avx._mm256_movemask_ps(m) as u32
+        }
+
+        #[inline(always)]
+        fn select(self, m: __m256, a: __m256, b: __m256) -> __m256 {
+            self.avx._mm256_blendv_ps(b, a, m)
+        }
+
+        #[inline(always)]
+        fn to_array(self, a: __m256) -> [f32; 8] {
+            bytemuck::cast(a)
+        }
+    }
+}
+
+/// The widest level above the baseline this machine has, for tests.
+#[cfg(test)]
+pub(super) fn wider() -> Option<impl Simd8> {
+    #[cfg(target_arch = "x86_64")]
+    return v3(SimdLevel::X86V3);
+    #[cfg(not(target_arch = "x86_64"))]
+    return None::<Baseline>;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::SplitMix64;
+
+    /// Eight lanes drawn from what a node test meets: zeros of both signs,
+    /// infinities, NaN, subnormals, f32's extremes and ordinary values.
+    fn lanes(rng: &mut SplitMix64) -> [f32; 8] {
+        const SPECIAL: [f32; 10] = [
+            0.0,
+            -0.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            1e-40,
+            -1e-40,
+            f32::MAX,
+            f32::MIN_POSITIVE,
+            1.0,
+        ];
+        std::array::from_fn(|_| {
+            let r = rng.next_u64();
+            if r % 3 == 0 {
+                SPECIAL[(r / 3 % 10) as usize]
+            } else {
+                ((rng.next_f64() - 0.5) * 10f64.powi((r / 3 % 9) as i32 - 4)) as f32
+            }
+        })
+    }
+
+    /// Every operation of a level on the lanes `a`, `b`, `c`, as bits.
+    fn results(s: impl Simd8, a: [f32; 8], b: [f32; 8], c: [f32; 8]) -> Vec<[u32; 8]> {
+        let [a, b, c] = [a, b, c].map(|x| s.load(f32x8::from(x)));
+        let m = s.le(a, b);
+        let out = [
+            s.splat(-0.0),
+            s.mul(a, c),
+            s.sub(a, b),
+            s.add(a, b),
+            s.max_dropping_nan(a, b),
+            s.min_dropping_nan(a, b),
+            m,
+            s.select(m, a, c),
+        ];
+        let mut bits: Vec<[u32; 8]> = out
+            .iter()
+            .map(|&x| s.to_array(x).map(f32::to_bits))
+            .collect();
+        bits.push([s.bits(m); 8]);
+        bits
+    }
+
+    /// Each wider level gives every operation's result to the bit as the
+    /// baseline does, NaN lanes, signed zeros and subnormals included.
+    #[test]
+    fn every_level_computes_the_baselines_bits() {
+        let Some(wider) = wider() else {
+            return; // the baseline alone: nothing to compare
+        };
+        let mut rng = SplitMix64::new(31);
+        for _ in 0..20_000 {
+            let (a, b, c) = (lanes(&mut rng), lanes(&mut rng), lanes(&mut rng));
+            assert_eq!(
+                results(Baseline, a, b, c),
+                results(wider, a, b, c),
+                "{a:?} {b:?} {c:?}"
+            );
+        }
+    }
+
+    /// The control: the inputs reach the cases where the operations'
+    /// order of operands decides (a NaN lane, or zeros of both signs), so
+    /// a level that swapped them would be caught above.
+    #[test]
+    fn the_inputs_reach_the_operand_order() {
+        let mut rng = SplitMix64::new(31);
+        let swapped = (0..20_000).any(|_| {
+            let (a, b) = (lanes(&mut rng), lanes(&mut rng));
+            let s = Baseline;
+            let (a, b) = (f32x8::from(a), f32x8::from(b));
+            let bits = |x: f32x8| s.to_array(x).map(f32::to_bits);
+            bits(s.max_dropping_nan(a, b)) != bits(s.max_dropping_nan(b, a))
+        });
+        assert!(swapped);
+    }
+}
