@@ -220,6 +220,17 @@ impl TwoLevel {
         self.slices.len()
     }
 
+    /// How many time slices a search passes through: none where the
+    /// structure holds one stretch (its own hierarchy is searched
+    /// straight away), all of them otherwise.
+    pub(crate) fn searched_slice_count(&self) -> usize {
+        if self.stretches.len() == 1 {
+            0
+        } else {
+            self.slices.len()
+        }
+    }
+
     /// The order in which stretch `k`'s hierarchy holds its prisms: at
     /// position j, prism `order(k)[j]` of the stretch (counted from its
     /// first).

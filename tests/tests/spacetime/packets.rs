@@ -194,23 +194,37 @@ fn one_moving_object_in_many_time_slices_finds_brute_forces_hits() {
 }
 
 /// `Packing::Auto` packs rays over a large mesh in few time slices, and not
-/// over many small moving objects; `Single` and `Packets` are obeyed.
+/// over many small moving objects; a lone moving mesh, whose slices no
+/// search passes through, is packed as a mesh at rest is; `Single` and
+/// `Packets` are obeyed.
 #[test]
 fn packets_are_chosen_for_large_meshes_in_few_slices() {
     let (mut boxes, _) = boxes_and_rays(false);
     assert!(!boxes.packs(), "300 moving boxes in packets");
     boxes.set_packing(Packing::Packets);
     assert!(boxes.packs());
-    let sheet = |n: usize| {
+    let sheets = |n: usize, speed: f64, count: usize| {
         let mut rng = SplitMix64::new(3);
-        let mesh = workspace_tests::random_mesh(&mut rng, n, 2.0);
-        let at_rest = Motion::Extrusion {
+        let moving = Motion::Extrusion {
             start: Event::new(-100.0, glam::DVec3::ZERO),
-            extrusion: renderer::FourVector::new(200.0, glam::DVec3::ZERO),
+            extrusion: renderer::FourVector::new(200.0, glam::DVec3::X * 200.0 * speed),
         };
-        let o = workspace_tests::object("mesh", renderer::ObjectKind::HObj, mesh, at_rest);
-        Database::build(&workspace_tests::scene(vec![o]), false).unwrap()
+        let objects = (0..count)
+            .map(|_| {
+                let mesh = workspace_tests::random_mesh(&mut rng, n, 2.0);
+                workspace_tests::object("mesh", renderer::ObjectKind::HObj, mesh, moving.clone())
+            })
+            .collect();
+        Database::build(&workspace_tests::scene(objects), false).unwrap()
     };
+    let sheet = |n: usize| sheets(n, 0.0, 1);
+    // At 0.9c over 200 time units, each mesh is cut into many time slices.
+    let fast = sheets(Database::PACKED_FROM, 0.9, 1);
+    assert!(fast.time_slice_count() > 16, "{}", fast.time_slice_count());
+    assert!(fast.packs(), "a lone moving mesh");
+    assert!(!sheets(Database::PACKED_FROM - 1, 0.9, 1).packs());
+    let two = sheets(Database::PACKED_FROM, 0.9, 2);
+    assert!(!two.packs(), "two moving meshes, their slices searched");
     let mut large = sheet(Database::PACKED_FROM);
     assert!(
         large.packs(),
