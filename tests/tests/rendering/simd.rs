@@ -45,17 +45,25 @@ fn every_vector_level_renders_every_fixture_to_the_bit() {
     }
 }
 
-/// The control: where the CPU has AVX2 and FMA, the list holds the wider
-/// level, so the test above compares two levels rather than one with
-/// itself.
+/// The control: where the CPU has x86-64-v3 (AVX2, FMA and the rest of
+/// the level), the list holds the wider level, so the test above compares
+/// two levels rather than one with itself.
 #[test]
 fn the_machines_wider_level_is_listed() {
     let levels = SimdLevel::supported();
     assert_eq!(levels[0], SimdLevel::Baseline);
+    assert_eq!(SimdLevel::best(), levels[levels.len() - 1]);
     #[cfg(target_arch = "x86_64")]
-    assert_eq!(
-        levels.contains(&SimdLevel::X86V3),
-        std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma"),
-        "{levels:?}"
-    );
+    {
+        use std::is_x86_feature_detected as has;
+        let v3 = has!("avx")
+            && has!("avx2")
+            && has!("fma")
+            && has!("bmi1")
+            && has!("bmi2")
+            && has!("lzcnt")
+            && has!("popcnt")
+            && has!("sse4.2");
+        assert_eq!(levels.contains(&SimdLevel::X86V3), v3, "{levels:?}");
+    }
 }

@@ -198,7 +198,7 @@ fn one_moving_object_in_many_time_slices_finds_brute_forces_hits() {
 /// search passes through, is packed as a mesh at rest is; `Single` and
 /// `Packets` are obeyed.
 #[test]
-fn packets_are_chosen_for_large_meshes_in_few_slices() {
+fn packets_are_chosen_where_a_search_meets_many_prisms_a_slice() {
     let (mut boxes, _) = boxes_and_rays(false);
     assert!(!boxes.packs(), "300 moving boxes in packets");
     boxes.set_packing(Packing::Packets);
@@ -218,9 +218,10 @@ fn packets_are_chosen_for_large_meshes_in_few_slices() {
         Database::build(&workspace_tests::scene(objects), false).unwrap()
     };
     let sheet = |n: usize| sheets(n, 0.0, 1);
-    // At 0.9c over 200 time units, each mesh is cut into many time slices.
+    // At 0.9c over 200 time units, each mesh is cut into many time slices
+    // (under the rule for many stretches, too few prisms a slice to pack).
     let fast = sheets(Database::PACKED_FROM, 0.9, 1);
-    assert!(fast.time_slice_count() > 16, "{}", fast.time_slice_count());
+    assert!(fast.time_slice_count() > 1, "{}", fast.time_slice_count());
     assert!(fast.packs(), "a lone moving mesh");
     assert!(!sheets(Database::PACKED_FROM - 1, 0.9, 1).packs());
     let two = sheets(Database::PACKED_FROM, 0.9, 2);

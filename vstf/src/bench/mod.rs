@@ -227,8 +227,7 @@ pub fn run(project: &Project, quick: bool) -> Result<String, String> {
     };
     let mut out = String::new();
     let threads = rayon::current_num_threads();
-    let supported = renderer::SimdLevel::supported().into_iter();
-    let level = supported.last().unwrap_or(renderer::SimdLevel::Baseline);
+    let level = renderer::SimdLevel::best();
     let _ = writeln!(
         out,
         "vstf bench ({} run, {threads} threads; best of {}; node tests at {level})",

@@ -1,8 +1,8 @@
 //! Hierarchies of nodes of eight children whose boxes sit side by side
 //! per face in f32 rounded outward: one node visit tests the eight boxes
-//! at once in 8-lane SIMD (through the `wide` crate: two SSE2 registers on
-//! every x86-64, one AVX register when built for it). Two live here, alike
-//! but for their axes:
+//! at once in 8-lane SIMD, at the widest vector level the machine offers
+//! (`simd`: one AVX register where there is AVX2, two SSE2 registers at
+//! x86-64's baseline). Two live here, alike but for their axes:
 //! - [`SpaceBvh`], one stretch's hierarchy over its prisms, in the
 //!   stretch's comoving x, y, z only. Every prism of a stretch lives over
 //!   the stretch's lab times, and the top level has already cut the ray to
@@ -20,8 +20,8 @@
 //! found, is decided by the leaf tests alone.
 //!
 //! Here: the collapsed tree's layout and the rounding of bounds to f32;
-//! the tree is built in `build`, searched in `traverse`, with the slab test
-//! of `wide_ray`.
+//! the tree is built in `build`, searched in `traverse` (one ray) and
+//! `packets`, with the slab test of `wide_ray` in the lanes of `simd`.
 
 mod build;
 mod packets;

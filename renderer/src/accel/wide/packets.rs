@@ -171,8 +171,7 @@ fn packet_enters<const A: usize, S: Simd8>(
     for (i, ray) in wide.iter().enumerate() {
         if lanes.holds(i) {
             let (entry, inside) = ray.enter_lanes(node, (lo32[i], hi32[i]));
-            // (min(least, entered), as minps(least, entered): neither is NaN.)
-            least = s.min_dropping_nan(s.select(inside, entry, infinity), least);
+            least = s.min_or_second(least, s.select(inside, entry, infinity));
             by_ray |= s.bits(inside) << (8 * i);
         }
     }

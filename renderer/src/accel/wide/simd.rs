@@ -3,11 +3,11 @@
 //!
 //! The hierarchies are searched through [`Simd8`], a token whose methods
 //! are the few lanewise operations the slab test needs. [`Baseline`] is
-//! the `wide` crate's f32x8 as the build's target compiles it (two SSE2
-//! registers on every x86-64); [`pulp::x86::V3`] is one AVX register, a
+//! the `wide` crate's f32x8 as the build's target compiles it (at x86-64's
+//! baseline, two SSE2 registers); `pulp::x86::V3` is one AVX register, a
 //! token that exists only where `pulp` has found AVX2 and FMA on the CPU,
 //! so that its safe intrinsics are sound. A search generic over the token
-//! is run inside [`pulp::x86::V3::vectorize`], which compiles what it
+//! is run inside `pulp::x86::V3::vectorize`, which compiles what it
 //! inlines for those features (every step of the search down to the leaf
 //! callbacks is `#[inline(always)]`).
 //!
@@ -25,8 +25,8 @@ use wide::f32x8;
 /// Every level finds the same hits, to the bit.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
 pub enum SimdLevel {
-    /// The build's own target: SSE2 on x86-64 (two 4-lane registers a node
-    /// test).
+    /// The build's own target (at x86-64's baseline, SSE2: two 4-lane
+    /// registers a node test).
     Baseline,
     /// x86-64-v3 (AVX2 and FMA) where the CPU has it: a node's eight boxes
     /// in one 8-lane register.
@@ -37,12 +37,18 @@ pub enum SimdLevel {
 impl SimdLevel {
     /// The levels this machine runs, the baseline first.
     pub fn supported() -> Vec<SimdLevel> {
-        let mut levels = vec![SimdLevel::Baseline];
         #[cfg(target_arch = "x86_64")]
-        if v3(SimdLevel::X86V3).is_some() {
-            levels.push(SimdLevel::X86V3);
-        }
-        levels
+        let wider = v3(SimdLevel::X86V3).map(|_| SimdLevel::X86V3);
+        #[cfg(not(target_arch = "x86_64"))]
+        let wider = None;
+        std::iter::once(SimdLevel::Baseline).chain(wider).collect()
+    }
+
+    /// The widest level this machine runs.
+    pub fn best() -> SimdLevel {
+        *SimdLevel::supported()
+            .last()
+            .unwrap_or(&SimdLevel::Baseline)
     }
 }
 
@@ -68,7 +74,7 @@ pub(crate) fn v3(level: SimdLevel) -> Option<pulp::x86::V3> {
 
 /// `$body` with `$s` the token of the widest vector level `$level` allows
 /// on this machine, compiled for that level: inside
-/// [`pulp::x86::V3::vectorize`] for x86-64-v3, so that what `$body` inlines
+/// `pulp::x86::V3::vectorize` for x86-64-v3, so that what `$body` inlines
 /// is compiled for AVX2 and FMA.
 #[cfg(target_arch = "x86_64")]
 macro_rules! at_level {
@@ -115,17 +121,18 @@ pub(crate) trait Simd8: Copy {
     fn sub(self, a: Self::F, b: Self::F) -> Self::F;
     /// `a + b`.
     fn add(self, a: Self::F, b: Self::F) -> Self::F;
-    /// Lanewise max(acc, t), a NaN lane of `t` dropped (`acc` is never
-    /// NaN).
-    fn max_dropping_nan(self, acc: Self::F, t: Self::F) -> Self::F;
-    /// Lanewise min(acc, t), a NaN lane of `t` dropped (`acc` is never
-    /// NaN).
-    fn min_dropping_nan(self, acc: Self::F, t: Self::F) -> Self::F;
+    /// Lanewise max(a, b), and `b` where `a` is NaN (SSE's `maxps`; no
+    /// caller passes a NaN `b`).
+    fn max_or_second(self, a: Self::F, b: Self::F) -> Self::F;
+    /// Lanewise min(a, b), and `b` where `a` is NaN (SSE's `minps`; no
+    /// caller passes a NaN `b`).
+    fn min_or_second(self, a: Self::F, b: Self::F) -> Self::F;
     /// All ones where `a <= b` (ordered), zeros elsewhere.
     fn le(self, a: Self::F, b: Self::F) -> Self::F;
     /// Bit i set where lane i of the mask `m` is set.
     fn bits(self, m: Self::F) -> u32;
-    /// `a` where the mask `m` is set, `b` elsewhere.
+    /// `a` where the mask `m` is set, `b` elsewhere (`m` a comparison's:
+    /// each lane all ones or all zeros).
     fn select(self, m: Self::F, a: Self::F, b: Self::F) -> Self::F;
     /// The lanes.
     fn to_array(self, a: Self::F) -> [f32; 8];
@@ -164,20 +171,21 @@ impl Simd8 for Baseline {
     }
 
     #[inline(always)]
-    fn max_dropping_nan(self, acc: f32x8, t: f32x8) -> f32x8 {
+    fn max_or_second(self, a: f32x8, b: f32x8) -> f32x8 {
         #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
-        let m = t.fast_max(acc);
+        let m = a.fast_max(b);
+        // (Elsewhere `max` takes the operand that is not NaN.)
         #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
-        let m = acc.max(t);
+        let m = b.max(a);
         m
     }
 
     #[inline(always)]
-    fn min_dropping_nan(self, acc: f32x8, t: f32x8) -> f32x8 {
+    fn min_or_second(self, a: f32x8, b: f32x8) -> f32x8 {
         #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
-        let m = t.fast_min(acc);
+        let m = a.fast_min(b);
         #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
-        let m = acc.min(t);
+        let m = b.min(a);
         m
     }
 
@@ -204,7 +212,7 @@ impl Simd8 for Baseline {
 }
 
 #[cfg(target_arch = "x86_64")]
-mod v3 {
+mod x86_v3 {
     use super::Simd8;
     use core::arch::x86_64::{__m256, _CMP_LE_OQ};
     use pulp::x86::V3;
@@ -240,14 +248,13 @@ mod v3 {
         }
 
         #[inline(always)]
-        fn max_dropping_nan(self, acc: __m256, t: __m256) -> __m256 {
-            // maxps returns its second operand when either is NaN.
-            self.avx._mm256_max_ps(t, acc)
+        fn max_or_second(self, a: __m256, b: __m256) -> __m256 {
+            self.avx._mm256_max_ps(a, b)
         }
 
         #[inline(always)]
-        fn min_dropping_nan(self, acc: __m256, t: __m256) -> __m256 {
-            self.avx._mm256_min_ps(t, acc)
+        fn min_or_second(self, a: __m256, b: __m256) -> __m256 {
+            self.avx._mm256_min_ps(a, b)
         }
 
         #[inline(always)]
@@ -320,8 +327,8 @@ mod tests {
             s.mul(a, c),
             s.sub(a, b),
             s.add(a, b),
-            s.max_dropping_nan(a, b),
-            s.min_dropping_nan(a, b),
+            s.max_or_second(a, b),
+            s.min_or_second(a, b),
             m,
             s.select(m, a, c),
         ];
@@ -362,7 +369,7 @@ mod tests {
             let s = Baseline;
             let (a, b) = (f32x8::from(a), f32x8::from(b));
             let bits = |x: f32x8| s.to_array(x).map(f32::to_bits);
-            bits(s.max_dropping_nan(a, b)) != bits(s.max_dropping_nan(b, a))
+            bits(s.max_or_second(a, b)) != bits(s.max_or_second(b, a))
         });
         assert!(swapped);
     }

@@ -103,8 +103,9 @@ impl<const A: usize, S: Simd8> WideRay<A, S> {
             let far_face = s.load(node.face(self.far[a]));
             let near = s.mul(s.sub(near_face, self.near_o[a]), self.near_inv[a]);
             let far = s.mul(s.sub(far_face, self.far_o[a]), self.far_inv[a]);
-            entry = s.max_dropping_nan(entry, near);
-            exit = s.min_dropping_nan(exit, far);
+            // A NaN (an axis the ray is parallel to) is dropped.
+            entry = s.max_or_second(near, entry);
+            exit = s.min_or_second(far, exit);
         }
         let tiny = s.splat(TINY);
         let (entry, exit) = (s.sub(entry, tiny), s.add(exit, tiny));

@@ -224,10 +224,19 @@ impl TwoLevel {
     /// structure holds one stretch (its own hierarchy is searched
     /// straight away), all of them otherwise.
     pub(crate) fn searched_slice_count(&self) -> usize {
-        if self.stretches.len() == 1 {
-            0
-        } else {
-            self.slices.len()
+        match self.lone_stretch() {
+            Some(_) => 0,
+            None => self.slices.len(),
+        }
+    }
+
+    /// The stretch the structure holds, where it holds one: searched in
+    /// its own hierarchy straight away, whose boxes cull every ray its
+    /// time slices would.
+    fn lone_stretch(&self) -> Option<&StretchBvh> {
+        match &self.stretches[..] {
+            [stretch] => Some(stretch),
+            _ => None,
         }
     }
 
@@ -246,40 +255,40 @@ impl TwoLevel {
     /// first, side by side there) and the range shrunk to the best hit so
     /// far, and returns the best hit among them. With one stretch, the top
     /// level is passed by: the stretch's own boxes cull every ray its time
-    /// slices would. The node tests run at the widest vector level `simd`
+    /// slices would. The node tests run at the widest vector level `level`
     /// allows on this machine.
     pub(crate) fn closest(
         &self,
-        simd: SimdLevel,
+        level: SimdLevel,
         o: DVec4,
         d: DVec4,
         range: (f64, f64),
         leaf: impl FnMut(u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
-        at_level!(simd, |s| self.closest_at(s, o, d, range, leaf))
+        at_level!(level, |simd| self.closest_at(simd, o, d, range, leaf))
     }
 
-    /// [`TwoLevel::closest`] at the vector level of `s`.
+    /// [`TwoLevel::closest`] at the vector level of `simd`.
     #[inline(always)]
     fn closest_at<S: Simd8>(
         &self,
-        s: S,
+        simd: S,
         o: DVec4,
         d: DVec4,
         range: (f64, f64),
         mut leaf: impl FnMut(u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> Option<Hit> {
-        if let [stretch] = &self.stretches[..] {
+        if let Some(stretch) = self.lone_stretch() {
             // Its own hierarchy culls every ray the top level would.
             let r = window(stretch.span, o, d, range)?;
             let ray = stretch.to_comoving(o, d);
-            return (stretch.bvh).closest(s, ray, r, |first, items, r| leaf(0, first, items, r));
+            return (stretch.bvh).closest(simd, ray, r, |first, items, r| leaf(0, first, items, r));
         }
         let inv = DVec4::ONE / d;
         let mut searched = Searched::default();
         let ray = (o.to_array(), inv.to_array());
         self.top.closest(
-            s,
+            simd,
             ray,
             range,
             #[inline(always)]
@@ -306,7 +315,7 @@ impl TwoLevel {
                         continue;
                     };
                     let ray = stretch.to_comoving(o, d);
-                    let found = (stretch.bvh).closest(s, ray, r, |first, items, r| {
+                    let found = (stretch.bvh).closest(simd, ray, r, |first, items, r| {
                         leaf(slice.stretch, first, items, r)
                     });
                     if let Some(h) = found {
@@ -323,27 +332,27 @@ impl TwoLevel {
     /// range)` is called for ray i. Each ray finds the hit it finds alone.
     pub(crate) fn closest_packet(
         &self,
-        simd: SimdLevel,
+        level: SimdLevel,
         rays: &[(DVec4, DVec4); PACKET],
         lanes: Lanes,
         range: (f64, f64),
         leaf: impl FnMut(usize, u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> [Option<Hit>; PACKET] {
-        at_level!(simd, |s| self.packet_at(s, rays, lanes, range, leaf))
+        at_level!(level, |simd| self.packet_at(simd, rays, lanes, range, leaf))
     }
 
-    /// [`TwoLevel::closest_packet`] at the vector level of `s`.
+    /// [`TwoLevel::closest_packet`] at the vector level of `simd`.
     #[inline(always)]
     fn packet_at<S: Simd8>(
         &self,
-        s: S,
+        simd: S,
         rays: &[(DVec4, DVec4); PACKET],
         lanes: Lanes,
         range: (f64, f64),
         mut leaf: impl FnMut(usize, u32, u32, &[u32], (f64, f64)) -> Option<Hit>,
     ) -> [Option<Hit>; PACKET] {
-        if let [stretch] = &self.stretches[..] {
-            return only_stretch(s, stretch, rays, lanes, range, |i, first, items, r| {
+        if let Some(stretch) = self.lone_stretch() {
+            return only_stretch(simd, stretch, rays, lanes, range, |i, first, items, r| {
                 leaf(i, 0, first, items, r)
             });
         }
@@ -356,7 +365,7 @@ impl TwoLevel {
         let mut searched: [Searched; PACKET] = Default::default();
         let mut best: [Option<Hit>; PACKET] = [None; PACKET];
         self.top.search_packet(
-            s,
+            simd,
             &lab,
             lanes,
             range,
@@ -388,7 +397,7 @@ impl TwoLevel {
                         continue;
                     }
                     let found = stretch.bvh.closest_packet(
-                        s,
+                        simd,
                         &comoving,
                         lanes,
                         &windows,
@@ -415,7 +424,7 @@ impl TwoLevel {
 /// slices, and the packet's search of them cost a tenth of its frame.)
 #[inline(always)]
 fn only_stretch<S: Simd8>(
-    s: S,
+    simd: S,
     stretch: &StretchBvh,
     rays: &[(DVec4, DVec4); PACKET],
     lanes: Lanes,
@@ -437,69 +446,8 @@ fn only_stretch<S: Simd8>(
     }
     stretch
         .bvh
-        .closest_packet(s, &comoving, lanes, &windows, leaf)
+        .closest_packet(simd, &comoving, lanes, &windows, leaf)
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A stretch of 20 prisms, each box the comoving cube [-1, 1]^3,
-    /// moving at 0.9 along x over lab times 0..100: 45 time slices.
-    fn moving_cubes() -> TwoLevel {
-        let stretch = StretchPrisms {
-            origin: Event::new(0.0, DVec3::ZERO),
-            velocity: DVec3::new(0.9, 0.0, 0.0),
-            span: (0.0, 100.0),
-            prisms: 0..20,
-            translation: true,
-        };
-        TwoLevel::build(std::iter::once(&stretch), |_, _| {
-            (DVec3::splat(-1.0), DVec3::splat(1.0))
-        })
-    }
-
-    /// A ray that keeps pace with a moving object crosses all its time
-    /// slices inside their boxes: its stretch's tree is searched once, so
-    /// each prism is tested once (searched slice by slice, each would be
-    /// tested once a slice, 45 times).
-    /// How many times the ray `o + s d` tests each prism, the same at
-    /// every vector level the machine has.
-    fn times_tested(two: &TwoLevel, o: DVec4, d: DVec4) -> [u32; 20] {
-        let mut counts = SimdLevel::supported().into_iter().map(|level| {
-            let mut tested = [0; 20];
-            two.closest(level, o, d, (0.0, f64::INFINITY), |_, _, items, _| {
-                items.iter().for_each(|&p| tested[p as usize] += 1);
-                None
-            });
-            tested
-        });
-        let first = counts.next().unwrap_or_default();
-        counts.for_each(|c| assert_eq!(c, first));
-        first
-    }
-
-    #[test]
-    fn a_ray_crossing_a_moving_objects_slices_tests_each_prism_once() {
-        let two = moving_cubes();
-        assert_eq!(two.slices.len(), 45);
-        // At lab time t the ray is at x = 0.9 t, the object's centre.
-        let (o, d) = (
-            DVec4::new(90.0, 0.0, 0.0, 100.0),
-            DVec4::new(-0.9, 0.0, 1e-3, -1.0),
-        );
-        assert_eq!(times_tested(&two, o, d), [1; 20]);
-    }
-
-    /// A ray at one lab time (infinite light speed) meets one slice of
-    /// the moving object, and every prism once.
-    #[test]
-    fn a_ray_at_one_time_meets_one_slice() {
-        let two = moving_cubes();
-        let (o, d) = (
-            DVec4::new(45.0, 0.0, 5.0, 50.5),
-            DVec4::new(0.0, 0.0, -1.0, 0.0),
-        );
-        assert_eq!(times_tested(&two, o, d), [1; 20]);
-    }
-}
+mod tests;
