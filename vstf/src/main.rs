@@ -8,7 +8,14 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     cli::quiet_on_closed_pipe();
-    let Cli { root, command } = Cli::parse();
+    let Cli {
+        root,
+        simd,
+        command,
+    } = Cli::parse();
+    if let Some(level) = simd {
+        renderer::SimdLevel::limit_process(level);
+    }
     let root = root.as_deref();
     let result = match command {
         Command::Render(args) => cli::render::run(root, args),

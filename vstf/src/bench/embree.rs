@@ -151,10 +151,11 @@ fn trace(db: &renderer::Database, view: &crate::fixture::View) -> u64 {
 }
 
 /// [`measure`] in a fresh `vstf` process (so that its peak memory is this
-/// scene's alone).
+/// scene's alone), at this process's vector level.
 fn measure_in_child(path: &Path, frames: usize) -> Result<Measured, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot find vstf itself: {e}"))?;
     let out = Command::new(exe)
+        .args(["--simd", renderer::SimdLevel::best().name()])
         .args(["bench", "--measure"])
         .arg(path)
         .args(["--frames", &frames.to_string()])

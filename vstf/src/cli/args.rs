@@ -15,8 +15,18 @@ pub struct Cli {
     /// directory holding vstf.toml or fixtures/).
     #[arg(long, global = true, value_name = "DIR")]
     pub root: Option<PathBuf>,
+    /// The widest vector level the searches may use: `baseline` (the
+    /// build's own target) or `x86-64-v3` (AVX2, where the CPU has it; the
+    /// default). The images are the same to the bit either way.
+    #[arg(long, global = true, value_name = "LEVEL", value_parser = simd_level)]
+    pub simd: Option<renderer::SimdLevel>,
     #[command(subcommand)]
     pub command: Command,
+}
+
+/// What `--simd` names.
+fn simd_level(text: &str) -> Result<renderer::SimdLevel, String> {
+    renderer::SimdLevel::from_name(text).ok_or_else(|| "expected baseline or x86-64-v3".into())
 }
 
 // What `render --models` names.

@@ -3,11 +3,20 @@
 
 use crate::support::{vstf, RunExt};
 
+/// At the baseline vector level (`--simd`, which its header names and
+/// section 7's child processes inherit), as a smoke test of that path.
 #[test]
 fn bench_quick_prints_every_figure() {
-    let run = vstf().args(["bench", "--quick"]).run();
+    let run = vstf()
+        .args(["--simd", "baseline", "bench", "--quick"])
+        .run();
     run.succeeds();
     let text = run.stdout();
+    assert!(
+        text.starts_with("vstf bench (quick run")
+            && text.contains("node tests at the build's baseline)"),
+        "{text}"
+    );
     for section in [
         "\n1. primary rays per second",
         "\n2. relativistic render time",

@@ -325,3 +325,32 @@ fn small_cli_mistakes_are_clear_errors() {
         .run()
         .fails_with("did you mean \"flange\"?");
 }
+
+/// `--simd baseline` limits the searches to the build's own vector level:
+/// the same image to the bit as the default's (the teaser: shadows, a
+/// mirror, moving objects); a level that does not exist is refused with
+/// the ones that do.
+#[test]
+fn every_simd_level_renders_the_same_bytes() {
+    let dir = Scratch::new("simd");
+    let render = |level: Option<&str>, name: &str| {
+        let out = dir.join(name);
+        let mut cmd = vstf();
+        if let Some(level) = level {
+            cmd.args(["--simd", level]);
+        }
+        cmd.args(["render", "teaser", "--out"])
+            .arg(&out)
+            .args(["--width", "96", "--height", "54"])
+            .run()
+            .succeeds();
+        std::fs::read(out).unwrap()
+    };
+    let default = render(None, "default.png");
+    assert_eq!(render(Some("baseline"), "baseline.png"), default);
+    assert_eq!(render(Some("x86-64-v3"), "v3.png"), default);
+    vstf()
+        .args(["--simd", "avx512", "list"])
+        .run()
+        .fails_with("expected baseline or x86-64-v3");
+}

@@ -18,11 +18,13 @@
 //! same boxes entered at the same parameters, and so the same hits to the
 //! bit.
 
+use std::sync::atomic::{AtomicU8, Ordering};
 use wide::f32x8;
 
 /// How wide the node tests may go: the widest the machine has, up to the
-/// level given (see [`Database::set_simd`](crate::Database::set_simd)).
-/// Every level finds the same hits, to the bit.
+/// level given (see [`Database::set_simd`](crate::Database::set_simd) and
+/// [`SimdLevel::limit_process`]). Every level finds the same hits, to the
+/// bit.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
 pub enum SimdLevel {
     /// The build's own target (at x86-64's baseline, SSE2: two 4-lane
@@ -35,20 +37,61 @@ pub enum SimdLevel {
 }
 
 impl SimdLevel {
-    /// The levels this machine runs, the baseline first.
+    /// The levels this machine runs, the baseline first (whatever this
+    /// process's limit).
     pub fn supported() -> Vec<SimdLevel> {
         #[cfg(target_arch = "x86_64")]
-        let wider = v3(SimdLevel::X86V3).map(|_| SimdLevel::X86V3);
+        let wider = pulp::x86::V3::try_new().map(|_| SimdLevel::X86V3);
         #[cfg(not(target_arch = "x86_64"))]
         let wider = None;
         std::iter::once(SimdLevel::Baseline).chain(wider).collect()
     }
 
-    /// The widest level this machine runs.
+    /// The widest level searches run at in this process: the machine's,
+    /// within [`SimdLevel::limit_process`]'s.
     pub fn best() -> SimdLevel {
-        *SimdLevel::supported()
+        let machine = *SimdLevel::supported()
             .last()
-            .unwrap_or(&SimdLevel::Baseline)
+            .unwrap_or(&SimdLevel::Baseline);
+        machine.min(SimdLevel::process_limit())
+    }
+
+    /// Limits every search of this process to `level` at the widest,
+    /// whatever its database asks for (as a thread count limits the
+    /// threads): a user's way to run the baseline where the machine has
+    /// wider units, and see the same images. Hits do not change.
+    pub fn limit_process(level: SimdLevel) {
+        PROCESS_LIMIT.store(level as u8, Ordering::Relaxed);
+    }
+
+    /// The limit [`SimdLevel::limit_process`] set ([`SimdLevel::X86V3`],
+    /// no limit, until it is called).
+    fn process_limit() -> SimdLevel {
+        match PROCESS_LIMIT.load(Ordering::Relaxed) {
+            0 => SimdLevel::Baseline,
+            _ => SimdLevel::X86V3,
+        }
+    }
+}
+
+/// The process's limit on the level, as `SimdLevel as u8`.
+static PROCESS_LIMIT: AtomicU8 = AtomicU8::new(SimdLevel::X86V3 as u8);
+
+impl SimdLevel {
+    /// The level's name as a command line gives it: `baseline` or
+    /// `x86-64-v3`.
+    pub fn name(self) -> &'static str {
+        match self {
+            SimdLevel::Baseline => "baseline",
+            SimdLevel::X86V3 => "x86-64-v3",
+        }
+    }
+
+    /// The level [`SimdLevel::name`] names.
+    pub fn from_name(name: &str) -> Option<SimdLevel> {
+        [SimdLevel::Baseline, SimdLevel::X86V3]
+            .into_iter()
+            .find(|l| l.name() == name)
     }
 }
 
@@ -66,7 +109,7 @@ impl std::fmt::Display for SimdLevel {
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 pub(crate) fn v3(level: SimdLevel) -> Option<pulp::x86::V3> {
-    match level {
+    match level.min(SimdLevel::process_limit()) {
         SimdLevel::Baseline => None,
         SimdLevel::X86V3 => pulp::x86::V3::try_new(),
     }
