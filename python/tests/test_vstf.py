@@ -210,6 +210,24 @@ def test_an_array_is_the_cli_png_bit_for_bit(tmp_path):
     assert not np.array_equal(other, read_png(out))
 
 
+def test_every_simd_level_renders_the_same_array():
+    s = vstf.load(FIXTURES / "teaser.json")
+    best = vstf.simd_level()
+    assert best in ("baseline", "x86-64-v3")
+    default = vstf.render(s, width=96, height=54, linear=True)
+    try:
+        vstf.limit_simd("baseline")
+        assert vstf.simd_level() == "baseline"
+        baseline = vstf.render(s, width=96, height=54, linear=True)
+    finally:
+        vstf.limit_simd("x86-64-v3")
+    assert vstf.simd_level() == best
+    assert default.tobytes() == baseline.tobytes()
+    # Negative control: a level that does not exist is refused.
+    with pytest.raises(vstf.UsageError, match="x86-64-v3"):
+        vstf.limit_simd("avx512")
+
+
 def test_linear_radiance_quantises_to_the_8_bit_image():
     s = vstf.load(FIXTURES / "flange.json")
     linear = vstf.render(s, width=40, height=30, spp=1, linear=True)

@@ -49,6 +49,8 @@ __all__ = [
     "animate",
     "check",
     "debug",
+    "limit_simd",
+    "simd_level",
     "CheckResult",
     "Row",
     "Golden",
@@ -297,6 +299,21 @@ def __getattr__(name):
 
         return Viewer
     raise AttributeError(f"module 'vstf' has no attribute {name!r}")
+
+
+def limit_simd(level: str) -> None:
+    """Limits every search of this process to the vector level ``level``
+    (``"baseline"``, the build's own, or ``"x86-64-v3"``, AVX2 where the
+    CPU has it: the default) at the widest, as ``vstf --simd`` does. The
+    images are the same to the bit at every level. Raises UsageError for
+    any other name."""
+    _vstf.limit_simd(level)
+
+
+def simd_level() -> str:
+    """The vector level searches run at in this process: the machine's
+    widest, within ``limit_simd``'s limit."""
+    return _vstf.simd_level()
 
 
 def debug(scene: Scene, pixel: Sequence[int], *, candidates: bool = False, **view) -> dict:
