@@ -50,10 +50,11 @@ impl SimdLevel {
     /// The widest level searches run at in this process: the machine's,
     /// within [`SimdLevel::limit_process`]'s.
     pub fn best() -> SimdLevel {
-        let machine = *SimdLevel::supported()
-            .last()
-            .unwrap_or(&SimdLevel::Baseline);
-        machine.min(SimdLevel::process_limit())
+        #[cfg(target_arch = "x86_64")]
+        if v3(SimdLevel::X86V3).is_some() {
+            return SimdLevel::X86V3;
+        }
+        SimdLevel::Baseline
     }
 
     /// Limits every search of this process to `level` at the widest,
@@ -72,12 +73,7 @@ impl SimdLevel {
             _ => SimdLevel::X86V3,
         }
     }
-}
 
-/// The process's limit on the level, as `SimdLevel as u8`.
-static PROCESS_LIMIT: AtomicU8 = AtomicU8::new(SimdLevel::X86V3 as u8);
-
-impl SimdLevel {
     /// The level's name as a command line gives it: `baseline` or
     /// `x86-64-v3`.
     pub fn name(self) -> &'static str {
@@ -94,6 +90,9 @@ impl SimdLevel {
             .find(|l| l.name() == name)
     }
 }
+
+/// The process's limit on the level, as `SimdLevel as u8`.
+static PROCESS_LIMIT: AtomicU8 = AtomicU8::new(SimdLevel::X86V3 as u8);
 
 impl std::fmt::Display for SimdLevel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
