@@ -109,6 +109,100 @@ fn bin_at(x: f64) -> usize {
     (x as i64).clamp(0, BINS as i64 - 1) as usize
 }
 
+/// The centroid bins of a node's items along the axes their centroids
+/// spread over (the k-th such axis's at k): each bin's item count and
+/// box, and which bins hold any item (bit b for bin b).
+struct Bins<const A: usize> {
+    count: [[usize; BINS]; A],
+    min: [[DVec4; BINS]; A],
+    max: [[DVec4; BINS]; A],
+    occupied: [u32; A],
+}
+
+impl<const A: usize> Bins<A> {
+    /// The items' bins along `axes`, `place` giving a centroid's place in
+    /// bins on every axis. A bin's box is the same to the bit as one taken
+    /// from infinite bounds.
+    #[inline(always)]
+    fn of(
+        items: &[Item<A>],
+        shared: &Shared,
+        axes: &[usize],
+        place: impl Fn(DVec4) -> [f64; 4],
+    ) -> Bins<A> {
+        let mut bins = Bins {
+            count: [[0; BINS]; A],
+            min: [[DVec4::INFINITY; BINS]; A],
+            max: [[DVec4::NEG_INFINITY; BINS]; A],
+            occupied: [0; A],
+        };
+        for item in items {
+            let bounds = item.bounds(shared);
+            let c = place(bounds.centroid());
+            for (k, &axis) in axes.iter().enumerate() {
+                let b = bin_at(c[axis]);
+                bins.count[k][b] += 1;
+                bins.min[k][b] = bins.min[k][b].min(bounds.min);
+                bins.max[k][b] = bins.max[k][b].max(bounds.max);
+                bins.occupied[k] |= 1 << b;
+            }
+        }
+        bins
+    }
+
+    /// The cheapest split along the k-th binned axis, and the bins left of
+    /// it, if it beats `best` (its cost, below which a split must come):
+    /// the surface area heuristic's cost 1 + (area_l n_l + area_r n_r) /
+    /// `parent` of splitting after each occupied bin but the last. An
+    /// empty bin changes neither part: its split is the one before it,
+    /// whose area and cost are the same to the bit, and is passed over,
+    /// so that only the occupied bins are visited.
+    #[inline(always)]
+    fn cheapest(&self, k: usize, parent: f64, best: Option<f64>) -> Option<(f64, usize)> {
+        let (count, bmin, bmax, occupied) =
+            (&self.count[k], &self.min[k], &self.max[k], self.occupied[k]);
+        // Sweep from the right to know each right part's box: at an
+        // occupied bin, the area and count of it and the bins above.
+        let mut right_area = [0.0; BINS];
+        let mut rcount = [0usize; BINS];
+        let (mut rmin, mut rmax) = (DVec4::INFINITY, DVec4::NEG_INFINITY);
+        let mut n = 0;
+        let mut bits = occupied;
+        while bits != 0 {
+            let b = (u32::BITS - 1 - bits.leading_zeros()) as usize;
+            bits &= !(1 << b);
+            rmin = rmin.min(bmin[b]);
+            rmax = rmax.max(bmax[b]);
+            n += count[b];
+            right_area[b] = area(rmin, rmax);
+            rcount[b] = n;
+        }
+        let (mut lmin, mut lmax) = (DVec4::INFINITY, DVec4::NEG_INFINITY);
+        let mut lcount = 0;
+        let mut found: Option<(f64, usize)> = None;
+        let mut bits = occupied;
+        while bits != 0 {
+            let b = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            lmin = lmin.min(bmin[b]);
+            lmax = lmax.max(bmax[b]);
+            lcount += count[b];
+            // The right part starts at the next occupied bin.
+            if bits == 0 {
+                break;
+            }
+            let next = bits.trailing_zeros() as usize;
+            let cost = 1.0
+                + (area(lmin, lmax) * lcount as f64 + right_area[next] * rcount[next] as f64)
+                    / parent;
+            if found.map(|f| f.0).or(best).is_none_or(|c| cost < c) {
+                found = Some((cost, b + 1));
+            }
+        }
+        found
+    }
+}
+
 /// Chooses a split of `items` (of extent `ext`) by the surface area
 /// heuristic over binned centroids on x, y, z and t, one pass binning every
 /// axis; moves the left part first and returns its length and both parts'
@@ -119,87 +213,46 @@ fn sah_split<const A: usize>(
     shared: &Shared,
     ext: &Extent,
 ) -> Option<(usize, Extent, Extent)> {
-    let (min, max, cmin, extent) = (ext.min, ext.max, ext.cmin, ext.cmax - ext.cmin);
+    let (cmin, extent) = (ext.cmin, ext.cmax - ext.cmin);
     let scale = DVec4::select(extent.cmpgt(DVec4::ZERO), BINS as f64 / extent, DVec4::ZERO);
     // A centroid's place in the bins of every axis (an array: glam's own
     // index is a branch on the axis).
     let place = |c: DVec4| ((c - cmin) * scale).to_array();
     // The axes the centroids spread along (of the first `A`: the others
-    // are the same for every item), binned side by side (the k-th such
-    // axis's bins at k).
+    // are the same for every item), binned side by side.
     let (mut axes, mut spread) = ([0usize; A], 0);
     for a in (0..A).filter(|&a| extent[a] > 0.0) {
         (axes[spread], spread) = (a, spread + 1);
     }
     let axes = &axes[..spread];
-    let mut count = [[0usize; BINS]; A];
-    let mut bmin = [[DVec4::splat(f64::INFINITY); BINS]; A];
-    let mut bmax = [[DVec4::splat(f64::NEG_INFINITY); BINS]; A];
-    let (count, bmin, bmax) = (
-        &mut count[..spread],
-        &mut bmin[..spread],
-        &mut bmax[..spread],
-    );
-    for item in items.iter() {
-        let bounds = item.bounds(shared);
-        let c = place(bounds.centroid());
-        for (k, &axis) in axes.iter().enumerate() {
-            let b = bin_at(c[axis]);
-            count[k][b] += 1;
-            bmin[k][b] = bmin[k][b].min(bounds.min);
-            bmax[k][b] = bmax[k][b].max(bounds.max);
-        }
-    }
-    let parent = area(min, max).max(1e-300);
+    let bins = Bins::of(items, shared, axes, place);
+    let parent = area(ext.min, ext.max).max(1e-300);
     let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins on the left)
     for (k, &axis) in axes.iter().enumerate() {
-        let (count, bmin, bmax) = (&count[k], &bmin[k], &bmax[k]);
-        // Sweep from the right to know each right part's box. An empty
-        // bin changes neither part: its split is the one before it, whose
-        // area and cost are the same to the bit, and is passed over.
-        let mut right_area = [0.0; BINS];
-        let mut rcount = [0usize; BINS];
-        let (mut rmin, mut rmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
-        let (mut n, mut right) = (0, area(rmin, rmax));
-        for b in (1..BINS).rev() {
-            if count[b] > 0 {
-                rmin = rmin.min(bmin[b]);
-                rmax = rmax.max(bmax[b]);
-                n += count[b];
-                right = area(rmin, rmax);
-            }
-            right_area[b] = right;
-            rcount[b] = n;
-        }
-        let (mut lmin, mut lmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
-        let mut lcount = 0;
-        for split in 1..BINS {
-            if count[split - 1] == 0 {
-                continue;
-            }
-            lmin = lmin.min(bmin[split - 1]);
-            lmax = lmax.max(bmax[split - 1]);
-            lcount += count[split - 1];
-            if rcount[split] == 0 {
-                continue;
-            }
-            let cost = 1.0
-                + (area(lmin, lmax) * lcount as f64 + right_area[split] * rcount[split] as f64)
-                    / parent;
-            if best.is_none_or(|(c, _, _)| cost < c) {
-                best = Some((cost, axis, split));
-            }
+        if let Some((cost, split)) = bins.cheapest(k, parent, best.map(|b| b.0)) {
+            best = Some((cost, axis, split));
         }
     }
     let (cost, axis, split) = best?;
     if cost >= items.len() as f64 {
         return None;
     }
+    Some(partition(items, shared, |c| bin_at(place(c)[axis]) < split))
+}
+
+/// Moves the items whose centroids are `left` first; returns how many
+/// there are and both parts' extents.
+#[inline(always)]
+fn partition<const A: usize>(
+    items: &mut [Item<A>],
+    shared: &Shared,
+    left_of: impl Fn(DVec4) -> bool,
+) -> (usize, Extent, Extent) {
     let mut mid = 0;
     let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
     for i in 0..items.len() {
         let b = items[i].bounds(shared);
-        if bin_at(place(b.centroid())[axis]) < split {
+        if left_of(b.centroid()) {
             left.add(&b);
             items.swap(i, mid);
             mid += 1;
@@ -207,7 +260,7 @@ fn sah_split<const A: usize>(
             right.add(&b);
         }
     }
-    Some((mid, left, right))
+    (mid, left, right)
 }
 
 /// Pads a box so that hits accepted with barycentric slack are never culled.
@@ -335,162 +388,4 @@ pub(in crate::accel) fn build<N: PairNode, const A: usize>(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::rng::SplitMix64;
-
-    /// An inner node as the build makes it, in f64: both children's boxes.
-    #[derive(Clone, Copy, Debug, PartialEq)]
-    struct Node {
-        min: [DVec4; 2],
-        max: [DVec4; 2],
-        children: [Child; 2],
-    }
-
-    impl PairNode for Node {
-        fn pair(bounds: [Bounds4; 2], children: [Child; 2]) -> Node {
-            Node {
-                min: bounds.map(|b| b.min),
-                max: bounds.map(|b| b.max),
-                children,
-            }
-        }
-
-        fn children_mut(&mut self) -> &mut [Child; 2] {
-            &mut self.children
-        }
-    }
-
-    /// The bin through i64 is the bin through usize, at every kind of
-    /// value: in range, at the edges, negative, huge, infinite, NaN.
-    #[test]
-    fn bins_are_those_of_the_usize_conversion() {
-        let mut rng = SplitMix64::new(9);
-        let special = [
-            f64::NAN,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            -0.0,
-            0.0,
-            -1e-300,
-            5e-324,
-            -0.5,
-            15.0,
-            15.999999999999998,
-            16.0,
-            9.3e18,
-            -9.3e18,
-            1e300,
-        ];
-        let random = (0..10_000).map(|_| (rng.next_f64() - 0.1) * 20.0);
-        for x in special.into_iter().chain(random) {
-            assert_eq!(bin_at(x), (x as usize).min(BINS - 1), "{x}");
-        }
-    }
-
-    fn random_boxes(n: usize, seed: u64) -> Vec<Bounds4> {
-        let mut rng = SplitMix64::new(seed);
-        (0..n)
-            .map(|_| {
-                let c = DVec4::new(
-                    rng.next_f64(),
-                    rng.next_f64(),
-                    rng.next_f64(),
-                    rng.next_f64(),
-                );
-                let size = DVec4::splat(0.01 * rng.next_f64());
-                Bounds4::new(c * 100.0, c * 100.0 + size)
-            })
-            .collect()
-    }
-
-    fn pool(threads: usize) -> rayon::ThreadPool {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-    }
-
-    fn built_on(threads: usize, boxes: &[Bounds4]) -> Built<Node> {
-        pool(threads).install(|| build::<Node, 4>(boxes.len(), |i| boxes[i]))
-    }
-
-    /// A build large enough to split on both threads gives the tree a build
-    /// on one thread gives, node for node; the control, one box moved,
-    /// gives another.
-    #[test]
-    fn the_tree_does_not_depend_on_the_thread_count() {
-        let boxes = random_boxes(4 * PARALLEL_ITEMS, 9);
-        let (one, two) = (built_on(1, &boxes), built_on(2, &boxes));
-        assert!(one.nodes.len() > 1000);
-        assert_eq!(one.nodes, two.nodes);
-        assert_eq!((one.root, one.order.clone()), (two.root, two.order));
-        let mut moved = boxes.clone();
-        moved[7].min.x += 50.0;
-        moved[7].max.x += 50.0;
-        assert_ne!(built_on(2, &moved).nodes, one.nodes);
-    }
-
-    /// Boxes that share one time span (a stretch's prisms) build the same
-    /// tree, node for node and to the bit, when the build keeps their
-    /// space axes alone and the span once; the control, one box's span
-    /// changed, builds another tree over all four axes.
-    #[test]
-    fn keeping_the_shared_span_once_builds_the_same_tree() {
-        let spanned: Vec<Bounds4> = random_boxes(2 * PARALLEL_ITEMS, 11)
-            .into_iter()
-            .map(|b| Bounds4::new(b.min.truncate().extend(-2.5), b.max.truncate().extend(7.0)))
-            .collect();
-        let space = pool(2).install(|| build::<Node, 3>(spanned.len(), |i| spanned[i]));
-        let spacetime = pool(2).install(|| build::<Node, 4>(spanned.len(), |i| spanned[i]));
-        assert!(space.nodes.len() > 1000);
-        assert_eq!(space.nodes, spacetime.nodes);
-        assert_eq!((space.root, space.order), (spacetime.root, spacetime.order));
-        let mut longer = spanned.clone();
-        longer[3].max.w = 70.0;
-        let other = pool(2).install(|| build::<Node, 4>(longer.len(), |i| longer[i]));
-        assert_ne!(other.nodes, spacetime.nodes);
-    }
-
-    /// A box whose span is not the others' cannot be built over space
-    /// alone: the build refuses it rather than give it the first's span.
-    #[test]
-    #[should_panic(expected = "differs from the first's past axis 3")]
-    fn a_box_of_another_span_is_refused_over_space() {
-        let mut boxes: Vec<Bounds4> = random_boxes(100, 12)
-            .into_iter()
-            .map(|b| Bounds4::new(b.min.truncate().extend(0.0), b.max.truncate().extend(1.0)))
-            .collect();
-        boxes[40].min.w = -1.0;
-        build::<Node, 3>(boxes.len(), |i| boxes[i]);
-    }
-
-    /// Every item sits in exactly one leaf, inside every box on its path.
-    #[test]
-    fn every_item_is_in_one_leaf_inside_its_boxes() {
-        let boxes = random_boxes(3 * PARALLEL_ITEMS, 10);
-        let bvh = built_on(2, &boxes);
-        let mut seen = vec![0u32; boxes.len()];
-        let inside =
-            |b: &Bounds4, min: DVec4, max: DVec4| b.min.cmpge(min).all() && b.max.cmple(max).all();
-        let everywhere = Bounds4::new(DVec4::NEG_INFINITY, DVec4::INFINITY);
-        let mut stack = vec![(bvh.root, everywhere)];
-        while let Some((child, bounds)) = stack.pop() {
-            if child.count > 0 {
-                let start = child.index as usize;
-                for &i in &bvh.order[start..start + child.count as usize] {
-                    assert!(inside(&boxes[i as usize], bounds.min, bounds.max));
-                    seen[i as usize] += 1;
-                }
-                continue;
-            }
-            let node = &bvh.nodes[child.index as usize];
-            for c in 0..2 {
-                let b = Bounds4::new(node.min[c], node.max[c]);
-                assert!(inside(&b, bounds.min, bounds.max));
-                stack.push((node.children[c], b));
-            }
-        }
-        assert!(seen.iter().all(|&n| n == 1));
-    }
-}
+mod tests;
