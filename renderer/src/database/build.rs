@@ -236,7 +236,7 @@ impl<'a> Builder<'a> {
             self.vertex_count += mesh.vertices.len();
             let reach = match self.checking {
                 true => 0.0,
-                false => geometry::reach((0..count).map(|t| mesh.corners(t))),
+                false => geometry::mesh_reach(&mesh),
             };
             self.meshes.push((!self.checking).then_some(mesh));
             self.runs.push(Run {

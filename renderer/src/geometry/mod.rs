@@ -18,7 +18,7 @@ pub use extrude::Tetrahedron;
 pub(crate) use extrude::{
     corner_order, corners_between, extrude_between, piece, Prism, PrismCorners,
 };
-pub(crate) use filter::{reach, CornerRows, FilterRay, LANES};
+pub(crate) use filter::{mesh_reach, CornerRows, FilterRay, LANES};
 pub(crate) use hit::{nearer, Miss};
 pub use hit::{Barycentric, Hit, PrimitiveId};
 pub(crate) use poses::{resolve, Pose};
