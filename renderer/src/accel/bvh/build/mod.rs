@@ -97,6 +97,10 @@ impl Extent {
 /// Subtrees of at least this many items are built on both threads.
 const PARALLEL_ITEMS: usize = 16_384;
 
+/// Nodes of at least this many items are binned on both threads: the
+/// root, which would otherwise keep a thread waiting, and those near it.
+const PARALLEL_BINS: usize = 1 << 18;
+
 /// Centroid bins per axis of the surface area heuristic.
 const BINS: usize = 16;
 
@@ -148,6 +152,22 @@ impl<const A: usize> Bins<A> {
             }
         }
         bins
+    }
+
+    /// The bins of two parts of a node's items, `self`'s and `other`'s:
+    /// counts add, and boxes take the minimum and maximum of their faces,
+    /// which are exact, so that the bins are those of the items binned in
+    /// order, whatever the parts.
+    fn merged(mut self, other: Bins<A>) -> Bins<A> {
+        for k in 0..A {
+            for b in 0..BINS {
+                self.count[k][b] += other.count[k][b];
+                self.min[k][b] = self.min[k][b].min(other.min[k][b]);
+                self.max[k][b] = self.max[k][b].max(other.max[k][b]);
+            }
+            self.occupied[k] |= other.occupied[k];
+        }
+        self
     }
 
     /// The cheapest split along the k-th binned axis, and the bins left of
@@ -225,7 +245,14 @@ fn sah_split<const A: usize>(
         (axes[spread], spread) = (a, spread + 1);
     }
     let axes = &axes[..spread];
-    let bins = Bins::of(items, shared, axes, place);
+    let bins = if items.len() >= PARALLEL_BINS {
+        (items.par_chunks(PARALLEL_BINS / 4))
+            .map(|part| Bins::of(part, shared, axes, &place))
+            .reduce_with(Bins::merged)
+            .expect("a node holds items")
+    } else {
+        Bins::of(items, shared, axes, place)
+    };
     let parent = area(ext.min, ext.max).max(1e-300);
     let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins on the left)
     for (k, &axis) in axes.iter().enumerate() {

@@ -424,3 +424,43 @@ fn the_occupied_bins_choose_the_split_every_bin_chooses() {
     assert!(splits > 40, "only {splits} nodes split");
     assert!(ties_differ, "no case tells a tie's winner");
 }
+
+/// A node large enough to be binned on both threads splits as the sweep
+/// over every bin, binned in order, splits it, to the bit, on one thread
+/// and on two, some of its boxes with faces at zero of both signs. The
+/// control: with one item moved far out the split differs.
+#[test]
+fn binning_on_both_threads_splits_as_binning_in_order() {
+    let mut items = clumped_items(PARALLEL_BINS + 3000, 7, 77);
+    for (i, item) in items.iter_mut().enumerate() {
+        match i % 13 {
+            0 => (item.min[0], item.max[0]) = (-0.0, 0.0),
+            1 => (item.min[0], item.max[0]) = (0.0, 0.0),
+            2 => (item.min[0], item.max[0]) = (-0.0, -0.0),
+            _ => {}
+        }
+    }
+    let shared = Bounds4::new(DVec4::ZERO, DVec4::new(0.0, 0.0, 0.0, 1.0));
+    let ext = Extent::of(&items, &shared);
+    let mut reference = items.clone();
+    let expected = every_bin_split(&mut reference, &shared, &ext);
+    let expected = expected.map(|(mid, l, r)| (mid, format!("{l:?} {r:?}")));
+    assert!(expected.is_some());
+    for threads in [1, 2] {
+        let mut split = items.clone();
+        let found = pool(threads).install(|| sah_split(&mut split, &shared, &ext));
+        let found = found.map(|(mid, l, r)| (mid, format!("{l:?} {r:?}")));
+        assert_eq!(found, expected, "{threads} threads");
+        assert!(split
+            .iter()
+            .zip(&reference)
+            .all(|(a, b)| a.index == b.index));
+    }
+    assert!(items.len() >= PARALLEL_BINS);
+    let mut moved = items.clone();
+    (moved[5].min[0], moved[5].max[0]) = (1e4, 1e4 + 1.0);
+    let ext = Extent::of(&moved, &shared);
+    let other = pool(2).install(|| sah_split(&mut moved, &shared, &ext));
+    let other = other.map(|(mid, l, r)| (mid, format!("{l:?} {r:?}")));
+    assert_ne!(other, expected);
+}
