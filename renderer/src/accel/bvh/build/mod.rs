@@ -247,7 +247,7 @@ fn sah_split<const A: usize>(
     let axes = &axes[..spread];
     let bins = if items.len() >= PARALLEL_BINS {
         (items.par_chunks(PARALLEL_BINS / 4))
-            .map(|part| Bins::of(part, shared, axes, &place))
+            .map(|part| Bins::of(part, shared, axes, place))
             .reduce_with(Bins::merged)
             .expect("a node holds items")
     } else {
