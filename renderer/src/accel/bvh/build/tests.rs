@@ -168,95 +168,7 @@ fn every_bin_split<const A: usize>(
     shared: &Shared,
     ext: &Extent,
 ) -> Option<(usize, Extent, Extent)> {
-    let (min, max, cmin, extent) = (ext.min, ext.max, ext.cmin, ext.cmax - ext.cmin);
-    let scale = DVec4::select(extent.cmpgt(DVec4::ZERO), BINS as f64 / extent, DVec4::ZERO);
-    // A centroid's place in the bins of every axis (an array: glam's own
-    // index is a branch on the axis).
-    let place = |c: DVec4| ((c - cmin) * scale).to_array();
-    // The axes the centroids spread along (of the first `A`: the others
-    // are the same for every item), binned side by side (the k-th such
-    // axis's bins at k).
-    let (mut axes, mut spread) = ([0usize; A], 0);
-    for a in (0..A).filter(|&a| extent[a] > 0.0) {
-        (axes[spread], spread) = (a, spread + 1);
-    }
-    let axes = &axes[..spread];
-    let mut count = [[0usize; BINS]; A];
-    let mut bmin = [[DVec4::splat(f64::INFINITY); BINS]; A];
-    let mut bmax = [[DVec4::splat(f64::NEG_INFINITY); BINS]; A];
-    let (count, bmin, bmax) = (
-        &mut count[..spread],
-        &mut bmin[..spread],
-        &mut bmax[..spread],
-    );
-    for item in items.iter() {
-        let bounds = item.bounds(shared);
-        let c = place(bounds.centroid());
-        for (k, &axis) in axes.iter().enumerate() {
-            let b = bin_at(c[axis]);
-            count[k][b] += 1;
-            bmin[k][b] = bmin[k][b].min(bounds.min);
-            bmax[k][b] = bmax[k][b].max(bounds.max);
-        }
-    }
-    let parent = area(min, max).max(1e-300);
-    let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins on the left)
-    for (k, &axis) in axes.iter().enumerate() {
-        let (count, bmin, bmax) = (&count[k], &bmin[k], &bmax[k]);
-        // Sweep from the right to know each right part's box. An empty
-        // bin changes neither part: its split is the one before it, whose
-        // area and cost are the same to the bit, and is passed over.
-        let mut right_area = [0.0; BINS];
-        let mut rcount = [0usize; BINS];
-        let (mut rmin, mut rmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
-        let (mut n, mut right) = (0, area(rmin, rmax));
-        for b in (1..BINS).rev() {
-            if count[b] > 0 {
-                rmin = rmin.min(bmin[b]);
-                rmax = rmax.max(bmax[b]);
-                n += count[b];
-                right = area(rmin, rmax);
-            }
-            right_area[b] = right;
-            rcount[b] = n;
-        }
-        let (mut lmin, mut lmax) = (DVec4::splat(f64::INFINITY), DVec4::splat(f64::NEG_INFINITY));
-        let mut lcount = 0;
-        for split in 1..BINS {
-            if count[split - 1] == 0 {
-                continue;
-            }
-            lmin = lmin.min(bmin[split - 1]);
-            lmax = lmax.max(bmax[split - 1]);
-            lcount += count[split - 1];
-            if rcount[split] == 0 {
-                continue;
-            }
-            let cost = 1.0
-                + (area(lmin, lmax) * lcount as f64 + right_area[split] * rcount[split] as f64)
-                    / parent;
-            if best.is_none_or(|(c, _, _)| cost < c) {
-                best = Some((cost, axis, split));
-            }
-        }
-    }
-    let (cost, axis, split) = best?;
-    if cost >= items.len() as f64 {
-        return None;
-    }
-    let mut mid = 0;
-    let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
-    for i in 0..items.len() {
-        let b = items[i].bounds(shared);
-        if bin_at(place(b.centroid())[axis]) < split {
-            left.add(&b);
-            items.swap(i, mid);
-            mid += 1;
-        } else {
-            right.add(&b);
-        }
-    }
-    Some((mid, left, right))
+    sweeping_every_bin(items, shared, ext, |cost, best| cost < best)
 }
 
 /// [`every_bin_split`] with a tie won by the later split: the control.
@@ -264,6 +176,17 @@ fn later_tie_split<const A: usize>(
     items: &mut [Item<A>],
     shared: &Shared,
     ext: &Extent,
+) -> Option<(usize, Extent, Extent)> {
+    sweeping_every_bin(items, shared, ext, |cost, best| cost <= best)
+}
+
+/// The sweep over every bin, a split replacing the best so far where
+/// `beats(its cost, the best's)`.
+fn sweeping_every_bin<const A: usize>(
+    items: &mut [Item<A>],
+    shared: &Shared,
+    ext: &Extent,
+    beats: impl Fn(f64, f64) -> bool,
 ) -> Option<(usize, Extent, Extent)> {
     let (min, max, cmin, extent) = (ext.min, ext.max, ext.cmin, ext.cmax - ext.cmin);
     let scale = DVec4::select(extent.cmpgt(DVec4::ZERO), BINS as f64 / extent, DVec4::ZERO);
@@ -332,7 +255,7 @@ fn later_tie_split<const A: usize>(
             let cost = 1.0
                 + (area(lmin, lmax) * lcount as f64 + right_area[split] * rcount[split] as f64)
                     / parent;
-            if best.is_none_or(|(c, _, _)| cost <= c) {
+            if best.is_none_or(|(c, _, _)| beats(cost, c)) {
                 best = Some((cost, axis, split));
             }
         }
