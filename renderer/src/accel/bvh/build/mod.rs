@@ -125,8 +125,7 @@ struct Bins<const A: usize> {
 
 impl<const A: usize> Bins<A> {
     /// The items' bins along `axes`, `place` giving a centroid's place in
-    /// bins on every axis. A bin's box is the same to the bit as one taken
-    /// from infinite bounds.
+    /// bins on every axis.
     #[inline(always)]
     fn of(
         items: &[Item<A>],
