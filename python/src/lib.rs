@@ -20,8 +20,10 @@ use pyo3::prelude::*;
 #[pyfunction]
 fn limit_simd(level: &str) -> PyResult<()> {
     let level = renderer::SimdLevel::from_name(level).ok_or_else(|| {
+        let names = renderer::SimdLevel::ALL.map(|l| format!("{:?}", l.name()));
         errors::usage(format!(
-            "simd level {level:?}: expected \"baseline\" or \"x86-64-v3\""
+            "simd level {level:?}: expected {}",
+            names.join(" or ")
         ))
     })?;
     renderer::SimdLevel::limit_process(level);

@@ -26,7 +26,10 @@ pub struct Cli {
 
 /// What `--simd` names.
 fn simd_level(text: &str) -> Result<renderer::SimdLevel, String> {
-    renderer::SimdLevel::from_name(text).ok_or_else(|| "expected baseline or x86-64-v3".into())
+    renderer::SimdLevel::from_name(text).ok_or_else(|| {
+        let names = renderer::SimdLevel::ALL.map(renderer::SimdLevel::name);
+        format!("expected {}", names.join(" or "))
+    })
 }
 
 // What `render --models` names.

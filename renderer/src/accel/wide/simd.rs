@@ -83,11 +83,12 @@ impl SimdLevel {
         }
     }
 
+    /// Every level, narrowest first (whatever this machine runs).
+    pub const ALL: [SimdLevel; 2] = [SimdLevel::Baseline, SimdLevel::X86V3];
+
     /// The level [`SimdLevel::name`] names.
     pub fn from_name(name: &str) -> Option<SimdLevel> {
-        [SimdLevel::Baseline, SimdLevel::X86V3]
-            .into_iter()
-            .find(|l| l.name() == name)
+        SimdLevel::ALL.into_iter().find(|l| l.name() == name)
     }
 }
 
