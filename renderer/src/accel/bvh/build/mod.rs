@@ -5,7 +5,8 @@
 //! on x, y, z and t, with the 4D boundary measure of a box as its area: the
 //! time slices of moving objects are told apart by t, while for static
 //! objects (which all live for the whole scene) a split along t gains
-//! nothing and is not chosen.
+//! nothing and is not chosen. A large node's split is chosen from a
+//! sample of its items (see [`sah_split`]).
 
 use super::{rounding_margin, Bounds4, Built, Child, PairNode};
 use glam::DVec4;
@@ -97,9 +98,13 @@ impl Extent {
 /// Subtrees of at least this many items are built on both threads.
 const PARALLEL_ITEMS: usize = 16_384;
 
-/// Nodes of at least this many items are binned on both threads: the
-/// root, which would otherwise keep a thread waiting, and those near it.
-const PARALLEL_BINS: usize = 1 << 18;
+/// Nodes of at least this many items choose their split from a sample of
+/// their items (see [`sah_split`]).
+const SAMPLED_FROM: usize = 1 << 14;
+
+/// About how many items a sampled node bins: every (n / `SAMPLE`)-th of
+/// its n items.
+const SAMPLE: usize = 2048;
 
 /// Centroid bins per axis of the surface area heuristic.
 const BINS: usize = 16;
@@ -124,11 +129,12 @@ struct Bins<const A: usize> {
 }
 
 impl<const A: usize> Bins<A> {
-    /// The items' bins along `axes`, `place` giving a centroid's place in
-    /// bins on every axis.
+    /// The bins along `axes` of every `stride`-th item from the first,
+    /// `place` giving a centroid's place in bins on every axis.
     #[inline(always)]
     fn of(
         items: &[Item<A>],
+        stride: usize,
         shared: &Shared,
         axes: &[usize],
         place: impl Fn(DVec4) -> [f64; 4],
@@ -139,7 +145,7 @@ impl<const A: usize> Bins<A> {
             max: [[DVec4::NEG_INFINITY; BINS]; A],
             occupied: [0; A],
         };
-        for item in items {
+        for item in items.iter().step_by(stride) {
             let bounds = item.bounds(shared);
             let c = place(bounds.centroid());
             for (k, &axis) in axes.iter().enumerate() {
@@ -151,22 +157,6 @@ impl<const A: usize> Bins<A> {
             }
         }
         bins
-    }
-
-    /// The bins of two parts of a node's items, `self`'s and `other`'s:
-    /// counts add, and boxes take the minimum and maximum of their faces,
-    /// which are exact, so that the bins are those of the items binned in
-    /// order, whatever the parts.
-    fn merged(mut self, other: Bins<A>) -> Bins<A> {
-        for k in 0..A {
-            for b in 0..BINS {
-                self.count[k][b] += other.count[k][b];
-                self.min[k][b] = self.min[k][b].min(other.min[k][b]);
-                self.max[k][b] = self.max[k][b].max(other.max[k][b]);
-            }
-            self.occupied[k] |= other.occupied[k];
-        }
-        self
     }
 
     /// The cheapest split along the k-th binned axis, and the bins left of
@@ -225,7 +215,14 @@ impl<const A: usize> Bins<A> {
 /// Chooses a split of `items` (of extent `ext`) by the surface area
 /// heuristic over binned centroids on x, y, z and t, one pass binning every
 /// axis; moves the left part first and returns its length and both parts'
-/// extents; `None` when no split beats a leaf. Deterministic: the same
+/// extents; `None` when no split beats a leaf. A node of at least
+/// [`SAMPLED_FROM`] items bins a sample of them, every (n / [`SAMPLE`])-th,
+/// and splits at the plane between centroid bins that the sample's costs
+/// favour (the heuristic estimated from a subset: binning was most of a
+/// large node's split, and the benchmark's trees built so trace as fast,
+/// docs/performance.md); such a node is split wherever its
+/// centroids spread, never made a leaf, and where its sample's centroids
+/// share one bin on every axis, it bins them all. Deterministic: the same
 /// items in the same order give the same split and order.
 fn sah_split<const A: usize>(
     items: &mut [Item<A>],
@@ -244,25 +241,23 @@ fn sah_split<const A: usize>(
         (axes[spread], spread) = (a, spread + 1);
     }
     let axes = &axes[..spread];
-    let bins = if items.len() >= PARALLEL_BINS {
-        (items.par_chunks(PARALLEL_BINS / 4))
-            .map(|part| Bins::of(part, shared, axes, place))
-            .reduce_with(Bins::merged)
-            .expect("a node holds items")
-    } else {
-        Bins::of(items, shared, axes, place)
-    };
     let parent = area(ext.min, ext.max).max(1e-300);
-    let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins on the left)
-    for (k, &axis) in axes.iter().enumerate() {
-        if let Some((cost, split)) = bins.cheapest(k, parent, best.map(|b| b.0)) {
-            best = Some((cost, axis, split));
+    // (cost, axis, bins on the left) of binning every `stride`-th item.
+    let cheapest = |stride: usize| {
+        let bins = Bins::of(items, stride, shared, axes, place);
+        let mut best: Option<(f64, usize, usize)> = None;
+        for (k, &axis) in axes.iter().enumerate() {
+            if let Some((cost, split)) = bins.cheapest(k, parent, best.map(|b| b.0)) {
+                best = Some((cost, axis, split));
+            }
         }
-    }
-    let (cost, axis, split) = best?;
-    if cost >= items.len() as f64 {
-        return None;
-    }
+        best
+    };
+    let (_, axis, split) = if items.len() >= SAMPLED_FROM {
+        cheapest(items.len() / SAMPLE).or_else(|| cheapest(1))?
+    } else {
+        cheapest(1).filter(|(cost, ..)| *cost < items.len() as f64)?
+    };
     Some(partition(items, shared, |c| bin_at(place(c)[axis]) < split))
 }
 

@@ -348,42 +348,98 @@ fn the_occupied_bins_choose_the_split_every_bin_chooses() {
     assert!(ties_differ, "no case tells a tie's winner");
 }
 
-/// A node large enough to be binned on both threads splits as the sweep
-/// over every bin, binned in order, splits it, to the bit, on one thread
-/// and on two, some of its boxes with faces at zero of both signs. The
-/// control: with one item moved far out the split differs.
+/// A split as the tests compare them: the left part's length and both
+/// parts' extents, to the bit, and the items' order.
+type SplitKey = (Option<(usize, String)>, Vec<u32>);
+
+fn split_key(split: &Option<(usize, Extent, Extent)>, items: &[Item<3>]) -> SplitKey {
+    let order = items.iter().map(|i| i.index).collect();
+    let parts = split
+        .as_ref()
+        .map(|(mid, l, r)| (*mid, format!("{l:?} {r:?}")));
+    (parts, order)
+}
+
+/// A time span shared by every item of these tests.
+fn span() -> Shared {
+    Bounds4::new(DVec4::ZERO, DVec4::new(0.0, 0.0, 0.0, 1.0))
+}
+
+/// The items of `items` a node of their number samples.
+fn sample_of(items: &[Item<3>]) -> Vec<Item<3>> {
+    items
+        .iter()
+        .step_by(items.len() / SAMPLE)
+        .copied()
+        .collect()
+}
+
+/// A large node splits where the sweep over every bin splits its sample
+/// (binned against the whole node's centroid extent): the sample's items
+/// fall on the sides it puts them, and every item beside them on the side
+/// of its centroid. Here the sampled items spread evenly along x while
+/// the others sit in three clumps, so binning every item would choose
+/// another plane (the control, which shows which items were binned).
 #[test]
-fn binning_on_both_threads_splits_as_binning_in_order() {
-    let mut items = clumped_items(PARALLEL_BINS + 3000, 7, 77);
-    for (i, item) in items.iter_mut().enumerate() {
-        match i % 13 {
-            0 => (item.min[0], item.max[0]) = (-0.0, 0.0),
-            1 => (item.min[0], item.max[0]) = (0.0, 0.0),
-            2 => (item.min[0], item.max[0]) = (-0.0, -0.0),
-            _ => {}
-        }
+fn a_large_node_splits_where_its_sample_chooses() {
+    let n = SAMPLED_FROM + 3000;
+    let stride = n / SAMPLE;
+    let mut rng = SplitMix64::new(78);
+    let items: Vec<Item<3>> = (0..n)
+        .map(|i| {
+            let x = match (i % stride, i % 3) {
+                (0, _) => 100.0 * rng.next_f64(),
+                (_, 0) => 10.0 + rng.next_f64(),
+                (_, 1) => 12.0 + rng.next_f64(),
+                _ => 95.0 + rng.next_f64(),
+            };
+            let min = DVec4::new(x, rng.next_f64(), rng.next_f64(), 0.0);
+            Item::new(
+                Bounds4::new(min, min + DVec4::new(0.5, 0.5, 0.5, 1.0)),
+                i as u32,
+            )
+        })
+        .collect();
+    let (shared, ext) = (span(), Extent::of(&items, &span()));
+    let mut sample = sample_of(&items);
+    let chosen = every_bin_split(&mut sample, &shared, &ext).expect("the sample splits");
+    let left: std::collections::BTreeSet<u32> =
+        sample[..chosen.0].iter().map(|i| i.index).collect();
+    let mut split = items.clone();
+    let (mid, ..) = sah_split(&mut split, &shared, &ext).expect("a large node splits");
+    let sampled_left: std::collections::BTreeSet<u32> = (split[..mid].iter())
+        .filter(|i| i.index as usize % stride == 0)
+        .map(|i| i.index)
+        .collect();
+    assert_eq!(sampled_left, left);
+    let mut all = items.clone();
+    let every = every_bin_split(&mut all, &shared, &ext).expect("the node splits");
+    assert_ne!(every.0, mid, "binning every item splits here too");
+}
+
+/// A large node whose sampled items share one centroid (so that their bins
+/// tell no split) bins every item instead, and splits as the sweep over
+/// every bin splits it. The control: its sample alone gives no split.
+#[test]
+fn a_sample_in_one_bin_bins_every_item() {
+    let n = SAMPLED_FROM + 100;
+    let mut items = clumped_items(n, 1000, 79);
+    let stride = n / SAMPLE;
+    let lone = Item::new(Bounds4::new(DVec4::splat(5.0), DVec4::splat(5.5)), 0);
+    for (i, item) in items.iter_mut().enumerate().step_by(stride) {
+        *item = Item {
+            index: i as u32,
+            ..lone
+        };
     }
-    let shared = Bounds4::new(DVec4::ZERO, DVec4::new(0.0, 0.0, 0.0, 1.0));
-    let ext = Extent::of(&items, &shared);
+    let (shared, ext) = (span(), Extent::of(&items, &span()));
     let mut reference = items.clone();
     let expected = every_bin_split(&mut reference, &shared, &ext);
-    let expected = expected.map(|(mid, l, r)| (mid, format!("{l:?} {r:?}")));
-    assert!(expected.is_some());
-    for threads in [1, 2] {
-        let mut split = items.clone();
-        let found = pool(threads).install(|| sah_split(&mut split, &shared, &ext));
-        let found = found.map(|(mid, l, r)| (mid, format!("{l:?} {r:?}")));
-        assert_eq!(found, expected, "{threads} threads");
-        assert!(split
-            .iter()
-            .zip(&reference)
-            .all(|(a, b)| a.index == b.index));
-    }
-    assert!(items.len() >= PARALLEL_BINS);
-    let mut moved = items.clone();
-    (moved[5].min[0], moved[5].max[0]) = (1e4, 1e4 + 1.0);
-    let ext = Extent::of(&moved, &shared);
-    let other = pool(2).install(|| sah_split(&mut moved, &shared, &ext));
-    let other = other.map(|(mid, l, r)| (mid, format!("{l:?} {r:?}")));
-    assert_ne!(other, expected);
+    assert!(expected
+        .as_ref()
+        .is_some_and(|(mid, ..)| (1..n).contains(mid)));
+    let mut split = items.clone();
+    let found = sah_split(&mut split, &shared, &ext);
+    assert_eq!(split_key(&found, &split), split_key(&expected, &reference));
+    assert!(every_bin_split(&mut sample_of(&items), &shared, &ext).is_none());
 }
