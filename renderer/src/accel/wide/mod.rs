@@ -38,40 +38,43 @@ pub(crate) use traverse::AxisRay;
 use super::bvh::Child;
 use wide::f32x8;
 
-/// The f32 at or below `v`.
+/// The f32 at or below `v`. (Both candidates are found and one taken, so
+/// that no branch waits on the rounding's direction, which varies from
+/// one value to the next.)
 #[inline(always)]
 pub(super) fn down(v: f64) -> f32 {
     let f = v as f32;
+    let below = -next_up(-f);
     if f64::from(f) > v {
-        -next_up(-f)
+        below
     } else {
         f
     }
 }
 
-/// The f32 at or above `v`.
+/// The f32 at or above `v` (as [`down`], without a branch).
 #[inline(always)]
 pub(super) fn up(v: f64) -> f32 {
     let f = v as f32;
+    let above = next_up(f);
     if f64::from(f) < v {
-        next_up(f)
+        above
     } else {
         f
     }
 }
 
 /// The least f32 above `f`, a finite value or -infinity (f32::next_up,
-/// stable only since Rust 1.86).
+/// stable only since Rust 1.86): one step of the bits away from zero for
+/// a positive `f`, toward it for a negative one, and the least subnormal
+/// for a zero of either sign.
 #[inline(always)]
 fn next_up(f: f32) -> f32 {
     let bits = f.to_bits();
-    if f == 0.0 {
-        f32::from_bits(1)
-    } else if f > 0.0 {
-        f32::from_bits(bits + 1)
-    } else {
-        f32::from_bits(bits - 1)
-    }
+    // All ones for a negative f: a step of -1, +1 otherwise.
+    let negative = ((bits as i32) >> 31) as u32;
+    let stepped = bits.wrapping_add((negative << 1) | 1);
+    f32::from_bits(if f == 0.0 { 1 } else { stepped })
 }
 
 /// Children of a node of the collapsed tree.
@@ -233,5 +236,43 @@ mod tests {
         }
         assert_eq!(next_up(-0.0), f32::from_bits(1));
         assert_eq!(next_up(f32::NEG_INFINITY), f32::MIN);
+    }
+
+    /// The step without branches is the step by cases (zero, positive,
+    /// negative), to the bit, on zeros, subnormals, extremes, infinities
+    /// and random bits (NaN aside); the control: the same step without its case for zeros
+    /// differs at -0.
+    #[test]
+    fn next_up_steps_as_by_cases() {
+        let by_cases = |f: f32| {
+            let bits = f.to_bits();
+            if f == 0.0 {
+                f32::from_bits(1)
+            } else if f > 0.0 {
+                f32::from_bits(bits + 1)
+            } else {
+                f32::from_bits(bits - 1)
+            }
+        };
+        let mut rng = crate::rng::SplitMix64::new(5);
+        let special = [
+            0.0,
+            -0.0,
+            1e-45,
+            -1e-45,
+            f32::MAX,
+            f32::MIN,
+            f32::NEG_INFINITY,
+            1.0,
+        ];
+        let random = (0..100_000).map(|_| f32::from_bits(rng.next_u64() as u32));
+        for f in special.into_iter().chain(random).filter(|f| !f.is_nan()) {
+            assert_eq!(next_up(f).to_bits(), by_cases(f).to_bits(), "{f:e}");
+        }
+        let unguarded = |f: f32| {
+            let negative = ((f.to_bits() as i32) >> 31) as u32;
+            f32::from_bits(f.to_bits().wrapping_add((negative << 1) | 1))
+        };
+        assert_ne!(unguarded(-0.0).to_bits(), by_cases(-0.0).to_bits());
     }
 }
