@@ -41,6 +41,18 @@ impl Lanes {
         Lanes(out)
     }
 
+    /// Those of the set whose range's end `hi[i]` is at or beyond `entry`
+    /// (`filter(|i| entry <= hi[i])`, every lane compared at once rather
+    /// than one branch a lane).
+    #[inline(always)]
+    pub(crate) fn reaching(self, entry: f32, hi: &[f32; PACKET]) -> Lanes {
+        let mut out = 0;
+        for (i, &h) in hi.iter().enumerate() {
+            out |= u32::from(entry <= h) << i;
+        }
+        Lanes(out & self.0)
+    }
+
     /// The set's one ray, if it holds exactly one.
     #[inline(always)]
     pub(crate) fn single(self) -> Option<usize> {
@@ -87,5 +99,31 @@ mod tests {
         assert_eq!(Lanes(0).single(), None);
         assert!(Lanes::default().iter().next().is_none());
         assert!(Lanes::first(0).is_empty());
+    }
+
+    /// `reaching` keeps what `filter` with the same comparison keeps, on
+    /// every set of lanes, NaN and infinite ends included; the control:
+    /// the strict comparison differs where an end equals the entry.
+    #[test]
+    fn reaching_is_filter_by_the_range_end() {
+        let values = [
+            f32::NAN,
+            f32::NEG_INFINITY,
+            -1.0,
+            0.0,
+            0.5,
+            1.0,
+            f32::INFINITY,
+        ];
+        let mut strict_differs = false;
+        for set in 0..16 {
+            for (k, &entry) in values.iter().enumerate() {
+                let hi: [f32; PACKET] = std::array::from_fn(|i| values[(k + 3 * i + set) % 7]);
+                let lanes = Lanes(set as u32);
+                assert_eq!(lanes.reaching(entry, &hi), lanes.filter(|i| entry <= hi[i]));
+                strict_differs |= lanes.reaching(entry, &hi) != lanes.filter(|i| entry < hi[i]);
+            }
+        }
+        assert!(strict_differs);
     }
 }

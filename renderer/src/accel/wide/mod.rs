@@ -91,15 +91,6 @@ struct WideNode<const A: usize> {
     children: [Child; WIDTH],
 }
 
-impl<const A: usize> WideNode<A> {
-    /// Face `f`: the lower face of axis f for f < A, the upper face of
-    /// axis f - A otherwise.
-    #[inline(always)]
-    fn face(&self, f: usize) -> f32x8 {
-        self.faces.as_flattened()[f]
-    }
-}
-
 const NO_CHILD: Child = Child { index: 0, count: 0 };
 
 /// A hierarchy over boxes of `A` axes: nodes of eight children (the root

@@ -52,7 +52,7 @@ impl<const A: usize> WideBvh<A> {
         });
         while let Some(w) = current.take().or_else(|| stack.pop()) {
             // `entry` is the least of its rays' entries.
-            let lanes = w.lanes.filter(|i| w.entry <= hi32[i]);
+            let lanes = w.lanes.reaching(w.entry, &hi32);
             if lanes.is_empty() {
                 continue;
             }
@@ -123,7 +123,7 @@ impl<const A: usize> WideBvh<A> {
         });
         while let Some(w) = current.take().or_else(|| stack.pop()) {
             // `entry` is the least of its rays' entries.
-            let lanes = w.lanes.filter(|i| w.entry <= hi32[i]);
+            let lanes = w.lanes.reaching(w.entry, &hi32);
             if lanes.is_empty() {
                 continue;
             }

@@ -45,11 +45,10 @@ pub(super) struct WideRay<const A: usize, S: Simd8> {
     far_o: [S::F; A],
     near_inv: [S::F; A],
     far_inv: [S::F; A],
-    /// Per axis, the index into a node's faces (see [`WideNode::face`]) of
-    /// the near face and of the far one (lower then upper when the
-    /// direction is positive).
-    near: [usize; A],
-    far: [usize; A],
+    /// Per axis, the side of a node's boxes whose face the ray crosses
+    /// entering: 0 for the lower faces (a positive direction), 1 for the
+    /// upper; it leaves through the other.
+    near_side: [usize; A],
 }
 
 impl<const A: usize, S: Simd8> WideRay<A, S> {
@@ -64,8 +63,7 @@ impl<const A: usize, S: Simd8> WideRay<A, S> {
             far_o: [zero; A],
             near_inv: [zero; A],
             far_inv: [zero; A],
-            near: std::array::from_fn(|a| a),
-            far: std::array::from_fn(|a| a + A),
+            near_side: [0; A],
         };
         for a in 0..A {
             let (lower, upper) = (simd.splat(down(o[a])), simd.splat(up(o[a])));
@@ -75,7 +73,7 @@ impl<const A: usize, S: Simd8> WideRay<A, S> {
             // 1/(-0) = -inf: a direction of -0 is negative here.
             if inv[a].is_sign_negative() {
                 (ray.near_o[a], ray.far_o[a]) = (lower, upper);
-                (ray.near[a], ray.far[a]) = (a + A, a);
+                ray.near_side[a] = 1;
             } else {
                 (ray.near_o[a], ray.far_o[a]) = (upper, lower);
             }
@@ -99,8 +97,11 @@ impl<const A: usize, S: Simd8> WideRay<A, S> {
         let mut entry = s.splat(range.0);
         let mut exit = s.splat(range.1);
         for a in 0..A {
-            let near_face = s.load(node.face(self.near[a]));
-            let far_face = s.load(node.face(self.far[a]));
+            // (A side of 0 or 1 and an axis below A: indices that need no
+            // bounds check.)
+            let side = self.near_side[a] & 1;
+            let near_face = s.load(node.faces[side][a]);
+            let far_face = s.load(node.faces[side ^ 1][a]);
             let near = s.mul(s.sub(near_face, self.near_o[a]), self.near_inv[a]);
             let far = s.mul(s.sub(far_face, self.far_o[a]), self.far_inv[a]);
             // A NaN (an axis the ray is parallel to) is dropped.
