@@ -317,12 +317,6 @@ fn the_occupied_bins_choose_the_split_every_bin_chooses() {
         DVec4::new(0.0, 0.0, 0.0, 0.0),
         DVec4::new(0.0, 0.0, 0.0, 1.0),
     );
-    let key = |s: &Option<(usize, Extent, Extent)>, items: &[Item<3>]| {
-        let bits = |v: DVec4| v.to_array().map(f64::to_bits);
-        let ext = |e: &Extent| [e.min, e.max, e.cmin, e.cmax].map(bits);
-        let order: Vec<u32> = items.iter().map(|i| i.index).collect();
-        (s.as_ref().map(|(mid, l, r)| (*mid, ext(l), ext(r))), order)
-    };
     let (mut splits, mut ties_differ) = (0, false);
     let sizes = [5, 6, 8, 11, 16, 17, 40, 64, 200, 600, SAMPLED_FROM - 1];
     for (case, n) in sizes.into_iter().enumerate() {
@@ -335,27 +329,33 @@ fn the_occupied_bins_choose_the_split_every_bin_chooses() {
                 sah_split(&mut a, &shared, &ext),
                 every_bin_split(&mut b, &shared, &ext),
             );
-            assert_eq!(key(&sa, &a), key(&sb, &b), "{n} items in {clusters} clumps");
+            assert_eq!(
+                split_key(&sa, &a),
+                split_key(&sb, &b),
+                "{n} items in {clusters} clumps"
+            );
             splits += usize::from(sa.is_some());
             let mut c = items.clone();
             let later = later_tie_split(&mut c, &shared, &ext);
-            ties_differ |= key(&later, &c) != key(&sb, &b);
+            ties_differ |= split_key(&later, &c) != split_key(&sb, &b);
         }
     }
     assert!(splits > 40, "only {splits} nodes split");
     assert!(ties_differ, "no case tells a tie's winner");
 }
 
-/// A split as the tests compare them: the left part's length and both
-/// parts' extents, to the bit, and the items' order.
-type SplitKey = (Option<(usize, String)>, Vec<u32>);
+/// A split as the tests compare them: the left part's length, both parts'
+/// extents to the bit, and the items' order.
+type SplitKey = (Option<(usize, [[u64; 4]; 4], [[u64; 4]; 4])>, Vec<u32>);
 
 fn split_key(split: &Option<(usize, Extent, Extent)>, items: &[Item<3>]) -> SplitKey {
+    let bits = |v: DVec4| v.to_array().map(f64::to_bits);
+    let ext = |e: &Extent| [e.min, e.max, e.cmin, e.cmax].map(bits);
     let order = items.iter().map(|i| i.index).collect();
-    let parts = split
-        .as_ref()
-        .map(|(mid, l, r)| (*mid, format!("{l:?} {r:?}")));
-    (parts, order)
+    (
+        split.as_ref().map(|(mid, l, r)| (*mid, ext(l), ext(r))),
+        order,
+    )
 }
 
 /// A time span shared by every item of these tests.
