@@ -255,30 +255,13 @@ impl Mesh {
         Mesh::read_obj(text.as_bytes())
     }
 
-    /// [`Mesh::from_obj`] a line at a time from `reader`, never holding the
-    /// whole file: an OBJ of millions of triangles is read in the memory
-    /// of its mesh. A leading byte-order mark is skipped; a line that is
-    /// not UTF-8, or a read that fails, is an error at its line.
-    pub fn read_obj(mut reader: impl std::io::BufRead) -> Result<Mesh, MeshError> {
-        let mut mesh = Mesh::default();
-        let (mut raw, mut face) = (Vec::new(), Vec::new());
-        for line in 1.. {
-            raw.clear();
-            let err = |message: String| MeshError::Obj { line, message };
-            match reader.read_until(b'\n', &mut raw) {
-                Ok(0) => break,
-                Ok(_) => {}
-                Err(e) => return Err(err(format!("cannot be read: {e}"))),
-            }
-            let text = std::str::from_utf8(&raw).map_err(|_| err("is not UTF-8".into()))?;
-            let text = if line == 1 {
-                text.strip_prefix('\u{feff}').unwrap_or(text)
-            } else {
-                text
-            };
-            super::obj::statement(&mut mesh, text, &mut face).map_err(err)?;
-        }
-        Ok(mesh)
+    /// [`Mesh::from_obj`] from `reader`, a block of a few MiB at a time,
+    /// never holding the whole file (an OBJ of millions of triangles is
+    /// read in little more than the memory of its mesh), each block parsed
+    /// on all threads. A leading byte-order mark is skipped; a line that
+    /// is not UTF-8, or a read that fails, is an error at its line.
+    pub fn read_obj(reader: impl std::io::BufRead) -> Result<Mesh, MeshError> {
+        super::obj::read(reader, super::obj::Cuts::file())
     }
 }
 
@@ -383,7 +366,7 @@ mod tests {
         ));
     }
 
-    /// Read a line at a time, the mesh is the one the whole text gives; a
+    /// Read in small buffers, the mesh is the one the whole text gives; a
     /// byte-order mark is skipped; a line that is not UTF-8 and a failing
     /// read are errors at their line.
     #[test]
