@@ -6,6 +6,11 @@
 
 use glam::DVec3;
 
+/// Triangles from which [`ComovingMeshes::read_ahead`] reads: their
+/// indices (12 bytes each) fill 3 MB, more than a core's cache below the
+/// last level on the machines measured (docs/performance.md).
+const READ_AHEAD_FROM: usize = 1 << 18;
+
 /// Every translation's comoving triangles, run after run.
 #[derive(Debug, Default)]
 pub(super) struct ComovingMeshes {
@@ -27,5 +32,48 @@ impl ComovingMeshes {
     #[inline(always)]
     pub(super) fn triangle(&self, base: usize, j: usize) -> [DVec3; 3] {
         self.corners[j].map(|i| self.vertices[base + i as usize])
+    }
+
+    /// Reads the corner indices of the triangles stored at positions
+    /// `first..end` (side by side: a cache line or two), so that their
+    /// fetch from memory overlaps the work before their first use (the
+    /// f32 filter's, in a leaf). Only where there are enough triangles that
+    /// their indices are likely out of cache.
+    #[inline(always)]
+    pub(super) fn read_ahead(&self, first: usize, end: usize) {
+        if self.corners.len() < READ_AHEAD_FROM {
+            return;
+        }
+        let leaf = self.corners.get(first..end).unwrap_or_default();
+        if let (Some(a), Some(b)) = (leaf.first(), leaf.last()) {
+            std::hint::black_box((a[0], b[2]));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reading ahead stays inside the stored triangles whatever the range
+    /// (an empty leaf, one past the end, one reaching over it), in a
+    /// database large enough to read ahead in and in one too small to.
+    #[test]
+    fn reading_ahead_stays_inside_the_triangles() {
+        for len in [READ_AHEAD_FROM - 1, READ_AHEAD_FROM] {
+            let meshes = ComovingMeshes {
+                vertices: vec![DVec3::ZERO],
+                corners: vec![[0; 3]; len],
+            };
+            for (first, end) in [
+                (0, 0),
+                (5, 5),
+                (len - 2, len),
+                (len, len + 3),
+                (len - 1, len + 4),
+            ] {
+                meshes.read_ahead(first, end);
+            }
+        }
     }
 }

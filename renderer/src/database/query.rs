@@ -203,6 +203,7 @@ fn filtered_leaf(
     range: (f64, f64),
 ) -> Option<Hit> {
     let (p0, at) = (run.stretch.prisms.start as u32, run.slot + first as usize);
+    db.comoving.read_ahead(at, at + items.len());
     let mut best: Option<Hit> = None;
     let mut chunk = 0;
     while chunk < items.len() {
