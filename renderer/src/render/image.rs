@@ -1,6 +1,7 @@
 //! The rendered image: linear RGB pixels, and their 8-bit form.
 
 use glam::DVec3;
+use wide::{f64x4, CmpEq, CmpGe};
 
 /// Linear RGB pixels, row-major from the top left.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -21,8 +22,7 @@ impl Image {
         let mut out = Vec::with_capacity(3 * self.pixels.len());
         let mut quads = self.pixels.chunks_exact(4);
         for quad in &mut quads {
-            let bytes: [u8; 12] = std::array::from_fn(|i| channel_byte(quad[i / 3][i % 3]));
-            out.extend_from_slice(&bytes);
+            out.extend_from_slice(&quad_bytes(quad));
         }
         for c in quads.remainder() {
             out.extend([c.x, c.y, c.z].map(channel_byte));
@@ -47,6 +47,32 @@ fn channel_byte(v: f64) -> u8 {
     let sum = x + ROUNDING;
     let nearest = sum.to_bits() as u8;
     nearest + u8::from(x - (sum - ROUNDING) == 0.5)
+}
+
+/// [`channel_byte`] of four pixels' twelve channels, in order, four
+/// channels a vector: the same operations lane by lane (a comparison and a
+/// select where the scalar form branches), so the same bytes.
+#[inline(always)]
+fn quad_bytes(quad: &[DVec3]) -> [u8; 12] {
+    let [a, b, c, d] = [quad[0], quad[1], quad[2], quad[3]];
+    let lanes = [
+        f64x4::from([a.x, a.y, a.z, b.x]),
+        f64x4::from([b.y, b.z, c.x, c.y]),
+        f64x4::from([c.z, d.x, d.y, d.z]),
+    ];
+    let mut bytes = [0u8; 12];
+    for (k, v) in lanes.into_iter().enumerate() {
+        let (zero, rounding) = (f64x4::ZERO, f64x4::splat(ROUNDING));
+        // A NaN fails the comparison and becomes 0, as in the scalar form.
+        let x = v.cmp_ge(zero).blend(v.min(f64x4::ONE), zero) * f64x4::splat(255.0);
+        let sum = x + rounding;
+        let tie = (x - (sum - rounding)).cmp_eq(f64x4::splat(0.5));
+        let (sum, tie) = (sum.to_array(), tie.to_array());
+        for i in 0..4 {
+            bytes[4 * k + i] = (sum[i].to_bits() as u8) + u8::from(tie[i].to_bits() != 0);
+        }
+    }
+    bytes
 }
 
 #[cfg(test)]
@@ -108,6 +134,42 @@ mod tests {
             .collect();
         assert!(differ.len() > 10, "{}", differ.len());
         assert!(differ.iter().all(|&v| (v * 255.0 - 0.5) % 2.0 == 0.0));
+    }
+
+    /// An image of every awkward channel value, and NaNs, each falling in
+    /// every lane of the four-pixel vectors in turn, gives each channel's
+    /// byte of `f64::round` (0 for a NaN), the pixels past the last four
+    /// included; the control: rounding ties to even, which the step up at
+    /// ties corrects, would give other bytes for the same image.
+    #[test]
+    fn an_image_of_awkward_channels_gives_each_rounded_byte() {
+        use glam::DVec3;
+        let mut values = awkward_channels();
+        values.extend([f64::NAN, -f64::NAN, 0.5 / 255.0]);
+        let ties_to_even = |v: f64| {
+            let x = if v >= 0.0 { v.min(1.0) } else { 0.0 } * 255.0;
+            (x + super::ROUNDING).to_bits() as u8
+        };
+        for shift in 0..12 {
+            let mut channels: Vec<f64> = vec![0.25; shift];
+            channels.extend(&values);
+            channels.resize(channels.len().div_ceil(3) * 3, 0.75);
+            let pixels: Vec<DVec3> = channels.chunks_exact(3).map(DVec3::from_slice).collect();
+            let image = Image {
+                width: pixels.len() as u32,
+                height: 1,
+                pixels,
+            };
+            let round = |v: f64| if v.is_nan() { 0 } else { rounded(v) };
+            let bytes = image.to_rgb8_bytes();
+            assert_eq!(
+                bytes,
+                channels.iter().map(|&v| round(v)).collect::<Vec<u8>>(),
+                "shift {shift}"
+            );
+            let even: Vec<u8> = channels.iter().map(|&v| ties_to_even(v)).collect();
+            assert_ne!(bytes, even, "shift {shift}");
+        }
     }
 
     /// A whole image: every pixel's three bytes in order, the pixels past
