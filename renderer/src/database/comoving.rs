@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-/// Triangles from which [`ComovingMeshes::read_ahead`] reads: their
+/// Triangles from which [`ComovingMeshes::read_ahead`] asks ahead: their
 /// indices (12 bytes each) fill 3 MB, more than a core's cache below the
 /// last level on the machines measured (docs/performance.md).
 const READ_AHEAD_FROM: usize = 1 << 18;

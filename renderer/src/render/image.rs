@@ -84,6 +84,13 @@ mod tests {
         (v.clamp(0.0, 1.0) * 255.0).round() as u8
     }
 
+    /// The sum's rounding alone, ties to even, without the step up at ties
+    /// (the controls' wrong rounding).
+    fn ties_to_even(v: f64) -> u8 {
+        let x = if v >= 0.0 { v.min(1.0) } else { 0.0 } * 255.0;
+        (x + super::ROUNDING).to_bits() as u8
+    }
+
     /// Channel values whose scaled value lies at or beside an integer or a
     /// half (the steps of `to_rgb8_bytes`), a sweep between, and values out
     /// of range or infinite.
@@ -125,10 +132,6 @@ mod tests {
     /// that are an even integer and a half, exactly.
     #[test]
     fn ties_to_even_are_not_the_same_rounding() {
-        let ties_to_even = |v: f64| {
-            let x = if v >= 0.0 { v.min(1.0) } else { 0.0 } * 255.0;
-            (x + super::ROUNDING).to_bits() as u8
-        };
         let differ: Vec<f64> = (awkward_channels().into_iter())
             .filter(|&v| ties_to_even(v) != rounded(v))
             .collect();
@@ -146,10 +149,6 @@ mod tests {
         use glam::DVec3;
         let mut values = awkward_channels();
         values.extend([f64::NAN, -f64::NAN, 0.5 / 255.0]);
-        let ties_to_even = |v: f64| {
-            let x = if v >= 0.0 { v.min(1.0) } else { 0.0 } * 255.0;
-            (x + super::ROUNDING).to_bits() as u8
-        };
         for shift in 0..12 {
             let mut channels: Vec<f64> = vec![0.25; shift];
             channels.extend(&values);
