@@ -13,8 +13,7 @@ use crate::camera::{Camera, Kinematics, Model};
 use crate::database::Database;
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
-use crate::shading::{Effects, Shader};
-use crate::spacetime::Spacetime;
+use crate::shading::{Effects, Found, Shader};
 use crate::trace::{NoTrace, Step, Trace};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -203,14 +202,6 @@ pub fn render_window(
             let (x0, x_end, y_end) = (window.x, window.x + w, window.y + h);
             // Pixel (x, y)'s place in `rows`.
             let at = |x: u32, y: u32| ((y - y0) * w + (x - x0)) as usize;
-            if shader.spacetime != Spacetime::Flat {
-                // Bent rays are searched chord by chord, one pixel at a time.
-                for (i, c) in rows.iter_mut().enumerate() {
-                    let (x, y) = (x0 + i as u32 % w, y0 + i as u32 / w);
-                    *c = pixel(&shader, &frame, x, y);
-                }
-                return;
-            }
             for bx in (x0..x_end).step_by(2) {
                 let mut block = [(0, 0); PACKET];
                 let mut n = 0;
@@ -250,7 +241,7 @@ pub struct Frame<'a> {
 
 /// [`pixel`] of each of a few neighbouring pixels (at most [`PACKET`]),
 /// the same colours to the bit: their k-th samples' primary rays are
-/// searched together (`Database::closest_hits`), then each is shaded.
+/// searched together ([`Shader::search_primary`]), then each is shaded.
 fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; PACKET] {
     let Frame {
         camera,
@@ -268,7 +259,7 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
     let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
     // Each sample's camera where it is not `camera` itself (Camera::at_in).
     let mut moved: [Option<Camera>; PACKET] = [None, None, None, None];
-    let mut hits = [None; PACKET];
+    let mut found = [Found::Straight(None); PACKET];
     let mut colors = [DVec3::ZERO; PACKET];
     for k in 0..settings.spp.max(1) {
         // Each lane's pixel position and lab time (px, py, t).
@@ -287,12 +278,10 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
         let cameras: [&Camera; PACKET] =
             std::array::from_fn(|j| moved[j.min(m - 1)].as_ref().unwrap_or(camera));
         let rays = Camera::rays(&cameras, &samples, model.light_speed);
-        shader
-            .db
-            .closest_hits(&rays[..m], (0.0, f64::INFINITY), &mut hits[..m]);
+        shader.search_primary(&rays[..m], &mut found[..m]);
         for j in 0..m {
             let here = moved[j].as_ref().unwrap_or(camera);
-            let c = shader.observed_found(here, &rays[j], hits[j]);
+            let c = shader.observed_found(here, &rays[j], &found[j]);
             colors[j] = if settings.spp <= 1 { c } else { colors[j] + c };
         }
     }

@@ -23,9 +23,30 @@
 use super::carried::Carried;
 use super::doppler::Leg;
 use super::shader::{ray_step, Shader};
+use crate::geometry::Hit;
 use crate::spacetime::{Geodesic, Leg as Piece, LightSpeed, Ray, Schwarzschild};
-use crate::trace::{RayKind, Step, Trace};
+use crate::trace::{NoTrace, RayKind, Step, Trace};
 use glam::DVec3;
+
+/// Where a primary ray's search through a mass's field ended: the chord
+/// that met something or escaped, or nothing (the light came out of the
+/// hole, or the way out could not be followed).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BentEnd {
+    /// The chord searched last.
+    Chord {
+        /// The chord.
+        chord: Ray,
+        /// Its closest hit (`None` on the last, infinite chord of an
+        /// escaping ray).
+        hit: Option<Hit>,
+        /// Where the sky shows: the lab direction the light came from at
+        /// infinity.
+        toward: Option<DVec3>,
+    },
+    /// Black: captured, or lost on its way out to the sky.
+    Dark,
+}
 
 impl Shader<'_> {
     /// The colour `C` of the light arriving along the camera's `ray` (its
@@ -39,50 +60,119 @@ impl Shader<'_> {
         band: &C::At,
         trace: &mut T,
     ) -> C {
+        let end = self.bent_end(hole, ray, trace);
+        self.bent_seen(hole, ray, &end, band, trace)
+    }
+
+    /// The chords of the geodesic along which light reaches `ray`'s origin.
+    fn geodesic(&self, hole: &Schwarzschild, ray: &Ray) -> Geodesic {
         let reach = self.db.reach_from(hole.centre);
         let (lo, hi) = self.db.spatial_bounds();
         // The static observer's radial lengths are dr / sqrt(f): in the
         // coordinates the pixel's angle is at least sqrt(f) times its own.
         let angle = self.pixel_angle * hole.lapse_squared(ray.origin.x).max(0.0).sqrt();
-        let mut geodesic =
-            Geodesic::backwards(hole, ray.origin, ray.direction.x, self.light_speed, reach)
-                .sized_to_pixel(angle)
-                .with_geometry_in(lo, hi);
+        Geodesic::backwards(hole, ray.origin, ray.direction.x, self.light_speed, reach)
+            .sized_to_pixel(angle)
+            .with_geometry_in(lo, hi)
+    }
+
+    /// Where the search along `ray`'s chords ends, in order from the camera.
+    fn bent_end<T: Trace>(&self, hole: &Schwarzschild, ray: &Ray, trace: &mut T) -> BentEnd {
+        let mut geodesic = self.geodesic(hole, ray);
         while let Some(Piece::Chord(chord, length)) = geodesic.next() {
-            let range = (0.0, length);
             if T::ENABLED {
-                trace.record(ray_step(RayKind::Primary, 0, &chord, range));
+                trace.record(ray_step(RayKind::Primary, 0, &chord, (0.0, length)));
             }
-            if geodesic.passed_clear() {
-                continue;
+            if let Some(end) = self.chord_end(&mut geodesic, &chord, length, trace) {
+                return end;
             }
-            let hit = self.db.closest_hit_traced(&chord, range, trace);
-            if hit.is_none() && length < f64::INFINITY {
-                continue;
-            }
-            let sky = match (hit, self.sky) {
-                (None, Some(_)) => match geodesic.asymptote() {
-                    Some(toward) => Some(toward),
-                    None => break,
-                },
-                _ => None,
-            };
-            let g = self.climb(hole, ray, hit.map(|h| h.event.x), trace);
-            let at = C::emitted_band(band, g);
-            let seen: C = match sky {
-                Some(toward) => self.escaped(RayKind::Primary, toward, &at, trace),
-                None => self.carry_hit(&chord, hit, 0, RayKind::Primary, &at, trace),
-            };
-            let factors = C::carries_factors(self.effects);
-            return seen.with_gain(factors.then(|| self.effects.intensity(g, Leg::Radiance)));
         }
-        if T::ENABLED {
-            trace.record(Step::Miss {
-                kind: RayKind::Primary,
-                background: DVec3::ZERO,
-            });
+        BentEnd::Dark
+    }
+
+    /// Where the search ends on `chord` (`length` long) of `geodesic`,
+    /// `None` where it goes on to the next.
+    fn chord_end<T: Trace>(
+        &self,
+        geodesic: &mut Geodesic,
+        chord: &Ray,
+        length: f64,
+        trace: &mut T,
+    ) -> Option<BentEnd> {
+        if geodesic.passed_clear() {
+            return None;
         }
-        C::ZERO
+        let hit = self.db.closest_hit_traced(chord, (0.0, length), trace);
+        if hit.is_none() && length < f64::INFINITY {
+            return None;
+        }
+        let toward = match (hit, self.sky) {
+            (None, Some(_)) => match geodesic.asymptote() {
+                Some(toward) => Some(toward),
+                None => return Some(BentEnd::Dark),
+            },
+            _ => None,
+        };
+        Some(BentEnd::Chord {
+            chord: *chord,
+            hit,
+            toward,
+        })
+    }
+
+    /// [`Shader::bent_end`] of each of `rays` (at most four) into `ends`,
+    /// the same to the bit: their geodesics stepped side by side
+    /// ([`Geodesic::next_each`]), each chord searched as it comes.
+    pub(super) fn bent_ends(&self, hole: &Schwarzschild, rays: &[Ray], ends: &mut [BentEnd]) {
+        let mut lanes: [Option<Geodesic>; 4] =
+            std::array::from_fn(|j| rays.get(j).map(|ray| self.geodesic(hole, ray)));
+        while lanes.iter().any(Option::is_some) {
+            let legs = Geodesic::next_each(&mut lanes);
+            for (j, leg) in legs.into_iter().enumerate() {
+                let Some(geodesic) = &mut lanes[j] else {
+                    continue;
+                };
+                let end = match leg {
+                    Some(Piece::Chord(chord, length)) => {
+                        self.chord_end(geodesic, &chord, length, &mut NoTrace)
+                    }
+                    _ => Some(BentEnd::Dark),
+                };
+                if let Some(end) = end {
+                    ends[j] = end;
+                    lanes[j] = None;
+                }
+            }
+        }
+    }
+
+    /// The colour `C` seen along the camera's `ray` whose search through
+    /// the field of `hole` ended at `end`.
+    pub(super) fn bent_seen<C: Carried, T: Trace>(
+        &self,
+        hole: &Schwarzschild,
+        ray: &Ray,
+        end: &BentEnd,
+        band: &C::At,
+        trace: &mut T,
+    ) -> C {
+        let &BentEnd::Chord { chord, hit, toward } = end else {
+            if T::ENABLED {
+                trace.record(Step::Miss {
+                    kind: RayKind::Primary,
+                    background: DVec3::ZERO,
+                });
+            }
+            return C::ZERO;
+        };
+        let g = self.climb(hole, ray, hit.map(|h| h.event.x), trace);
+        let at = C::emitted_band(band, g);
+        let seen: C = match toward {
+            Some(toward) => self.escaped(RayKind::Primary, toward, &at, trace),
+            None => self.carry_hit(&chord, hit, 0, RayKind::Primary, &at, trace),
+        };
+        let factors = C::carries_factors(self.effects);
+        seen.with_gain(factors.then(|| self.effects.intensity(g, Leg::Radiance)))
     }
 
     /// nu_camera_static / nu_emitter_static for light reaching the camera's

@@ -11,5 +11,6 @@ mod mirror;
 mod shader;
 mod texture;
 
+pub use bent::BentEnd;
 pub use doppler::Effects;
-pub use shader::Shader;
+pub use shader::{Found, Shader};

@@ -4,10 +4,12 @@
 //! the light a surface receives left the light source, or the reflected
 //! object, earlier.
 
+use super::bent::BentEnd;
 use super::carried::{Carried, Shaded};
 use super::doppler::{self, Effects, Leg};
 use super::lit::Lit;
 use super::mirror;
+use crate::accel::PACKET;
 use crate::camera::{Camera, Kinematics};
 use crate::color::{self, BAND_LEN};
 use crate::database::Database;
@@ -17,6 +19,15 @@ use crate::spacetime::{gamma, Event};
 use crate::spacetime::{LightSpeed, Ray, Spacetime};
 use crate::trace::{NoTrace, RayKind, Step, Trace};
 use glam::DVec3;
+
+/// What a primary ray met, searched before it is shaded.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Found {
+    /// In flat spacetime: its closest hit from its origin on.
+    Straight(Option<Hit>),
+    /// In a mass's field: where the search along its chords ended.
+    Bent(BentEnd),
+}
 
 /// Values at the wavelengths of the observed band, carried into whatever
 /// frame a leg of the path is in.
@@ -320,27 +331,59 @@ impl Shader<'_> {
         self.observed_with(camera, ray, None, trace)
     }
 
-    /// [`Shader::observed_traced`] of a primary ray whose closest hit from
-    /// its origin on (`Database::closest_hit(ray, (0, inf))`) is `hit`,
-    /// found already (as a packet of neighbouring pixels' rays is, by
-    /// `Database::closest_hits`): the same colour to the bit.
-    pub fn observed_found(&self, camera: &Camera, ray: &Ray, hit: Option<Hit>) -> DVec3 {
-        self.observed_with(camera, ray, Some(hit), &mut NoTrace)
+    /// [`Shader::observed_traced`] of a primary ray whose search was made
+    /// already (as a packet of neighbouring pixels' rays is, by
+    /// [`Shader::search_primary`]): the same colour to the bit.
+    pub fn observed_found(&self, camera: &Camera, ray: &Ray, found: &Found) -> DVec3 {
+        self.observed_with(camera, ray, Some(found), &mut NoTrace)
     }
 
-    /// The primary ray's colour in `C`: its closest hit searched for, or
-    /// `found` already.
+    /// What each of `rays` meets (neighbouring pixels' primary rays, at
+    /// most [`PACKET`]), into `found`, the same to the bit as each searched
+    /// alone: in flat spacetime their closest hits, searched together
+    /// (`Database::closest_hits`); in a mass's field where each search
+    /// along its chords ends, their geodesics stepped side by side.
+    pub fn search_primary(&self, rays: &[Ray], found: &mut [Found]) {
+        assert!(
+            rays.len() <= PACKET && rays.len() == found.len(),
+            "a packet's rays"
+        );
+        match &self.spacetime {
+            Spacetime::Flat => {
+                let mut hits = [None; PACKET];
+                let hits = &mut hits[..rays.len()];
+                self.db.closest_hits(rays, (0.0, f64::INFINITY), hits);
+                for (f, &hit) in found.iter_mut().zip(hits.iter()) {
+                    *f = Found::Straight(hit);
+                }
+            }
+            Spacetime::Schwarzschild(hole) => {
+                let mut ends = [BentEnd::Dark; PACKET];
+                let ends = &mut ends[..rays.len()];
+                self.bent_ends(hole, rays, ends);
+                for (f, &end) in found.iter_mut().zip(ends.iter()) {
+                    *f = Found::Bent(end);
+                }
+            }
+        }
+    }
+
+    /// The primary ray's colour in `C`: its search made now, or `found`
+    /// already.
     fn primary<C: Carried, T: Trace>(
         &self,
         ray: &Ray,
-        found: Option<Option<Hit>>,
+        found: Option<&Found>,
         band: &C::At,
         trace: &mut T,
     ) -> C {
         if let Spacetime::Schwarzschild(hole) = &self.spacetime {
-            return self.bent(hole, ray, band, trace);
+            return match found {
+                Some(Found::Bent(end)) => self.bent_seen(hole, ray, end, band, trace),
+                _ => self.bent(hole, ray, band, trace),
+            };
         }
-        let Some(hit) = found else {
+        let Some(&Found::Straight(hit)) = found else {
             return self.carry(ray, 0, RayKind::Primary, band, trace);
         };
         if T::ENABLED {
@@ -353,7 +396,7 @@ impl Shader<'_> {
         &self,
         camera: &Camera,
         ray: &Ray,
-        found: Option<Option<Hit>>,
+        found: Option<&Found>,
         trace: &mut T,
     ) -> DVec3 {
         let fx = self.effects;

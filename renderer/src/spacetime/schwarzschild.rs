@@ -275,15 +275,31 @@ impl Iterator for Geodesic {
     type Item = Leg;
 
     fn next(&mut self) -> Option<Leg> {
+        match self.before_step() {
+            Err(given) => given,
+            Ok(()) => {
+                let leg = self.step();
+                Some(self.after_step(leg))
+            }
+        }
+    }
+}
+
+impl Geodesic {
+    /// The start of [`Iterator::next`]: `Ok` where the next leg is a step
+    /// ([`Geodesic::step`], then [`Geodesic::after_step`]), or the leg
+    /// given without one: none after the last, captured, or the last,
+    /// infinite chord of an escaping ray.
+    fn before_step(&mut self) -> Result<(), Option<Leg>> {
         if self.done {
-            return None;
+            return Err(None);
         }
         let m = self.mass;
         let r = self.x.length();
         let outgoing = self.x.dot(self.v) >= 0.0;
         if r <= 2.0 * m || (r <= 3.0 * m && !outgoing) || self.chords >= MAX_CHORDS {
             self.done = true;
-            return Some(Leg::Captured);
+            return Err(Some(Leg::Captured));
         }
         if r >= self.far && outgoing {
             // Past every object and moving out: it never turns back (no
@@ -291,24 +307,29 @@ impl Iterator for Geodesic {
             self.done = true;
             self.escaped = true;
             self.cleared = false;
-            let (_, _, dt) = Invariants::of(m, self.x, self.v).derivative(self.x, self.v);
+            let (_, _, dt) = Invariants::of(m, self.x, self.v).derivative_at(self.x, self.v);
             let n = self.v.normalize();
             let ray = Ray {
                 origin: Event::new(self.t, self.centre + self.x),
                 direction: FourVector::new(self.time_sign * dt / self.v.length(), n),
             };
-            return Some(Leg::Chord(ray, f64::INFINITY));
+            return Err(Some(Leg::Chord(ray, f64::INFINITY)));
         }
         self.chords += 1;
-        let leg = self.step();
+        Ok(())
+    }
+
+    /// The end of [`Iterator::next`] once its step gave `leg`.
+    fn after_step(&mut self, leg: Leg) -> Leg {
         if leg == Leg::Captured {
             self.done = true;
         }
-        Some(leg)
+        leg
     }
 }
 
 mod integrator;
+mod lanes;
 mod stepping;
 
 #[cfg(test)]

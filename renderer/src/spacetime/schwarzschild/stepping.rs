@@ -31,6 +31,74 @@ const CLEAR_TURN: f64 = 0.2;
 /// angle in direction.
 const CLEAR_ERROR: f64 = 1.0 / 16.0;
 
+/// A step clear of all geometry is tried at most this many times, each
+/// shorter, before a chord is taken instead.
+const CLEAR_TRIES: u32 = 3;
+
+/// A chord's length is halved at most this many times; a step that has
+/// not found one within its bound by then is taken as captured.
+const CHORD_TRIES: u32 = 40;
+
+/// A step's end: x, v and the coordinate time it took.
+pub(super) type End = (DVec3, DVec3, f64);
+
+/// A Dormand-Prince trial's end and its error estimate in x and in v.
+pub(super) type Trial = (End, DVec3, DVec3);
+
+/// One step of a geodesic under way ([`Geodesic::step`]): what it found
+/// of the state it starts from, and the trial it is at.
+pub(super) struct Step {
+    r: f64,
+    speed: f64,
+    /// h^2 = |x cross v|^2 and C = v^2 - 2 M h^2 / r^3.
+    h2: f64,
+    c: f64,
+    /// How far its chord may stray from the geodesic.
+    tol: f64,
+    pub(super) outset: Outset,
+    phase: Phase,
+}
+
+impl Step {
+    /// The longest chord allowed where the least radius it passes is
+    /// `nearest` (measured the tolerance nearer), and never longer than
+    /// [`LONGEST_STEP`] of the radius.
+    fn allowed(&self, m: f64, nearest: f64) -> f64 {
+        longest_chord(m, nearest - self.tol, self.h2, self.c, self.tol).min(LONGEST_STEP * self.r)
+    }
+}
+
+/// Where a step is.
+#[derive(Clone, Copy)]
+enum Phase {
+    /// Trying a step `clear` long (its `tries`-th try) along which nothing
+    /// can be met: its arc keeps more than the tolerance outside the box
+    /// holding all geometry and turns by at most [`CLEAR_TURN`]
+    /// ([`Geodesic::meets_geometry`]). It is one Dormand-Prince 5(4) step
+    /// of at most [`CLEAR_STEP`] of the radius, taken when its error
+    /// estimate is within [`CLEAR_ERROR`] of the chord tolerance in
+    /// position and of the pixel's angle in direction, and shortened (by
+    /// the estimate's fourth root, [`CLEAR_TRIES`] tries) where it is not;
+    /// the length that passed is tried first next time (and, where it was
+    /// no longer than a chord, half as long again). Not tried where no
+    /// such step is longer than [`LONGEST_STEP`] of the radius, where the
+    /// straight line ahead meets the box, or for a geodesic not sized to a
+    /// pixel.
+    Clear { clear: f64, tries: u32 },
+    /// A chord of `h` in lambda, after `tries` halvings.
+    Chord { h: f64, tries: u32 },
+}
+
+/// What a step needs next: a Dormand-Prince or Runge-Kutta trial of `h` in
+/// lambda from its start, or nothing more, its ray taken as captured (no
+/// chord within the bound after [`CHORD_TRIES`] halvings).
+#[derive(Clone, Copy)]
+pub(super) enum Ask {
+    Dopri(f64),
+    Rk4(f64),
+    Captured,
+}
+
 /// The longest chord that strays by at most `tol` from a geodesic of
 /// h = |x cross v| and C = v^2 - 2 M h^2 / r^3 (both conserved: the
 /// central acceleration's angular momentum and energy) wherever its radius
@@ -109,85 +177,153 @@ impl Geodesic {
     }
 
     /// The next chord: a step clear of all geometry where one longer than
-    /// [`LONGEST_STEP`] of the radius can be taken ([`Geodesic::clear_step`]);
+    /// [`LONGEST_STEP`] of the radius can be taken ([`Phase::Clear`]);
     /// otherwise one step, as long as the chord bound allows at the least
     /// radius the straight line along v would pass, halved until the chord
     /// is within the tolerance of the arc it cuts (measured at the least
     /// radius it passes, less the tolerance itself), and never longer than
     /// [`LONGEST_STEP`] of the radius.
     pub(super) fn step(&mut self) -> Leg {
+        let mut step = self.begin_step();
+        loop {
+            let ended = match self.ask(&mut step) {
+                Ask::Dopri(h) => {
+                    let found = self.dopri(&step.outset, h);
+                    self.after_dopri(&mut step, found)
+                }
+                Ask::Rk4(h) => {
+                    let found = self.rk4(&step.outset, h);
+                    self.after_rk4(&mut step, found)
+                }
+                Ask::Captured => Some(Leg::Captured),
+            };
+            if let Some(leg) = ended {
+                return leg;
+            }
+        }
+    }
+
+    /// A step from the geodesic's present state, before any trial.
+    #[inline]
+    pub(super) fn begin_step(&self) -> Step {
         let m = self.mass;
         let r = self.x.length();
         let speed = self.v.length();
         let h2 = self.x.cross(self.v).length_squared();
         let c = speed * speed - 2.0 * m * h2 / (r * r * r);
-        let tol = self.tolerance();
-        let allowed =
-            |nearest: f64| longest_chord(m, nearest - tol, h2, c, tol).min(LONGEST_STEP * r);
-        let outset = self.outset();
-        if let Some(leg) = self.clear_step(&outset, LONGEST_STEP * r, h2, c, tol) {
-            return leg;
+        Step {
+            r,
+            speed,
+            h2,
+            c,
+            tol: self.tolerance(),
+            outset: self.outset(),
+            phase: Phase::Clear {
+                clear: self.clear_fraction * r,
+                tries: 0,
+            },
         }
-        let ahead = self.v / speed;
-        let mut len = allowed(r);
-        for _ in 0..2 {
-            len = allowed(distance_to_segment(self.x, self.x + ahead * len));
-        }
-        let mut h = 0.95 * len / speed;
-        for _ in 0..40 {
-            let (x, v, dt) = self.rk4(&outset, h);
-            let len = (x - self.x).length();
-            if len > 0.0 && len <= allowed(distance_to_segment(self.x, x)) && x.is_finite() {
-                self.cleared = false;
-                return self.advance(x, v, dt, len);
-            }
-            h /= 2.0;
-        }
-        Leg::Captured
     }
 
-    /// A step longer than `len` along which nothing can be met: its arc
-    /// keeps more than `tol` outside the box holding all geometry and turns
-    /// by at most [`CLEAR_TURN`] ([`Geodesic::meets_geometry`]). It is one
-    /// Dormand-Prince 5(4) step of at most [`CLEAR_STEP`] of the radius,
-    /// taken when its error estimate is within [`CLEAR_ERROR`] of the chord
-    /// tolerance in position and of the pixel's angle in direction, and
-    /// shortened (by the estimate's fourth root, three tries) where it is
-    /// not; the length that passed is tried first next time (and, where it
-    /// was no longer than a chord, half as long again). `None` where no
-    /// such step is longer than `len`, where the straight line ahead
-    /// meets the box, and for a geodesic not sized to a pixel.
-    fn clear_step(&mut self, outset: &Outset, len: f64, h2: f64, c: f64, tol: f64) -> Option<Leg> {
-        let turning = self.pixel_angle * CLEAR_ERROR;
-        let r = self.x.length();
-        let speed = self.v.length();
-        let mut clear = self.clear_fraction * r;
-        let (lo, hi) = self.geometry;
-        let margin = DVec3::splat(tol);
-        for _ in 0..3 {
-            let ahead = self.x + self.v * (clear / speed);
-            if !(clear > len && turning > 0.0) {
-                // No longer than a chord here: try longer again later.
-                self.clear_fraction = (self.clear_fraction * 1.5).min(CLEAR_STEP);
-                return None;
+    /// The trial `step` needs next, or its leg: the clear step's tries
+    /// ([`Phase::Clear`]) while they may pass, then the chord's halvings.
+    #[inline]
+    pub(super) fn ask(&mut self, step: &mut Step) -> Ask {
+        if let Phase::Clear { clear, tries } = step.phase {
+            if tries < CLEAR_TRIES && self.may_clear(step, clear) {
+                return Ask::Dopri(clear / step.speed);
             }
-            if segment_meets_box(self.x, ahead, (lo - margin, hi + margin)) {
-                return None;
-            }
-            let ((x, v, dt), ex, ev) = self.dopri(outset, clear / speed);
-            let error = (ex.length() / (tol * CLEAR_ERROR)).max(ev.length() / (speed * turning));
-            let scale = (0.9 / error.sqrt().sqrt()).clamp(0.2, 2.0);
-            self.clear_fraction = (self.clear_fraction * scale).min(CLEAR_STEP);
-            let turn = match self.meets_geometry(x, h2, c, tol) {
-                Some(turn) if x.is_finite() => turn,
-                _ => return None,
-            };
-            if error <= 1.0 && turn <= CLEAR_TURN && x != self.x {
-                self.cleared = true;
-                return Some(self.advance(x, v, dt, (x - self.x).length()));
-            }
-            clear *= scale.min(0.9 * CLEAR_TURN / turn);
+            step.phase = self.chord_phase(step);
         }
+        match step.phase {
+            Phase::Chord { h, tries } if tries < CHORD_TRIES => Ask::Rk4(h),
+            _ => Ask::Captured,
+        }
+    }
+
+    /// Whether a step clear of all geometry `clear` long is worth trying:
+    /// longer than a chord may be here, its straight line clear of the box.
+    #[inline]
+    fn may_clear(&mut self, step: &Step, clear: f64) -> bool {
+        let turning = self.pixel_angle * CLEAR_ERROR;
+        let ahead = self.x + self.v * (clear / step.speed);
+        if !(clear > LONGEST_STEP * step.r && turning > 0.0) {
+            // No longer than a chord here: try longer again later.
+            self.clear_fraction = (self.clear_fraction * 1.5).min(CLEAR_STEP);
+            return false;
+        }
+        let (lo, hi) = self.geometry;
+        let margin = DVec3::splat(step.tol);
+        !segment_meets_box(self.x, ahead, (lo - margin, hi + margin))
+    }
+
+    /// The first trial of a chord near geometry: as long as the chord
+    /// bound allows at the least radius the straight line along v passes.
+    #[inline]
+    fn chord_phase(&self, step: &Step) -> Phase {
+        let ahead = self.v / step.speed;
+        let mut len = step.allowed(self.mass, step.r);
+        for _ in 0..2 {
+            len = step.allowed(self.mass, distance_to_segment(self.x, self.x + ahead * len));
+        }
+        Phase::Chord {
+            h: 0.95 * len / step.speed,
+            tries: 0,
+        }
+    }
+
+    /// The verdict on a Dormand-Prince trial of `step` ([`Ask::Dopri`]):
+    /// its chord where it is taken, `None` where the step goes on.
+    #[inline]
+    pub(super) fn after_dopri(&mut self, step: &mut Step, found: Trial) -> Option<Leg> {
+        let Phase::Clear { clear, tries } = step.phase else {
+            return None;
+        };
+        let ((x, v, dt), ex, ev) = found;
+        let turning = self.pixel_angle * CLEAR_ERROR;
+        let error =
+            (ex.length() / (step.tol * CLEAR_ERROR)).max(ev.length() / (step.speed * turning));
+        let scale = (0.9 / error.sqrt().sqrt()).clamp(0.2, 2.0);
+        self.clear_fraction = (self.clear_fraction * scale).min(CLEAR_STEP);
+        let turn = match self.meets_geometry(x, step.h2, step.c, step.tol) {
+            Some(turn) if x.is_finite() => turn,
+            _ => {
+                step.phase = Phase::Clear {
+                    clear,
+                    tries: CLEAR_TRIES,
+                };
+                return None;
+            }
+        };
+        if error <= 1.0 && turn <= CLEAR_TURN && x != self.x {
+            self.cleared = true;
+            return Some(self.advance(x, v, dt, (x - self.x).length()));
+        }
+        step.phase = Phase::Clear {
+            clear: clear * scale.min(0.9 * CLEAR_TURN / turn),
+            tries: tries + 1,
+        };
+        None
+    }
+
+    /// The verdict on a Runge-Kutta trial of `step` ([`Ask::Rk4`]): its
+    /// chord where it is within the bound, `None` (and half the length
+    /// next) where it is not.
+    #[inline]
+    pub(super) fn after_rk4(&mut self, step: &mut Step, (x, v, dt): End) -> Option<Leg> {
+        let Phase::Chord { h, tries } = step.phase else {
+            return None;
+        };
+        let len = (x - self.x).length();
+        let bound = step.allowed(self.mass, distance_to_segment(self.x, x));
+        if len > 0.0 && len <= bound && x.is_finite() {
+            self.cleared = false;
+            return Some(self.advance(x, v, dt, len));
+        }
+        step.phase = Phase::Chord {
+            h: h / 2.0,
+            tries: tries + 1,
+        };
         None
     }
 
