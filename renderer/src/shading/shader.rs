@@ -339,7 +339,7 @@ impl Shader<'_> {
     }
 
     /// What each of `rays` meets (neighbouring pixels' primary rays, at
-    /// most [`PACKET`]), into `found`, the same to the bit as each searched
+    /// most four), into `found`, the same to the bit as each searched
     /// alone: in flat spacetime their closest hits, searched together
     /// (`Database::closest_hits`); in a mass's field where each search
     /// along its chords ends, their geodesics stepped side by side.
