@@ -183,12 +183,14 @@ impl Geodesic {
 
 impl Outset {
     /// [`Outset::rk4`] in lab vectors.
+    #[inline(always)]
     pub(super) fn rk4_lab(&self, h: f64) -> (DVec3, DVec3, f64) {
         let (x, v, dt) = self.rk4(h);
         (x.into(), v.into(), dt)
     }
 
     /// [`Outset::dopri`] in lab vectors.
+    #[inline(always)]
     pub(super) fn dopri_lab(&self, h: f64) -> ((DVec3, DVec3, f64), DVec3, DVec3) {
         let ((x, v, dt), ex, ev) = self.dopri(h);
         ((x.into(), v.into(), dt), ex.into(), ev.into())
