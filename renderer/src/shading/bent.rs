@@ -35,7 +35,7 @@ use glam::DVec3;
 pub enum BentEnd {
     /// The chord searched last.
     Chord {
-        /// The chord.
+        /// The chord's ray: its origin the chord's later event.
         chord: Ray,
         /// Its closest hit (`None` on the last, infinite chord of an
         /// escaping ray).

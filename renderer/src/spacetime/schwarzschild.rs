@@ -271,13 +271,22 @@ impl Geodesic {
     }
 }
 
+/// How a geodesic's next leg comes.
+enum Next {
+    /// From a step of its integration.
+    Step,
+    /// Without one: none after the last, captured, or the last, infinite
+    /// chord of an escaping ray.
+    Given(Option<Leg>),
+}
+
 impl Iterator for Geodesic {
     type Item = Leg;
 
     fn next(&mut self) -> Option<Leg> {
         match self.before_step() {
-            Err(given) => given,
-            Ok(()) => {
+            Next::Given(leg) => leg,
+            Next::Step => {
                 let leg = self.step();
                 Some(self.after_step(leg))
             }
@@ -286,20 +295,19 @@ impl Iterator for Geodesic {
 }
 
 impl Geodesic {
-    /// The start of [`Iterator::next`]: `Ok` where the next leg is a step
-    /// ([`Geodesic::step`], then [`Geodesic::after_step`]), or the leg
-    /// given without one: none after the last, captured, or the last,
-    /// infinite chord of an escaping ray.
-    fn before_step(&mut self) -> Result<(), Option<Leg>> {
+    /// The start of [`Iterator::next`]: whether the next leg is a step
+    /// ([`Geodesic::step`], then [`Geodesic::after_step`]) or given
+    /// without one.
+    fn before_step(&mut self) -> Next {
         if self.done {
-            return Err(None);
+            return Next::Given(None);
         }
         let m = self.mass;
         let r = self.x.length();
         let outgoing = self.x.dot(self.v) >= 0.0;
         if r <= 2.0 * m || (r <= 3.0 * m && !outgoing) || self.chords >= MAX_CHORDS {
             self.done = true;
-            return Err(Some(Leg::Captured));
+            return Next::Given(Some(Leg::Captured));
         }
         if r >= self.far && outgoing {
             // Past every object and moving out: it never turns back (no
@@ -313,10 +321,10 @@ impl Geodesic {
                 origin: Event::new(self.t, self.centre + self.x),
                 direction: FourVector::new(self.time_sign * dt / self.v.length(), n),
             };
-            return Err(Some(Leg::Chord(ray, f64::INFINITY)));
+            return Next::Given(Some(Leg::Chord(ray, f64::INFINITY)));
         }
         self.chords += 1;
-        Ok(())
+        Next::Step
     }
 
     /// The end of [`Iterator::next`] once its step gave `leg`.

@@ -116,7 +116,7 @@ impl Invariants {
         }
     }
 
-    /// [`Invariants::derivative`] at the lab vectors (x, v).
+    /// [`Invariants::derivative`] at (x, v) given as glam vectors.
     pub(super) fn derivative_at(&self, x: DVec3, v: DVec3) -> (DVec3, DVec3, f64) {
         let (dx, dv, dt) = self.derivative(x.into(), v.into());
         (dx.into(), dv.into(), dt)
@@ -150,9 +150,15 @@ pub(super) struct Outset<L = f64> {
     slope: (V3<L>, V3<L>, L),
 }
 
-/// A step's end (x, v and the coordinate time it took), the same in `f64`
-/// lanes or in `f64x4`.
-pub(super) type End<L> = (V3<L>, V3<L>, L);
+/// A trial's end in lanes: x, v and the coordinate time it took.
+pub(super) type LaneEnd<L> = (V3<L>, V3<L>, L);
+
+/// A trial's end: x, v (relative to the centre) and the coordinate time
+/// it took.
+pub(super) type End = (DVec3, DVec3, f64);
+
+/// A Dormand-Prince trial's end and its error estimate in x and in v.
+pub(super) type Trial = (End, DVec3, DVec3);
 
 impl Geodesic {
     /// The shared start of the trial steps from the geodesic's state.
@@ -166,32 +172,19 @@ impl Geodesic {
             slope: orbit.derivative(x, v),
         }
     }
-
-    /// One classical Runge-Kutta step of `h` in lambda from the state of
-    /// `outset`.
-    pub(super) fn rk4(&self, outset: &Outset, h: f64) -> (DVec3, DVec3, f64) {
-        outset.rk4_lab(h)
-    }
-
-    /// One Dormand-Prince step of `h` in lambda from the state of
-    /// `outset`: the fifth order solution, and the difference from the
-    /// embedded fourth order one in x and in v (the step's error estimate).
-    pub(super) fn dopri(&self, outset: &Outset, h: f64) -> ((DVec3, DVec3, f64), DVec3, DVec3) {
-        outset.dopri_lab(h)
-    }
 }
 
 impl Outset {
-    /// [`Outset::rk4`] in lab vectors.
+    /// [`Outset::rk4`] of one geodesic, in glam vectors.
     #[inline(always)]
-    pub(super) fn rk4_lab(&self, h: f64) -> (DVec3, DVec3, f64) {
+    pub(super) fn rk4_trial(&self, h: f64) -> End {
         let (x, v, dt) = self.rk4(h);
         (x.into(), v.into(), dt)
     }
 
-    /// [`Outset::dopri`] in lab vectors.
+    /// [`Outset::dopri`] of one geodesic, in glam vectors.
     #[inline(always)]
-    pub(super) fn dopri_lab(&self, h: f64) -> ((DVec3, DVec3, f64), DVec3, DVec3) {
+    pub(super) fn dopri_trial(&self, h: f64) -> Trial {
         let ((x, v, dt), ex, ev) = self.dopri(h);
         ((x.into(), v.into(), dt), ex.into(), ev.into())
     }
@@ -200,7 +193,7 @@ impl Outset {
 impl<L: Lane> Outset<L> {
     /// One classical Runge-Kutta step of `h` in lambda from this state.
     #[inline(always)]
-    pub(super) fn rk4(&self, h: L) -> End<L> {
+    pub(super) fn rk4(&self, h: L) -> LaneEnd<L> {
         let (x, v) = (self.x, self.v);
         let orbit = self.orbit;
         let half = h / L::splat(2.0);
@@ -220,7 +213,7 @@ impl<L: Lane> Outset<L> {
     /// fifth order solution, and the difference from the embedded fourth
     /// order one in x and in v.
     #[inline(always)]
-    pub(super) fn dopri(&self, h: L) -> (End<L>, V3<L>, V3<L>) {
+    pub(super) fn dopri(&self, h: L) -> (LaneEnd<L>, V3<L>, V3<L>) {
         let zero = V3 {
             x: L::splat(0.0),
             y: L::splat(0.0),
@@ -276,15 +269,15 @@ impl Outsets4 {
         })
     }
 
-    /// [`Geodesic::rk4`] of each lane's start, lane j stepping `h[j]`.
-    pub(super) fn rk4(&self, h: [f64; 4]) -> [(DVec3, DVec3, f64); 4] {
+    /// [`Outset::rk4_trial`] of each lane's start, lane j stepping `h[j]`.
+    pub(super) fn rk4(&self, h: [f64; 4]) -> [End; 4] {
         let (x, v, dt) = self.0.rk4(f64x4::new(h));
         let (x, v, dt) = (split(x), split(v), dt.to_array());
         std::array::from_fn(|j| (x[j], v[j], dt[j]))
     }
 
-    /// [`Geodesic::dopri`] of each lane's start, lane j stepping `h[j]`.
-    pub(super) fn dopri(&self, h: [f64; 4]) -> [((DVec3, DVec3, f64), DVec3, DVec3); 4] {
+    /// [`Outset::dopri_trial`] of each lane's start, lane j stepping `h[j]`.
+    pub(super) fn dopri(&self, h: [f64; 4]) -> [Trial; 4] {
         let ((x, v, dt), ex, ev) = self.0.dopri(f64x4::new(h));
         let (x, v, dt, ex, ev) = (split(x), split(v), dt.to_array(), split(ex), split(ev));
         std::array::from_fn(|j| ((x[j], v[j], dt[j]), ex[j], ev[j]))
@@ -358,7 +351,7 @@ impl<L: Lane> Stages<L> {
         row: &[f64; 6],
         h: L,
         orbit: &Invariants<L>,
-    ) -> End<L> {
+    ) -> LaneEnd<L> {
         let (mut x, mut v, mut t) = (x0, v0, L::splat(0.0));
         let terms = self.x.iter().zip(&self.v).zip(&self.t).zip(row);
         for (((&kx, &kv), &kt), &a) in terms.take(N) {

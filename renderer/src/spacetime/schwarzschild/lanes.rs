@@ -2,12 +2,13 @@
 //! (Dormand-Prince or Runge-Kutta) that two or more of them need are
 //! computed together in `f64x4`, while every decision stays each
 //! geodesic's own, so that each gives the legs it gives alone, to the bit.
-//! A trial's square roots and divisions are most of a step's cost; four
-//! lanes of them cost about two single ones.
+//! A trial's square roots and divisions are a large part of a step's
+//! cost; four lanes of them take about half as long as four single trials
+//! (docs/performance.md, "Stop 55").
 
 use super::integrator::Outsets4;
 use super::stepping::{Ask, Step};
-use super::{Geodesic, Leg};
+use super::{Geodesic, Leg, Next};
 
 /// Fewer lanes than this needing the same trial take it one by one.
 const BATCHED_FROM: usize = 2;
@@ -21,8 +22,8 @@ impl Geodesic {
         for ((lane, step), leg) in lanes.iter_mut().zip(&mut steps).zip(&mut legs) {
             if let Some(g) = lane {
                 match g.before_step() {
-                    Ok(()) => *step = Some(g.begin_step()),
-                    Err(given) => *leg = given,
+                    Next::Step => *step = Some(g.begin_step()),
+                    Next::Given(given) => *leg = given,
                 }
             }
         }
@@ -71,9 +72,9 @@ fn round(
         steps,
         dopri,
         |o, h| o.dopri(h),
-        |s, h| s.outset.dopri_lab(h),
+        |s, h| s.outset.dopri_trial(h),
     );
-    let rk4_found = trials(steps, rk4, |o, h| o.rk4(h), |s, h| s.outset.rk4_lab(h));
+    let rk4_found = trials(steps, rk4, |o, h| o.rk4(h), |s, h| s.outset.rk4_trial(h));
     let mut done = [None; 4];
     for j in 0..4 {
         let (Some(g), Some(step)) = (&mut lanes[j], &mut steps[j]) else {

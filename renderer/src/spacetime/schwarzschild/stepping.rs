@@ -3,7 +3,7 @@
 //! bounded, docs/physics.md "Chords"), longer steps where the arc keeps
 //! clear of the box holding every object.
 
-use super::integrator::Outset;
+use super::integrator::{End, Outset, Trial};
 use super::{Geodesic, Leg, CHORD_TOLERANCE, PIXEL_FRACTION};
 use crate::spacetime::{Event, FourVector, Ray};
 use glam::DVec3;
@@ -38,12 +38,6 @@ const CLEAR_TRIES: u32 = 3;
 /// A chord's length is halved at most this many times; a step that has
 /// not found one within its bound by then is taken as captured.
 const CHORD_TRIES: u32 = 40;
-
-/// A step's end: x, v and the coordinate time it took.
-pub(super) type End = (DVec3, DVec3, f64);
-
-/// A Dormand-Prince trial's end and its error estimate in x and in v.
-pub(super) type Trial = (End, DVec3, DVec3);
 
 /// One step of a geodesic under way ([`Geodesic::step`]): what it found
 /// of the state it starts from, and the trial it is at.
@@ -188,11 +182,11 @@ impl Geodesic {
         loop {
             let ended = match self.ask(&mut step) {
                 Ask::Dopri(h) => {
-                    let found = self.dopri(&step.outset, h);
+                    let found = step.outset.dopri_trial(h);
                     self.after_dopri(&mut step, found)
                 }
                 Ask::Rk4(h) => {
-                    let found = self.rk4(&step.outset, h);
+                    let found = step.outset.rk4_trial(h);
                     self.after_rk4(&mut step, found)
                 }
                 Ask::Captured => Some(Leg::Captured),
@@ -243,6 +237,8 @@ impl Geodesic {
 
     /// Whether a step clear of all geometry `clear` long is worth trying:
     /// longer than a chord may be here, its straight line clear of the box.
+    /// Where it is no longer than a chord, the next step's first try is
+    /// made longer (`clear_fraction`).
     #[inline]
     fn may_clear(&mut self, step: &Step, clear: f64) -> bool {
         let turning = self.pixel_angle * CLEAR_ERROR;
@@ -277,7 +273,7 @@ impl Geodesic {
     #[inline]
     pub(super) fn after_dopri(&mut self, step: &mut Step, found: Trial) -> Option<Leg> {
         let Phase::Clear { clear, tries } = step.phase else {
-            return None;
+            unreachable!("a Dormand-Prince trial is asked for in the clear phase");
         };
         let ((x, v, dt), ex, ev) = found;
         let turning = self.pixel_angle * CLEAR_ERROR;
@@ -288,10 +284,7 @@ impl Geodesic {
         let turn = match self.meets_geometry(x, step.h2, step.c, step.tol) {
             Some(turn) if x.is_finite() => turn,
             _ => {
-                step.phase = Phase::Clear {
-                    clear,
-                    tries: CLEAR_TRIES,
-                };
+                step.phase = self.chord_phase(step);
                 return None;
             }
         };
@@ -312,7 +305,7 @@ impl Geodesic {
     #[inline]
     pub(super) fn after_rk4(&mut self, step: &mut Step, (x, v, dt): End) -> Option<Leg> {
         let Phase::Chord { h, tries } = step.phase else {
-            return None;
+            unreachable!("a Runge-Kutta trial is asked for in the chord phase");
         };
         let len = (x - self.x).length();
         let bound = step.allowed(self.mass, distance_to_segment(self.x, x));

@@ -143,7 +143,7 @@ fn worst_stray_in(
                 let t = ray.origin.t + ray.direction.t * along;
                 time = time.max((fine.t - t).abs());
             }
-            let (x, v, dt) = fine.rk4(&fine.outset(), h);
+            let (x, v, dt) = fine.outset().rk4_trial(h);
             (fine.x, fine.v, fine.t) = (x, v, fine.t - dt);
         }
     }
