@@ -16,7 +16,6 @@
 
 use super::{Event, FourVector, LightSpeed, Ray};
 use glam::DVec3;
-use integrator::Invariants;
 use stepping::CLEAR_STEP;
 
 /// The spacetime light travels through.
@@ -315,7 +314,7 @@ impl Geodesic {
             self.done = true;
             self.escaped = true;
             self.cleared = false;
-            let (_, _, dt) = Invariants::of(m, self.x, self.v).derivative_at(self.x, self.v);
+            let dt = self.outset().time_rate();
             let n = self.v.normalize();
             let ray = Ray {
                 origin: Event::new(self.t, self.centre + self.x),

@@ -115,12 +115,6 @@ impl Invariants {
             root_c: c.max(0.0).sqrt(),
         }
     }
-
-    /// [`Invariants::derivative`] at (x, v) given as glam vectors.
-    pub(super) fn derivative_at(&self, x: DVec3, v: DVec3) -> (DVec3, DVec3, f64) {
-        let (dx, dv, dt) = self.derivative(x.into(), v.into());
-        (dx.into(), dv.into(), dt)
-    }
 }
 
 impl<L: Lane> Invariants<L> {
@@ -175,6 +169,11 @@ impl Geodesic {
 }
 
 impl Outset {
+    /// dt/dlambda at the state itself (without `time_sign`).
+    pub(super) fn time_rate(&self) -> f64 {
+        self.slope.2
+    }
+
     /// [`Outset::rk4`] of one geodesic, in glam vectors.
     #[inline(always)]
     pub(super) fn rk4_trial(&self, h: f64) -> End {

@@ -28,21 +28,18 @@ impl Geodesic {
             }
         }
         while steps.iter().any(Option::is_some) {
-            let mut asks = [None; 4];
+            let (mut asks, mut captured) = ([None; 4], [None; 4]);
             for j in 0..4 {
                 if let (Some(g), Some(step)) = (&mut lanes[j], &mut steps[j]) {
                     match g.ask(step) {
-                        Ask::Captured => {
-                            legs[j] = Some(g.after_step(Leg::Captured));
-                            steps[j] = None;
-                        }
+                        Ask::Captured => captured[j] = Some(Leg::Captured),
                         ask => asks[j] = Some(ask),
                     }
                 }
             }
             let done = round(lanes, &mut steps, &asks);
             for j in 0..4 {
-                if let (Some(leg), Some(g)) = (done[j], &mut lanes[j]) {
+                if let (Some(leg), Some(g)) = (captured[j].or(done[j]), &mut lanes[j]) {
                     legs[j] = Some(g.after_step(leg));
                     steps[j] = None;
                 }

@@ -242,12 +242,12 @@ impl Geodesic {
     #[inline]
     fn may_clear(&mut self, step: &Step, clear: f64) -> bool {
         let turning = self.pixel_angle * CLEAR_ERROR;
-        let ahead = self.x + self.v * (clear / step.speed);
         if !(clear > LONGEST_STEP * step.r && turning > 0.0) {
             // No longer than a chord here: try longer again later.
             self.clear_fraction = (self.clear_fraction * 1.5).min(CLEAR_STEP);
             return false;
         }
+        let ahead = self.x + self.v * (clear / step.speed);
         let (lo, hi) = self.geometry;
         let margin = DVec3::splat(step.tol);
         !segment_meets_box(self.x, ahead, (lo - margin, hi + margin))
