@@ -250,12 +250,16 @@ fn pixels_packed(shader: &Shader, frame: &Frame, at: &[(u32, u32)]) -> [DVec3; P
         settings,
     } = *frame;
     let m = at.len();
-    // (Lanes past the pixels repeat the last, and are not used.)
+    // (Lanes past the pixels repeat the last, and are not used.) One
+    // sample a pixel, at its centre, draws nothing.
     let rng = |j: usize| {
         let (x, y) = at[j.min(m - 1)];
         SplitMix64::for_pixel(settings.seed, x, y)
     };
-    let mut rngs: [SplitMix64; PACKET] = [rng(0), rng(1), rng(2), rng(3)];
+    let mut rngs: [SplitMix64; PACKET] = match settings.spp {
+        0 | 1 => std::array::from_fn(|_| SplitMix64::new(0)),
+        _ => [rng(0), rng(1), rng(2), rng(3)],
+    };
     let n = (f64::from(settings.spp).sqrt().ceil()) as u32;
     // Each sample's camera where it is not `camera` itself (Camera::at_in).
     let mut moved: [Option<Camera>; PACKET] = [None, None, None, None];
