@@ -4,7 +4,7 @@
 //! boxes, and on packets whose rays share nothing.
 
 use renderer::{
-    Database, Event, Hit, LightSpeed, Model, Motion, Packing, Ray, SplitMix64, Traversal,
+    Database, Event, Hit, LightSpeed, Model, Motion, Packing, Ray, Shape, SplitMix64, Traversal,
 };
 use vstf::fixture::Overrides;
 use workspace_tests::{point, unit};
@@ -84,7 +84,7 @@ fn boxes_and_rays(coherent: bool) -> (Database, Vec<Ray>) {
             unreachable!("the boxes move uniformly")
         };
         let place = |t: f64| start.x + extrusion.x * ((t - start.t) / extrusion.t);
-        let seen = (0..3).fold(at.t, |t, _| at.t - (place(t) - at.x).length());
+        let seen = (0..8).fold(at.t, |t, _| at.t - (place(t) - at.x).length());
         (at, place(seen) + point(rng, 1.0) - at.x)
     };
     let mut rays = Vec::new();
@@ -157,40 +157,72 @@ fn brute_force_packets_are_single_rays() {
 #[test]
 fn one_moving_object_in_many_time_slices_finds_brute_forces_hits() {
     let scene = vstf::bench::tessellated_boxes(1, 6, 12);
-    let mut db = Database::build(&scene, false).unwrap();
+    let db = Database::build(&scene, false).unwrap();
     assert!(
         db.time_slice_count() >= 16,
         "{} slices: the box hardly moves",
         db.time_slice_count()
     );
-    let mut brute = Database::build(&scene, false).unwrap();
-    brute.set_traversal(Traversal::BruteForce);
+    let rays = rays_at_the_box(&scene, 4000);
+    assert_brute_forces_hits(&scene, db, &rays, "one moving box");
+}
+
+/// A uniformly moving mesh of 2^18 prisms or more has leaves of up to
+/// eight prisms (two passes of the f32 filter): its hits, one ray at a
+/// time and in packets, are brute force's.
+#[test]
+fn a_large_moving_mesh_with_leaves_of_eight_finds_brute_forces_hits() {
+    let scene = vstf::bench::tessellated_boxes(1, 150, 12);
+    let Shape::Mesh(mesh) = &scene.objects[0].shape else {
+        unreachable!("a tessellated box is a mesh")
+    };
+    assert!(mesh.triangles.len() >= 1 << 18, "{}", mesh.triangles.len());
+    let db = Database::build(&scene, false).unwrap();
+    let rays = rays_at_the_box(&scene, 240);
+    assert_brute_forces_hits(&scene, db, &rays, "a large moving box");
+}
+
+/// `n` rays from around the one moving box of `scene`, three in four
+/// aimed at where it was when their light left it (roughly), the others
+/// anywhere.
+fn rays_at_the_box(scene: &renderer::Scene, n: usize) -> Vec<Ray> {
     let Motion::Extrusion { start, extrusion } = scene.objects[0].motion else {
         unreachable!("the box moves uniformly")
     };
     let place = |t: f64| start.x + extrusion.x * ((t - start.t) / extrusion.t);
     let mut rng = SplitMix64::new(13);
     let mut rays = Vec::new();
-    for k in 0..4000 {
+    for k in 0..n {
         let at = Event::new(rng.range(-300.0, 100.0), point(&mut rng, 80.0));
-        // Where the box was when its light left it, roughly (or anywhere).
-        let seen = (0..3).fold(at.t, |t, _| at.t - (place(t) - at.x).length());
+        let seen = (0..8).fold(at.t, |t, _| at.t - (place(t) - at.x).length());
         let aim = match k % 4 {
             3 => unit(&mut rng),
-            _ => place(seen) + point(&mut rng, 1.0) - at.x,
+            _ => place(seen) + point(&mut rng, 0.5) - at.x,
         };
         rays.push(Ray::backwards(at, aim.normalize(), LightSpeed::Finite));
     }
+    rays
+}
+
+/// Each of `rays` finds in `db` the hit brute force finds in `scene`, one
+/// ray at a time and in packets; enough of the scene is hit for the
+/// comparison to mean something.
+fn assert_brute_forces_hits(scene: &renderer::Scene, mut db: Database, rays: &[Ray], what: &str) {
+    let mut brute = Database::build(scene, false).unwrap();
+    brute.set_traversal(Traversal::BruteForce);
     let mut hits = std::collections::BTreeSet::new();
     for (k, ray) in rays.iter().enumerate() {
         let exact = brute.closest_hit(ray, (0.0, f64::INFINITY));
         let found = db.closest_hit(ray, (0.0, f64::INFINITY));
-        assert_eq!(format!("{found:?}"), format!("{exact:?}"), "ray {k}");
+        assert_eq!(
+            format!("{found:?}"),
+            format!("{exact:?}"),
+            "{what}: ray {k}"
+        );
         hits.extend(exact.map(|h| h.primitive));
     }
-    // Enough of the box is hit for the comparison to mean something.
-    assert!(hits.len() > 100, "{} prisms hit", hits.len());
-    assert_packets_find_single_hits(&mut db, &rays, "one moving box");
+    assert!(hits.len() > 100, "{what}: {} prisms hit", hits.len());
+    assert_packets_find_single_hits(&mut db, rays, what);
 }
 
 /// `Packing::Auto` packs rays over a large mesh in few time slices, and not

@@ -5,14 +5,14 @@
 //! Items are anything with 4D bounds: the database uses one hierarchy over
 //! the time slices of its stretches (lab frame) and one per stretch over its
 //! prisms (in the stretch's comoving coordinates). Both are built by
-//! [`build()`], binary, each inner node keeping both children's boxes and
+//! [`build_with_leaves`], binary, each inner node keeping both children's boxes and
 //! stored children first, the root last, then collapsed into nodes of
 //! eight children ([`super::wide`]). Here: the boxes, the f64 slab test and
 //! the node types both share.
 
 mod build;
 
-pub(super) use build::build;
+pub(super) use build::{build_with_leaves, LEAF_SIZE};
 
 use glam::DVec4;
 

@@ -5,7 +5,7 @@
 //! is (instancing with a per-stretch transform). Over all stretches, a
 //! hierarchy of the lab-frame 4D bounds of their time slices.
 
-use super::bvh::{rounding_margin, Bounds4};
+use super::bvh::{rounding_margin, Bounds4, LEAF_SIZE};
 use super::packet::{Lanes, PACKET};
 use super::wide::{at_level, down, up, AxisRay, Simd8, SimdLevel, SliceBvh, SpaceBvh};
 use crate::geometry::{comoving_line, nearer, Hit};
@@ -30,6 +30,30 @@ pub(crate) struct StretchPrisms {
     /// Whether every prism is a pure translation along `velocity` (uniform
     /// motion), rather than a keyframe interval that may turn or deform.
     pub(crate) translation: bool,
+}
+
+/// Stretches of uniform motion from this many prisms have leaves of up to
+/// [`LARGE_LEAF`] prisms.
+const LARGE_FROM: usize = 1 << 18;
+
+/// The most prisms a leaf of a large uniformly moving stretch holds: two
+/// passes of the f32 filter. Its search waits on memory more than on its
+/// leaves' tests, so a ray tests as much (the benchmark's 1M and 3M tori
+/// trace as fast), while its build takes a level less (docs/performance.md).
+const LARGE_LEAF: usize = 8;
+const _: () = assert!(LARGE_LEAF > LEAF_SIZE, "a large stretch's leaves are larger");
+
+impl StretchPrisms {
+    /// The most prisms a leaf of its hierarchy holds: [`LARGE_LEAF`] for
+    /// a uniformly moving stretch of [`LARGE_FROM`] prisms or more,
+    /// [`LEAF_SIZE`] otherwise (a keyframe interval's prism is three
+    /// tetrahedra, each solved exactly).
+    fn leaf_size(&self) -> usize {
+        match self.translation && self.prisms.len() >= LARGE_FROM {
+            true => LARGE_LEAF,
+            false => LEAF_SIZE,
+        }
+    }
 }
 
 /// One stretch's hierarchy over its prisms, in its comoving coordinates.
@@ -175,7 +199,7 @@ impl TwoLevel {
         let mut slice_bounds = Vec::new();
         for (k, g) in stretches.enumerate() {
             let (t0, t1) = g.span;
-            let (tree, extent) = SpaceBvh::build(g.prisms.len(), |i| {
+            let (tree, extent) = SpaceBvh::build_with_leaves(g.prisms.len(), g.leaf_size(), |i| {
                 let (a, b) = comoving_box(k, g.prisms.start + i);
                 Bounds4::new(a.extend(t0), b.extend(t1))
             });

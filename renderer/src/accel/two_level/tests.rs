@@ -60,3 +60,20 @@ fn a_ray_at_one_time_meets_one_slice() {
     );
     assert_eq!(times_tested(&two, o, d), [1; 20]);
 }
+
+/// Only a uniformly moving stretch of [`LARGE_FROM`] prisms or more has
+/// leaves of [`LARGE_LEAF`]: one prism fewer, or a keyframe interval of as
+/// many, keeps [`LEAF_SIZE`].
+#[test]
+fn only_a_large_uniform_stretch_has_large_leaves() {
+    let stretch = |count: usize, translation: bool| StretchPrisms {
+        origin: Event::new(0.0, DVec3::ZERO),
+        velocity: DVec3::ZERO,
+        span: (0.0, 1.0),
+        prisms: 7..7 + count,
+        translation,
+    };
+    assert_eq!(stretch(LARGE_FROM, true).leaf_size(), LARGE_LEAF);
+    assert_eq!(stretch(LARGE_FROM - 1, true).leaf_size(), LEAF_SIZE);
+    assert_eq!(stretch(LARGE_FROM, false).leaf_size(), LEAF_SIZE);
+}

@@ -2,7 +2,7 @@
 //! rounded outward to f32, collapsed into nodes of eight children.
 
 use super::{down, up, WideBvh, WideNode, NO_CHILD, WIDTH};
-use crate::accel::bvh::{build, Bounds4, Child, PairNode};
+use crate::accel::bvh::{build_with_leaves, Bounds4, Child, PairNode, LEAF_SIZE};
 use wide::f32x8;
 
 /// A box over `A` axes in f32: lower faces then upper.
@@ -50,7 +50,16 @@ impl<const A: usize> WideBvh<A> {
         count: usize,
         bounds: impl Fn(usize) -> Bounds4 + Sync,
     ) -> (WideBvh<A>, Bounds4) {
-        let built = build::<Node<A>, A>(count, bounds);
+        WideBvh::build_with_leaves(count, LEAF_SIZE, bounds)
+    }
+
+    /// [`WideBvh::build`] with leaves of at most `leaf_size` items.
+    pub(crate) fn build_with_leaves(
+        count: usize,
+        leaf_size: usize,
+        bounds: impl Fn(usize) -> Bounds4 + Sync,
+    ) -> (WideBvh<A>, Bounds4) {
+        let built = build_with_leaves::<Node<A>, A>(count, leaf_size, bounds);
         let (nodes, root) = if built.root.count == 0 && !built.nodes.is_empty() {
             let mut nodes = Vec::with_capacity(built.nodes.len() / 2 + 1);
             let root = Child {

@@ -137,7 +137,7 @@ mod tests {
     use super::super::simd::{wider, Baseline};
     use super::super::test_support::{aimed_ray, f64_entry, random_box, Box64};
     use super::*;
-    use crate::accel::bvh::Bounds4;
+    use crate::accel::bvh::{Bounds4, LEAF_SIZE};
     use crate::accel::packet::{Lanes, PACKET};
     use crate::rng::SplitMix64;
     use glam::DVec4;
@@ -148,15 +148,28 @@ mod tests {
         rng: &mut SplitMix64,
         scale: f64,
     ) -> (Vec<Box64<A>>, WideBvh<A>) {
+        random_tree_of_leaves(rng, scale, LEAF_SIZE)
+    }
+
+    /// [`random_tree`] with leaves of at most `leaf_size` boxes.
+    fn random_tree_of_leaves<const A: usize>(
+        rng: &mut SplitMix64,
+        scale: f64,
+        leaf_size: usize,
+    ) -> (Vec<Box64<A>>, WideBvh<A>) {
         let items: Vec<Box64<A>> = (0..2000).map(|_| random_box(rng, scale)).collect();
-        let (bvh, _) = WideBvh::build(items.len(), |i| {
+        let (bvh, _) = WideBvh::build_with_leaves(items.len(), leaf_size, |i| {
             let (mut min, mut max) = (DVec4::ZERO, DVec4::ONE);
             for a in 0..A {
                 (min[a], max[a]) = (items[i][0][a], items[i][1][a]);
             }
             Bounds4::new(min, max)
         });
-        assert!(bvh.nodes.len() > 100);
+        assert!(
+            bvh.nodes.len() > 400 / leaf_size,
+            "{} nodes",
+            bvh.nodes.len()
+        );
         (items, bvh)
     }
 
@@ -200,10 +213,20 @@ mod tests {
     /// in a packet that parts, and in a packet that searches leaves
     /// together; at the vector level of `simd`.
     fn every_item_whose_box_the_ray_enters_is_tested<const A: usize>(simd: impl Simd8, seed: u64) {
+        every_entered_item_tested_in_leaves_of::<A>(simd, seed, LEAF_SIZE);
+    }
+
+    /// [`every_item_whose_box_the_ray_enters_is_tested`] in a tree whose
+    /// leaves hold at most `leaf_size` items.
+    fn every_entered_item_tested_in_leaves_of<const A: usize>(
+        simd: impl Simd8,
+        seed: u64,
+        leaf_size: usize,
+    ) {
         let mut rng = SplitMix64::new(seed);
         let range = (0.0, f64::INFINITY);
         for scale in [0.05, 1.0, 1e5] {
-            let (items, bvh) = random_tree::<A>(&mut rng, scale);
+            let (items, bvh) = random_tree_of_leaves::<A>(&mut rng, scale, leaf_size);
             for round in 0..100 {
                 let rays = aimed_packet(&mut rng, &items, scale);
                 let lanes = Lanes::first(1 + round % PACKET);
@@ -240,6 +263,34 @@ mod tests {
         every_item_whose_box_the_ray_enters_is_tested::<3>(Baseline, 22);
         if let Some(wider) = wider() {
             every_item_whose_box_the_ray_enters_is_tested::<3>(wider, 22);
+        }
+    }
+
+    /// The largest leaf of a tree built with leaves of at most
+    /// `leaf_size` items.
+    fn largest_leaf<const A: usize>(bvh: &WideBvh<A>) -> u32 {
+        let children = bvh.nodes.iter().flat_map(|n| n.children);
+        children.map(|c| c.count).max().unwrap_or(bvh.root.count)
+    }
+
+    /// Leaves of up to eight boxes (a large stretch's): the tree holds
+    /// leaves of more than four, none of more than eight (the control: with
+    /// the default, none of more than four), and every box a ray enters is
+    /// tested, alone and in packets.
+    #[test]
+    fn leaves_of_eight_test_every_box_the_ray_enters() {
+        let mut rng = SplitMix64::new(26);
+        let (_, eights) = random_tree_of_leaves::<3>(&mut rng, 1.0, 8);
+        let (_, fours) = random_tree::<3>(&mut rng, 1.0);
+        assert!(
+            (5..=8).contains(&largest_leaf(&eights)),
+            "{}",
+            largest_leaf(&eights)
+        );
+        assert!(largest_leaf(&fours) <= 4, "{}", largest_leaf(&fours));
+        every_entered_item_tested_in_leaves_of::<3>(Baseline, 26, 8);
+        if let Some(wider) = wider() {
+            every_entered_item_tested_in_leaves_of::<3>(wider, 26, 8);
         }
     }
 

@@ -12,7 +12,9 @@ use super::{rounding_margin, Bounds4, Built, Child, PairNode};
 use glam::DVec4;
 use rayon::prelude::*;
 
-const LEAF_SIZE: usize = 4;
+/// The most items a leaf holds unless a build asks for more
+/// ([`build_with_leaves`]): four prisms, one pass of the f32 filter.
+pub(in crate::accel) const LEAF_SIZE: usize = 4;
 /// Deeper subtrees become leaves (a bound on the recursion of the build).
 const MAX_DEPTH: usize = 48;
 
@@ -300,13 +302,13 @@ pub(super) fn pad(min: DVec4, max: DVec4) -> (DVec4, DVec4) {
 /// the same nodes in the same order as a build on one thread.
 fn build_into<N: PairNode, const A: usize>(
     nodes: &mut Vec<N>,
-    (items, shared): (&mut [Item<A>], &Shared),
+    (items, shared, leaf_size): (&mut [Item<A>], &Shared, usize),
     ext: Extent,
     (first, depth): (usize, usize),
 ) -> (Child, Bounds4) {
     let (pmin, pmax) = pad(ext.min, ext.max);
     let padded = Bounds4::new(pmin, pmax);
-    let split = if items.len() <= LEAF_SIZE || depth >= MAX_DEPTH {
+    let split = if items.len() <= leaf_size || depth >= MAX_DEPTH {
         None
     } else {
         sah_split(items, shared, &ext)
@@ -323,17 +325,20 @@ fn build_into<N: PairNode, const A: usize>(
     let (at_left, at_right) = ((first, depth + 1), (first + mid, depth + 1));
     let (l, r) = if parallel {
         let (l, (r, own)) = rayon::join(
-            || build_into(nodes, (left, shared), lext, at_left),
+            || build_into(nodes, (left, shared, leaf_size), lext, at_left),
             || {
                 let mut own = Vec::new();
-                let r = build_into(&mut own, (right, shared), rext, at_right);
+                let r = build_into(&mut own, (right, shared, leaf_size), rext, at_right);
                 (r, own)
             },
         );
         (l, append(nodes, own, r))
     } else {
-        let l = build_into(nodes, (left, shared), lext, at_left);
-        (l, build_into(nodes, (right, shared), rext, at_right))
+        let l = build_into(nodes, (left, shared, leaf_size), lext, at_left);
+        (
+            l,
+            build_into(nodes, (right, shared, leaf_size), rext, at_right),
+        )
     };
     nodes.push(N::pair([l.1, r.1], [l.0, r.0]));
     let inner = Child {
@@ -366,12 +371,24 @@ fn append<N: PairNode>(
     (child, bounds)
 }
 
-/// Builds a hierarchy over `count` items given by their 4D bounds: item i's
-/// is `bounds(i)`. Every box must match the first on the axes past the
-/// first `A` (as a stretch's prisms all share its lab times), which the
-/// build keeps once.
+/// [`build_with_leaves`] with leaves of at most [`LEAF_SIZE`] items.
+#[cfg(test)]
 pub(in crate::accel) fn build<N: PairNode, const A: usize>(
     count: usize,
+    bounds: impl Fn(usize) -> Bounds4 + Sync,
+) -> Built<N> {
+    build_with_leaves::<N, A>(count, LEAF_SIZE, bounds)
+}
+
+/// Builds a hierarchy over `count` items given by their 4D bounds: item i's
+/// is `bounds(i)`, with leaves of at most `leaf_size` items (a node of
+/// more is split where the surface area heuristic finds a split that
+/// pays). Every box must match the first on the axes past the first `A`
+/// (as a stretch's prisms all share its lab times), which the build keeps
+/// once.
+pub(in crate::accel) fn build_with_leaves<N: PairNode, const A: usize>(
+    count: usize,
+    leaf_size: usize,
     bounds: impl Fn(usize) -> Bounds4 + Sync,
 ) -> Built<N> {
     const { assert!(A <= 4) };
@@ -401,7 +418,7 @@ pub(in crate::accel) fn build<N: PairNode, const A: usize>(
     let root = if items.is_empty() {
         Child { index: 0, count: 0 }
     } else {
-        build_into(&mut nodes, (&mut items, &shared), ext, (0, 0)).0
+        build_into(&mut nodes, (&mut items, &shared, leaf_size), ext, (0, 0)).0
     };
     Built {
         nodes,
