@@ -41,7 +41,10 @@ const LARGE_FROM: usize = 1 << 18;
 /// leaves' tests, so a ray tests as much (the benchmark's 1M and 3M tori
 /// trace as fast), while its build takes a level less (docs/performance.md).
 const LARGE_LEAF: usize = 8;
-const _: () = assert!(LARGE_LEAF > LEAF_SIZE, "a large stretch's leaves are larger");
+const _: () = assert!(
+    LARGE_LEAF > LEAF_SIZE,
+    "a large stretch's leaves are larger"
+);
 
 impl StretchPrisms {
     /// The most prisms a leaf of its hierarchy holds: [`LARGE_LEAF`] for
