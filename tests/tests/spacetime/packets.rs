@@ -84,7 +84,7 @@ fn boxes_and_rays(coherent: bool) -> (Database, Vec<Ray>) {
             unreachable!("the boxes move uniformly")
         };
         let place = |t: f64| start.x + extrusion.x * ((t - start.t) / extrusion.t);
-        let seen = (0..8).fold(at.t, |t, _| at.t - (place(t) - at.x).length());
+        let seen = (0..3).fold(at.t, |t, _| at.t - (place(t) - at.x).length());
         (at, place(seen) + point(rng, 1.0) - at.x)
     };
     let mut rays = Vec::new();

@@ -266,8 +266,7 @@ mod tests {
         }
     }
 
-    /// The largest leaf of a tree built with leaves of at most
-    /// `leaf_size` items.
+    /// How many items the largest leaf of `bvh` holds.
     fn largest_leaf<const A: usize>(bvh: &WideBvh<A>) -> u32 {
         let children = bvh.nodes.iter().flat_map(|n| n.children);
         children.map(|c| c.count).max().unwrap_or(bvh.root.count)
