@@ -122,6 +122,16 @@ pub(crate) fn database_bytes(scene: &Scene) -> u64 {
         .saturating_add(p.keyframed.saturating_mul(BYTES_PER_KEYFRAMED_PRISM))
 }
 
+/// A kept database's fixed cost besides its prisms: the fixture, the
+/// database's own structures and the hierarchies' roots, bytes.
+const BYTES_PER_KEPT_DATABASE: u64 = 16 * 1024;
+
+/// [`database_bytes`] with a database's fixed cost: what a kept one is
+/// counted as (by `vstf serve`'s cache and the checks' store of renders).
+pub(crate) fn kept_database_bytes(scene: &Scene) -> u64 {
+    database_bytes(scene).saturating_add(BYTES_PER_KEPT_DATABASE)
+}
+
 /// How many prisms a scene's database will hold, by how they are tested.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Prisms {

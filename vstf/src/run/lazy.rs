@@ -8,7 +8,7 @@
 use crate::fixture::{Fixture, View};
 use image::RgbImage;
 use renderer::{Database, Traversal, Window};
-use std::sync::{Mutex, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// Side of a tile, pixels.
 const TILE: u32 = 16;
@@ -18,7 +18,7 @@ const TILE: u32 = 16;
 pub struct LazyImage {
     fixture: Fixture,
     view: View,
-    db: Database,
+    db: Arc<Database>,
     tiles: Vec<OnceLock<RgbImage>>,
     /// The first render that failed: its tile reads as black, and the
     /// reading made on it is discarded ([`LazyImage::failure`]).
@@ -28,7 +28,7 @@ pub struct LazyImage {
 impl LazyImage {
     /// `view` of `fixture`, its database built, nothing rendered yet.
     pub(crate) fn new(fixture: Fixture, view: View) -> Result<LazyImage, crate::error::Error> {
-        let db = crate::run::database(&fixture, view.model.lorentz, Traversal::Bvh)?;
+        let db = crate::run::database_shared(&fixture, view.model.lorentz, Traversal::Bvh)?;
         let (w, h) = (view.camera.width, view.camera.height);
         let count = w.div_ceil(TILE) as usize * h.div_ceil(TILE) as usize;
         Ok(LazyImage {

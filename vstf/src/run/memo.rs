@@ -1,6 +1,8 @@
 //! Renders kept for reuse: a fixture's checks render the same probe for
 //! several rows (an edge's two sides, a mirror's readings, a grid's lines),
-//! and each such image is rendered once.
+//! and each such image is rendered once. The databases they are rendered
+//! with are kept the same way: a probe's scene is seen at several times
+//! and from several places, and each is built once.
 //!
 //! An image is kept under a keyed 128-bit hash of everything the render
 //! reads: the scene (every mesh corner, motion and material), the file's
@@ -13,18 +15,21 @@
 //! loaded fixture, so no input can be made to collide on purpose. Hashing
 //! reads every triangle once, as the database build it may save does
 //! several times over (a one-off timing on the benchmark's 1M tori gave
-//! about a quarter of a second).
+//! about a quarter of a second). A database is keyed by the scene, the
+//! Lorentz setting and the traversal alone (all [`Database::build`] and
+//! [`Database::set_traversal`] read), and counted against the budget by
+//! the estimate [`crate::Budget`] refuses scenes by.
 
 use super::lazy::LazyImage;
 use crate::fixture::{Fixture, View};
-use renderer::{Image, Traversal};
+use renderer::{Database, Image, Traversal};
 use std::collections::HashMap;
 use std::fmt::{self, Write as _};
 use std::hash::{BuildHasher, DefaultHasher, Hasher, RandomState};
 use std::sync::{Arc, Mutex};
 
-/// Bytes of images kept at most for one loaded fixture; renders beyond
-/// them are made and not kept.
+/// Bytes of images and databases kept at most for one loaded fixture;
+/// renders and databases beyond them are made and not kept.
 const BUDGET: usize = 256 << 20;
 
 /// The images rendered for one loaded fixture and the copies checks make
@@ -40,6 +45,7 @@ struct Kept {
     bytes: usize,
     images: HashMap<u128, Arc<Image>>,
     lazy: HashMap<u128, Arc<LazyImage>>,
+    databases: HashMap<u128, Arc<Database>>,
     reused: usize,
 }
 
@@ -94,13 +100,30 @@ impl Renders {
 
     /// The key of rendering `view` of `fixture` with `traversal`.
     pub(crate) fn key(&self, fixture: &Fixture, view: &View, traversal: Traversal) -> Key {
-        let mut h = TwoHashers(self.keys.0.build_hasher(), self.keys.1.build_hasher());
-        // Writing into hashers cannot fail.
-        let _ = write!(
-            h,
+        self.hash(format_args!(
             "{:?}\u{1f}{:?}\u{1f}{view:?}\u{1f}{traversal:?}",
             fixture.scene, fixture.spec
-        );
+        ))
+    }
+
+    /// The key of `fixture`'s database for `lorentz`, searched by
+    /// `traversal`.
+    pub(crate) fn database_key(
+        &self,
+        fixture: &Fixture,
+        lorentz: bool,
+        traversal: Traversal,
+    ) -> Key {
+        self.hash(format_args!(
+            "{:?}\u{1f}{lorentz:?}\u{1f}{traversal:?}",
+            fixture.scene
+        ))
+    }
+
+    fn hash(&self, text: fmt::Arguments<'_>) -> Key {
+        let mut h = TwoHashers(self.keys.0.build_hasher(), self.keys.1.build_hasher());
+        // Writing into hashers cannot fail.
+        let _ = h.write_fmt(text);
         Key(u128::from(h.0.finish()) << 64 | u128::from(h.1.finish()))
     }
 
@@ -140,6 +163,22 @@ impl Renders {
         if kept.bytes + size <= self.budget && !kept.lazy.contains_key(&key.0) {
             kept.bytes += size;
             kept.lazy.insert(key.0, Arc::clone(image));
+        }
+    }
+
+    /// The database kept under `key`, if any.
+    pub(crate) fn get_database(&self, key: Key) -> Option<Arc<Database>> {
+        self.lock().databases.get(&key.0).cloned()
+    }
+
+    /// Keeps `db`, estimated at `bytes`, under `key` while the budget
+    /// allows (shared, not copied).
+    pub(crate) fn keep_database(&self, key: Key, db: &Arc<Database>, bytes: u64) {
+        let size = usize::try_from(bytes).unwrap_or(usize::MAX);
+        let mut kept = self.lock();
+        if size <= self.budget.saturating_sub(kept.bytes) && !kept.databases.contains_key(&key.0) {
+            kept.bytes += size;
+            kept.databases.insert(key.0, Arc::clone(db));
         }
     }
 

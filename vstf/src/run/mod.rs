@@ -19,6 +19,23 @@ pub fn database(fixture: &Fixture, lorentz: bool, traversal: Traversal) -> Resul
     Ok(db)
 }
 
+/// [`database`], or the one this fixture (or a copy of it) built already
+/// for the same scene, Lorentz setting and traversal ([`Renders`]).
+pub fn database_shared(
+    fixture: &Fixture,
+    lorentz: bool,
+    traversal: Traversal,
+) -> Result<Arc<Database>, Error> {
+    let key = fixture.renders.database_key(fixture, lorentz, traversal);
+    if let Some(db) = fixture.renders.get_database(key) {
+        return Ok(db);
+    }
+    let db = Arc::new(database(fixture, lorentz, traversal)?);
+    let bytes = crate::budget::kept_database_bytes(&fixture.scene);
+    fixture.renders.keep_database(key, &db, bytes);
+    Ok(db)
+}
+
 /// The fixture's view after `overrides`, or an error naming the file and field.
 pub fn view(fixture: &Fixture, overrides: &Overrides) -> Result<View, Error> {
     fixture
@@ -45,7 +62,7 @@ pub fn render_shared(
     if let Some(image) = fixture.renders.get(key) {
         return Ok(image);
     }
-    let db = database(fixture, view.model.lorentz, traversal)?;
+    let db = database_shared(fixture, view.model.lorentz, traversal)?;
     let image = Arc::new(render_with(&db, fixture, view)?);
     fixture.renders.keep(key, &image);
     Ok(image)
@@ -256,6 +273,47 @@ mod tests {
             let key = renders.key(&f, &v, Traversal::Bvh);
             renders.keep(key, &Arc::new(image.clone()));
             assert_eq!(renders.get(key).as_deref(), kept);
+        }
+    }
+
+    /// A scene's database is built once for its fixture and the copies of
+    /// it, whatever the view; the other Lorentz setting, the other
+    /// traversal or a moved object builds another (negative controls).
+    #[test]
+    fn a_database_is_built_once_for_its_scene() {
+        let f = lit_plate(|_| {});
+        let shared =
+            |f: &Fixture, lorentz, traversal| database_shared(f, lorentz, traversal).unwrap();
+        let first = shared(&f, true, Traversal::Bvh);
+        let mut wider = f.clone();
+        wider.spec.image.width *= 2;
+        assert!(Arc::ptr_eq(&first, &shared(&wider, true, Traversal::Bvh)));
+        let galilean = shared(&f, false, Traversal::Bvh);
+        assert!(!Arc::ptr_eq(&first, &galilean));
+        let brute = shared(&f, true, Traversal::BruteForce);
+        assert!(!Arc::ptr_eq(&first, &brute));
+        assert_eq!(brute.traversal(), Traversal::BruteForce);
+        let mut moved = f.clone();
+        let renderer::Shape::Mesh(mesh) = &mut moved.scene.objects[0].shape else {
+            panic!("the plate is a mesh");
+        };
+        mesh.vertices.iter_mut().for_each(|v| v.x += 0.5);
+        let elsewhere = shared(&moved, true, Traversal::Bvh);
+        assert!(!Arc::ptr_eq(&first, &elsewhere));
+        assert_ne!(elsewhere.spatial_bounds(), first.spatial_bounds());
+    }
+
+    /// A database beyond the budget is not kept.
+    #[test]
+    fn a_database_beyond_the_budget_is_not_kept() {
+        let f = lit_plate(|_| {});
+        let db = Arc::new(database(&f, true, Traversal::Bvh).unwrap());
+        let bytes = crate::budget::kept_database_bytes(&f.scene);
+        for (budget, kept) in [(bytes - 1, false), (bytes, true)] {
+            let renders = Renders::within(usize::try_from(budget).unwrap());
+            let key = renders.database_key(&f, true, Traversal::Bvh);
+            renders.keep_database(key, &db, bytes);
+            assert_eq!(renders.get_database(key).is_some(), kept);
         }
     }
 

@@ -3,7 +3,6 @@
 //! least recently used evicted first, and an entry larger than the whole
 //! budget used once and not kept.
 
-use crate::budget::{BYTES_PER_KEYFRAMED_PRISM, BYTES_PER_TRANSLATED_PRISM};
 use crate::fixture::Fixture;
 use renderer::Database;
 use std::collections::HashMap;
@@ -16,17 +15,9 @@ pub(super) type Key = (String, String, bool, u64);
 /// A kept fixture (as sped up) and its database.
 pub(super) type Entry = Arc<(Fixture, Database)>;
 
-/// An entry's fixed cost besides its prisms: the fixture, the database's
-/// own structures and the hierarchies' roots, bytes.
-const BYTES_PER_ENTRY: u64 = 16 * 1024;
-
 /// The bytes a fixture's database is estimated to take.
 pub(super) fn estimate(f: &Fixture) -> u64 {
-    let p = crate::prisms(&f.scene);
-    p.translated
-        .saturating_mul(BYTES_PER_TRANSLATED_PRISM)
-        .saturating_add(p.keyframed.saturating_mul(BYTES_PER_KEYFRAMED_PRISM))
-        .saturating_add(BYTES_PER_ENTRY)
+    crate::budget::kept_database_bytes(&f.scene)
 }
 
 /// How full the cache is.

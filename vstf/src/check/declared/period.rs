@@ -94,7 +94,7 @@ fn animate(f: &Fixture, model: Model, frames: &Frames, on: OnOff) -> Result<Sigh
             ..Default::default()
         },
     )?;
-    let db = crate::run::database(f, model.lorentz, Traversal::Bvh)?;
+    let db = crate::run::database_shared(f, model.lorentz, Traversal::Bvh)?;
     let times: Vec<f64> = (0..=((to - from) / step).round() as usize)
         .map(|i| from + step * i as f64)
         .collect();
