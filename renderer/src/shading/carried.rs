@@ -199,7 +199,7 @@ impl Carried for Band {
             let lamp = lamp_gain.map_or(lamp[i], |g| lamp[i] * g);
             reflectance[i] * (shader.light.ambient * white[i] + direct.0 * lamp)
                 + direct.1 * lamp
-                + emission.map_or(0.0, |e| e[i])
+                + emission.as_ref().map_or(0.0, |e| e[i])
         });
         (local, surface_nm)
     }
