@@ -108,7 +108,7 @@ pub use scene::{
     ObjectKind, Scene, SceneError, SceneErrorKind, SceneField, SceneObject, Shape, Texels, Texture,
     UvMapping,
 };
-pub use shading::{BentEnd, Effects, Found, Shader};
+pub use shading::{BackgroundBand, BentEnd, Effects, Found, Shader};
 pub use spacetime::{
     Boost, Event, FourVector, Geodesic, Leg, LightSpeed, Ray, Schwarzschild, Spacetime, Waypoint,
     WaypointWindow, CHORD_TOLERANCE, MAX_CHORDS, MAX_WINDOW_WAYPOINTS, SKY_TOLERANCE,

@@ -13,7 +13,7 @@ use crate::camera::{Camera, Kinematics, Model};
 use crate::database::Database;
 use crate::rng::SplitMix64;
 use crate::scene::Scene;
-use crate::shading::{Effects, Found, Shader};
+use crate::shading::{BackgroundBand, Effects, Found, Shader};
 use crate::trace::{NoTrace, Step, Trace};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -70,6 +70,11 @@ pub fn shader<'a>(db: &'a Database, scene: &'a Scene, frame: &Frame) -> Shader<'
         effects: settings.effects,
         spacetime: scene.spacetime,
         pixel_angle: frame.camera.at(frame.camera_t).pixel_angle(),
+        background_band: BackgroundBand::of(
+            scene.background,
+            scene.sky.as_deref(),
+            settings.effects,
+        ),
     }
 }
 

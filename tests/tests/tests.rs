@@ -27,6 +27,7 @@ mod rendering {
     mod shading;
     mod simd;
     mod sky;
+    mod spectral;
     mod textures;
 }
 

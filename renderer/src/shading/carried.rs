@@ -26,6 +26,9 @@ pub(super) trait Carried: Copy {
     const ZERO: Self;
     /// The colour of the linear RGB `seen` where a ray meets nothing.
     fn background(seen: DVec3, band: &Self::At) -> Self;
+    /// [`Carried::background`] of `seen` at `band` where the shader found
+    /// it before the render (`None` otherwise).
+    fn background_known(shader: &Shader<'_>, seen: DVec3, band: &Self::At) -> Option<Self>;
     /// Whether the colour carries the surface's frequency factors (paper 6):
     /// a spectrum always does (its wavelengths shift); RGB only through the
     /// searchlight's change of intensity.
@@ -92,6 +95,9 @@ impl Carried for DVec3 {
     const ZERO: DVec3 = DVec3::ZERO;
     fn background(seen: DVec3, _: &()) -> DVec3 {
         seen
+    }
+    fn background_known(_: &Shader<'_>, _: DVec3, _: &()) -> Option<DVec3> {
+        None
     }
     fn carries_factors(effects: Effects) -> bool {
         effects.searchlight
@@ -166,6 +172,9 @@ impl Carried for Band {
     const ZERO: Band = [0.0; BAND_LEN];
     fn background(seen: DVec3, nm: &Band) -> Band {
         Spectrum::Rgb(seen).at_each(nm)
+    }
+    fn background_known(shader: &Shader<'_>, seen: DVec3, nm: &Band) -> Option<Band> {
+        shader.background_band.as_ref()?.at(seen, nm)
     }
     fn carries_factors(_: Effects) -> bool {
         true

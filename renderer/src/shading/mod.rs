@@ -13,4 +13,4 @@ mod texture;
 
 pub use bent::BentEnd;
 pub use doppler::Effects;
-pub use shader::{Found, Shader};
+pub use shader::{BackgroundBand, Found, Shader};

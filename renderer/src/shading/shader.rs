@@ -69,7 +69,49 @@ pub struct Shader<'a> {
     /// ([`crate::Camera::pixel_angle`]): the chords of a bent ray stray
     /// from it by at most a fraction of the pixel's footprint.
     pub pixel_angle: f64,
+    /// The background's spectrum at the observed band, found once for
+    /// the render ([`crate::shader`] fills it in). `None` finds it ray by
+    /// ray, the same values.
+    pub background_band: Option<BackgroundBand>,
 }
+
+/// A uniform background's spectrum at the observed band's own wavelengths:
+/// what every primary ray of a camera at rest that meets nothing carries,
+/// since the light of a background at rest reaches a camera at rest
+/// unshifted (paper 6).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BackgroundBand {
+    seen: DVec3,
+    nm: Band,
+    values: Band,
+}
+
+impl BackgroundBand {
+    /// `background`'s spectrum at the observed band; `None` where rays
+    /// carry no spectrum (the Doppler shift off) or see a sky rather than
+    /// the background.
+    pub fn of(
+        background: DVec3,
+        sky: Option<&crate::Texels>,
+        effects: Effects,
+    ) -> Option<BackgroundBand> {
+        (effects.doppler && sky.is_none()).then(|| {
+            let nm = color::band_nm();
+            BackgroundBand {
+                seen: background,
+                nm,
+                values: <Band as Carried>::background(background, &nm),
+            }
+        })
+    }
+
+    /// The spectrum of `seen` at `nm` where both are this one's to the bit.
+    pub(super) fn at(&self, seen: DVec3, nm: &Band) -> Option<Band> {
+        let same = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
+        (same(&self.seen.to_array(), &seen.to_array()) && same(&self.nm, nm)).then_some(self.values)
+    }
+}
+
 impl Shader<'_> {
     /// Colour of the light arriving along `ray` (towards its origin).
     pub fn radiance(&self, ray: &Ray, depth: u32) -> DVec3 {
@@ -154,7 +196,7 @@ impl Shader<'_> {
                 background: seen,
             });
         }
-        C::background(seen, band)
+        C::background_known(self, seen, band).unwrap_or_else(|| C::background(seen, band))
     }
 
     pub(super) fn hit_step(&self, kind: RayKind, ray: &Ray, hit: &Hit) -> Step {

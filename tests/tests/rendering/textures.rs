@@ -147,6 +147,7 @@ fn a_moving_plates_checkerboard_is_its_rest_frame_pattern() {
         sky: None,
         spacetime: Spacetime::Flat,
         pixel_angle: 0.0,
+        background_band: None,
         light_speed: LightSpeed::Finite,
         max_depth: 0,
         shadows: false,
