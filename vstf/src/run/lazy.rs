@@ -7,7 +7,7 @@
 
 use crate::fixture::{Fixture, View};
 use image::RgbImage;
-use renderer::{Database, Traversal, Window};
+use renderer::{Database, Window};
 use std::sync::{Arc, Mutex, OnceLock};
 
 /// Side of a tile, pixels.
@@ -26,18 +26,18 @@ pub struct LazyImage {
 }
 
 impl LazyImage {
-    /// `view` of `fixture`, its database built, nothing rendered yet.
-    pub(crate) fn new(fixture: Fixture, view: View) -> Result<LazyImage, crate::error::Error> {
-        let db = crate::run::database_shared(&fixture, view.model.lorentz, Traversal::Bvh)?;
+    /// `view` of `fixture` with its database `db` (built with the view's
+    /// Lorentz setting), nothing rendered yet.
+    pub(crate) fn new(fixture: Fixture, view: View, db: Arc<Database>) -> LazyImage {
         let (w, h) = (view.camera.width, view.camera.height);
         let count = w.div_ceil(TILE) as usize * h.div_ceil(TILE) as usize;
-        Ok(LazyImage {
+        LazyImage {
             fixture,
             view,
             db,
             tiles: (0..count).map(|_| OnceLock::new()).collect(),
             failed: Mutex::new(None),
-        })
+        }
     }
 
     /// Why a tile could not be rendered, if one could not: a reading made
@@ -103,6 +103,7 @@ impl LazyImage {
 mod tests {
     use super::*;
     use crate::fixture::Overrides;
+    use renderer::Traversal;
     use std::path::Path;
 
     #[test]
@@ -117,7 +118,8 @@ mod tests {
         };
         let view = crate::run::view(&f, &o).unwrap();
         let whole = crate::output::rgb8(&crate::run::render(&f, &view, Traversal::Bvh).unwrap());
-        let lazy = LazyImage::new(f.clone(), view).unwrap();
+        let db = crate::run::database_shared(&f, view.model.lorentz, Traversal::Bvh).unwrap();
+        let lazy = LazyImage::new(f.clone(), view, db);
         assert_eq!(lazy.rendered(), (0, 3 * 3));
         // One pixel renders one tile (the last, cut to the image).
         assert_eq!(lazy.pixel(44, 36), *whole.get_pixel(44, 36));

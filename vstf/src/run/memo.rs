@@ -5,8 +5,9 @@
 //! and from several places, and each is built once.
 //!
 //! An image is kept under a keyed 128-bit hash of everything the render
-//! reads: the scene (every mesh corner, motion and material), the file's
-//! spec, the view (camera, model, settings) and the traversal. The renderer
+//! reads: the scene (every mesh corner, motion and material, hashed on its
+//! own first), the file's spec, the view (camera, model, settings) and the
+//! traversal. The renderer
 //! is deterministic, so a kept image is the one a new render would give, to
 //! the bit. The hash runs over the values' `Debug` forms, which print each
 //! f64 exactly (shortest round trip, the sign of a zero included). A
@@ -98,25 +99,34 @@ impl Renders {
             .unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 
-    /// The key of rendering `view` of `fixture` with `traversal`.
-    pub(crate) fn key(&self, fixture: &Fixture, view: &View, traversal: Traversal) -> Key {
-        self.hash(format_args!(
-            "{:?}\u{1f}{:?}\u{1f}{view:?}\u{1f}{traversal:?}",
-            fixture.scene, fixture.spec
-        ))
+    /// The key of `fixture`'s scene alone: what the keys of its renders
+    /// and databases are made from, so that a render that builds its
+    /// database reads the scene once.
+    pub(crate) fn scene_key(&self, fixture: &Fixture) -> Key {
+        self.hash(format_args!("{:?}", fixture.scene))
     }
 
-    /// The key of `fixture`'s database for `lorentz`, searched by
-    /// `traversal`.
-    pub(crate) fn database_key(
+    /// The key of rendering `view` of `fixture`, whose scene's key is
+    /// `scene`, with `traversal`.
+    pub(crate) fn key(
         &self,
+        scene: Key,
         fixture: &Fixture,
-        lorentz: bool,
+        view: &View,
         traversal: Traversal,
     ) -> Key {
         self.hash(format_args!(
-            "{:?}\u{1f}{lorentz:?}\u{1f}{traversal:?}",
-            fixture.scene
+            "{:032x}\u{1f}{:?}\u{1f}{view:?}\u{1f}{traversal:?}",
+            scene.0, fixture.spec
+        ))
+    }
+
+    /// The key of the database of the scene whose key is `scene`, for
+    /// `lorentz`, searched by `traversal`.
+    pub(crate) fn database_key(&self, scene: Key, lorentz: bool, traversal: Traversal) -> Key {
+        self.hash(format_args!(
+            "{:032x}\u{1f}{lorentz:?}\u{1f}{traversal:?}",
+            scene.0
         ))
     }
 

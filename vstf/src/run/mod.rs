@@ -10,6 +10,7 @@ use std::sync::Arc;
 mod lazy;
 mod memo;
 pub use lazy::LazyImage;
+use memo::Key;
 pub use memo::Renders;
 
 /// A fixture's database for one Lorentz setting.
@@ -26,7 +27,22 @@ pub fn database_shared(
     lorentz: bool,
     traversal: Traversal,
 ) -> Result<Arc<Database>, Error> {
-    let key = fixture.renders.database_key(fixture, lorentz, traversal);
+    shared_database(
+        fixture,
+        fixture.renders.scene_key(fixture),
+        lorentz,
+        traversal,
+    )
+}
+
+/// [`database_shared`], the scene's key found already.
+fn shared_database(
+    fixture: &Fixture,
+    scene: Key,
+    lorentz: bool,
+    traversal: Traversal,
+) -> Result<Arc<Database>, Error> {
+    let key = fixture.renders.database_key(scene, lorentz, traversal);
     if let Some(db) = fixture.renders.get_database(key) {
         return Ok(db);
     }
@@ -58,11 +74,12 @@ pub fn render_shared(
     view: &View,
     traversal: Traversal,
 ) -> Result<Arc<Image>, Error> {
-    let key = fixture.renders.key(fixture, view, traversal);
+    let scene = fixture.renders.scene_key(fixture);
+    let key = fixture.renders.key(scene, fixture, view, traversal);
     if let Some(image) = fixture.renders.get(key) {
         return Ok(image);
     }
-    let db = database_shared(fixture, view.model.lorentz, traversal)?;
+    let db = shared_database(fixture, scene, view.model.lorentz, traversal)?;
     let image = Arc::new(render_with(&db, fixture, view)?);
     fixture.renders.keep(key, &image);
     Ok(image)
@@ -72,11 +89,13 @@ pub fn render_shared(
 /// this fixture (or a copy of it) made already for the same scene, spec
 /// and view, with what of it was read so far.
 pub fn render_lazy(fixture: &Fixture, view: &View) -> Result<Arc<LazyImage>, Error> {
-    let key = fixture.renders.key(fixture, view, Traversal::Bvh);
+    let scene = fixture.renders.scene_key(fixture);
+    let key = fixture.renders.key(scene, fixture, view, Traversal::Bvh);
     if let Some(image) = fixture.renders.get_lazy(key) {
         return Ok(image);
     }
-    let image = Arc::new(LazyImage::new(fixture.clone(), *view)?);
+    let db = shared_database(fixture, scene, view.model.lorentz, Traversal::Bvh)?;
+    let image = Arc::new(LazyImage::new(fixture.clone(), *view, db));
     fixture.renders.keep_lazy(key, &image);
     Ok(image)
 }
@@ -270,7 +289,7 @@ mod tests {
         let bytes = std::mem::size_of_val(image.pixels.as_slice());
         for (budget, kept) in [(bytes - 1, None), (bytes, Some(&image))] {
             let renders = Renders::within(budget);
-            let key = renders.key(&f, &v, Traversal::Bvh);
+            let key = renders.key(renders.scene_key(&f), &f, &v, Traversal::Bvh);
             renders.keep(key, &Arc::new(image.clone()));
             assert_eq!(renders.get(key).as_deref(), kept);
         }
@@ -311,7 +330,7 @@ mod tests {
         let bytes = crate::budget::kept_database_bytes(&f.scene);
         for (budget, kept) in [(bytes - 1, false), (bytes, true)] {
             let renders = Renders::within(usize::try_from(budget).unwrap());
-            let key = renders.database_key(&f, true, Traversal::Bvh);
+            let key = renders.database_key(renders.scene_key(&f), true, Traversal::Bvh);
             renders.keep_database(key, &db, bytes);
             assert_eq!(renders.get_database(key).is_some(), kept);
         }

@@ -15,11 +15,6 @@ pub(super) type Key = (String, String, bool, u64);
 /// A kept fixture (as sped up) and its database.
 pub(super) type Entry = Arc<(Fixture, Database)>;
 
-/// The bytes a fixture's database is estimated to take.
-pub(super) fn estimate(f: &Fixture) -> u64 {
-    crate::budget::kept_database_bytes(&f.scene)
-}
-
 /// How full the cache is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CacheUsage {

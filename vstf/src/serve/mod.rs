@@ -126,7 +126,7 @@ impl Site {
         if let Some(e) = lock()?.get(&key) {
             return Ok(e);
         }
-        let bytes = cache::estimate(&fixture);
+        let bytes = crate::budget::kept_database_bytes(&fixture.scene);
         lock()?.make_room(bytes);
         let db = crate::run::database(&fixture, key.2, Traversal::Bvh)?;
         let e = Arc::new((fixture, db));

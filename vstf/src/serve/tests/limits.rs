@@ -83,8 +83,8 @@ fn resident_kb() -> u64 {
 fn memory_and_renders_are_bounded() {
     let dir = Scratch::new("probe");
     std::fs::write(dir.0.join("tiny.json"), TINY).unwrap();
-    let one =
-        cache::estimate(&Fixture::load_within(&dir.0.join("tiny.json"), &Budget::DEFAULT).unwrap());
+    let tiny = Fixture::load_within(&dir.0.join("tiny.json"), &Budget::DEFAULT).unwrap();
+    let one = crate::budget::kept_database_bytes(&tiny.scene);
     let limits = Limits {
         cache_bytes: 4 * one,
         ..Limits::default()
