@@ -37,7 +37,9 @@ mod rendering {
 mod harness {
     mod born_rigid;
     mod debug;
+    mod debug_diff;
     mod declared;
+    mod declared_motion;
     mod emulator;
     mod face_materials;
     mod fixture_errors;
@@ -48,6 +50,7 @@ mod harness {
     mod mirrors;
     mod redshift;
     mod rocket;
+    mod rocket_errors;
     mod rocket_keyframes;
     mod rocket_keyframes_checks;
     mod rocket_keyframes_shutter;

@@ -19,7 +19,7 @@ mod check;
 mod debug;
 /// `vstf approve`, `reject` and `review`: golden images one view at a time.
 mod golden;
-/// `render --out` EXR (with its layers) and JPEG, `animate --out` videos.
+/// `render --out` EXR (with its layers) and JPEG.
 mod outputs;
 /// Projects: none, one from `vstf init`, a fixture given as a file.
 mod project;
@@ -38,3 +38,5 @@ mod signals;
 /// The sharded jobs of docs/scaling.md on a one-machine Slurm cluster
 /// (skips without Slurm).
 mod slurm;
+/// `animate --out` videos through ffmpeg.
+mod videos;

@@ -285,3 +285,24 @@ pub fn interrupt(pid: u32) {
         .status()
         .unwrap();
 }
+
+/// Whether every tool is on PATH; if not, a failure under
+/// `VSTF_REQUIRE_MEDIA`, else a loud skip.
+pub fn media(tools: &[&str], test: &str) -> bool {
+    let path = std::env::var_os("PATH").unwrap_or_default();
+    let missing: Vec<&str> = tools
+        .iter()
+        .copied()
+        .filter(|t| !std::env::split_paths(&path).any(|d| d.join(t).is_file()))
+        .collect();
+    if missing.is_empty() {
+        return true;
+    }
+    let msg = format!(
+        "{} not on PATH: {test} did not run (apt-get install ffmpeg openimageio-tools)",
+        missing.join(", ")
+    );
+    assert!(std::env::var_os("VSTF_REQUIRE_MEDIA").is_none(), "{msg}");
+    eprintln!("SKIPPED: {msg}");
+    false
+}
