@@ -102,11 +102,31 @@ pub fn fixture(name: &str) -> vstf::Fixture {
 /// One of this repository's fixtures with `edit` applied to its JSON, parsed
 /// (named by its file, so errors name it).
 pub fn fixture_with(name: &str, edit: impl FnOnce(&mut serde_json::Value)) -> vstf::Fixture {
+    let (file, v) = edited(name, edit);
+    vstf::Fixture::parse(&v.to_string(), &file).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The error of one of this repository's fixtures with `edit` applied to its
+/// JSON, which must be refused.
+pub fn fixture_error_with(name: &str, edit: impl FnOnce(&mut serde_json::Value)) -> String {
+    let (file, v) = edited(name, edit);
+    match vstf::Fixture::parse(&v.to_string(), &file) {
+        Ok(_) => panic!("a bad fixture was accepted: {v}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// The file of one of this repository's fixtures and its JSON with `edit`
+/// applied.
+fn edited(
+    name: &str,
+    edit: impl FnOnce(&mut serde_json::Value),
+) -> (std::path::PathBuf, serde_json::Value) {
     let file = repo().fixtures_dir().join(format!("{name}.json"));
     let mut v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
     edit(&mut v);
-    vstf::Fixture::parse(&v.to_string(), &file).unwrap_or_else(|e| panic!("{e}"))
+    (file, v)
 }
 
 /// The rows of the checks `described` declares, measured on renders of

@@ -1,18 +1,9 @@
 //! The `rocket` fixture's accelerated camera and proper times, wrong:
 //! each refused at load, naming the JSON field and what it must be.
 
-use vstf::Fixture;
-
 /// The rocket fixture's text with `edit` applied, parsed: its error.
 fn error_with(edit: impl FnOnce(&mut serde_json::Value)) -> String {
-    let file = workspace_tests::repo().fixtures_dir().join("rocket.json");
-    let mut v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
-    edit(&mut v);
-    match Fixture::parse(&v.to_string(), &file) {
-        Ok(_) => panic!("a bad fixture was accepted"),
-        Err(e) => e.to_string(),
-    }
+    workspace_tests::fixture_error_with("rocket", edit)
 }
 
 #[test]

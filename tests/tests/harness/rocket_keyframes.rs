@@ -120,14 +120,10 @@ fn two_keyframes_of_uniform_motion_are_the_inertial_moving_camera_between_them()
 
 /// The rocket fixture with keyframes and `edit` applied, parsed: its error.
 fn error_with(edit: impl FnOnce(&mut Value)) -> String {
-    let file = workspace_tests::repo().fixtures_dir().join("rocket.json");
-    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
-    edit_keyframes(&mut v, three_keyframes(), 0.0);
-    edit(&mut v);
-    match Fixture::parse(&v.to_string(), &file) {
-        Ok(_) => panic!("a bad fixture was accepted: {v}"),
-        Err(e) => e.to_string(),
-    }
+    workspace_tests::fixture_error_with("rocket", |v| {
+        edit_keyframes(v, three_keyframes(), 0.0);
+        edit(v);
+    })
 }
 
 #[test]

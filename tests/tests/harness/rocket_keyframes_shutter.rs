@@ -197,16 +197,13 @@ fn a_shutter_leaving_the_keyframes_is_refused_at_image_shutter() {
     // The control: a frame whose shutter stays within them is allowed.
     assert!(vstf::run::view(&f, &o(5.0)).is_ok());
     // A shutter over more keyframes than a camera carries is refused too.
-    let file = workspace_tests::repo().fixtures_dir().join("rocket.json");
-    let mut v: Value = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
-    v["camera"]["worldline"] = json!({ "keyframes": sampled(0.0625, 20.0) });
-    v["image"]["shutter"] = json!(2.0);
-    v["camera"]["t"] = json!(10.0);
-    v["views"] = json!([{ "name": "k", "t": 10.0 }]);
-    v["checks"] = json!([]);
-    let e = Fixture::parse(&v.to_string(), &file)
-        .unwrap_err()
-        .to_string();
+    let e = workspace_tests::fixture_error_with("rocket", |v| {
+        v["camera"]["worldline"] = json!({ "keyframes": sampled(0.0625, 20.0) });
+        v["image"]["shutter"] = json!(2.0);
+        v["camera"]["t"] = json!(10.0);
+        v["views"] = json!([{ "name": "k", "t": 10.0 }]);
+        v["checks"] = json!([]);
+    });
     assert!(e.contains("image.shutter") && e.contains("at most"), "{e}");
 }
 
