@@ -249,8 +249,7 @@ impl Database {
         if !run.stretch.translation {
             return self.keyframed.prisms[run.slot + k];
         }
-        let c = self.triangle(run, k);
-        let normal = (c[1] - c[0]).cross(c[2] - c[0]).normalize();
+        let normal = unit_normal(&self.triangle(run, k));
         Prism {
             object: run.object,
             triangle: k as u32,
@@ -316,6 +315,17 @@ impl Database {
     /// The surface a hit lies on: a triangle's prism, or an analytic sphere.
     pub fn surface(&self, hit: &Hit) -> Surface {
         match hit.primitive.prism() {
+            Some(p) if hit.stored != Hit::NOT_STORED => {
+                // A translated prism's normal, from its triangle where the
+                // exact test read it: [`Database::prism`]'s.
+                let (run, k) = self.run_of(p);
+                let c = self.comoving.triangle(run.vertices, hit.stored as usize);
+                Surface {
+                    object: run.object,
+                    normal: unit_normal(&c),
+                    triangle: k as u32,
+                }
+            }
             Some(p) => {
                 let prism = self.prism(p);
                 Surface {
@@ -386,3 +396,14 @@ impl Database {
             .sum()
     }
 }
+
+/// The unit lab normal of a translated prism, from its comoving
+/// triangle's corners `c` in order (right-handed): a translation moves the
+/// triangle without turning or deforming it, so its comoving corners'
+/// normal is its normal at every lab time.
+fn unit_normal(c: &[DVec3; 3]) -> DVec3 {
+    (c[1] - c[0]).cross(c[2] - c[0]).normalize()
+}
+
+#[cfg(test)]
+mod tests;

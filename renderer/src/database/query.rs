@@ -177,15 +177,17 @@ struct Tester<'a, T> {
     trace: &'a mut T,
 }
 
-/// The hit on prism `p` of the ray `o + s d` where the exact test found
+/// The hit on prism `p`, whose triangle is kept at position `stored` of
+/// [`Database::comoving`], of the ray `o + s d` where the exact test found
 /// it: at ray parameter s, with barycentric coordinates `bary`.
 #[inline(always)]
-fn hit(o: DVec4, d: DVec4, p: u32, (s, bary): (f64, [f64; 3])) -> Hit {
+fn hit(o: DVec4, d: DVec4, p: u32, stored: usize, (s, bary): (f64, [f64; 3])) -> Hit {
     Hit {
         s,
         event: Event::from_xyzt(o + d * s),
         primitive: PrimitiveId::Prism(p),
         bary: Barycentric::Triangle(bary.map(|x| x.clamp(0.0, 1.0))),
+        stored: stored as u32,
     }
 }
 
@@ -216,7 +218,7 @@ fn filtered_leaf(
             let corners = &db.comoving.triangle(run.vertices, at + i);
             let exact = intersect_prism(corners, ray, run.stretch.span, (range.0, hi));
             if let Ok(found) = exact {
-                best = Some(nearer(best, hit(o, d, p0 + items[i], found)));
+                best = Some(nearer(best, hit(o, d, p0 + items[i], at + i, found)));
             }
         }
         chunk += LANES;
@@ -318,7 +320,7 @@ impl<'a, T: Trace> Tester<'a, T> {
         let result = match &self.comoving {
             None => Err(Miss::Parallel),
             Some(c) => intersect_prism(corners, c, run.stretch.span, range)
-                .map(|found| hit(self.o, self.d, p, found)),
+                .map(|found| hit(self.o, self.d, p, stored, found)),
         };
         self.record(run, PrimitiveId::Prism(p), &result);
         result.ok()

@@ -69,6 +69,17 @@ pub struct Hit {
     /// Barycentric coordinates of `event` in the primitive, each in [0, 1],
     /// summing to 1 (none for a sphere).
     pub bary: Barycentric,
+    /// Where the database keeps the comoving triangle of the translated
+    /// prism met, the one its exact test has just read: the surface's
+    /// normal is read there rather than looked up by the prism's index
+    /// (a lookup that misses the cache once a hit). [`Hit::NOT_STORED`]
+    /// for any other primitive.
+    pub(crate) stored: u32,
+}
+
+impl Hit {
+    /// [`Hit::stored`] of a primitive other than a translated prism.
+    pub(crate) const NOT_STORED: u32 = u32::MAX;
 }
 
 /// Why a prism or tetrahedron was not hit.

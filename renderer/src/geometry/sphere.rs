@@ -61,6 +61,7 @@ impl Sphere {
             event: ray.at(s),
             primitive: PrimitiveId::Sphere(id),
             bary: Barycentric::Sphere,
+            stored: Hit::NOT_STORED,
         })
     }
 

@@ -156,6 +156,7 @@ impl PreparedTet {
             event: Event::from_xyzt(p),
             primitive: PrimitiveId::Tetrahedron(tet),
             bary: Barycentric::Tetrahedron(clamped),
+            stored: Hit::NOT_STORED,
         })
     }
 }
