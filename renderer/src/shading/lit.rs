@@ -83,6 +83,13 @@ impl Shader<'_> {
         blocker.is_some()
     }
 
+    /// Whether light changes frequency between frames: the colour effects
+    /// are on and light travels at a finite speed (every ratio of
+    /// [`Shader::to_surface`] is 1 otherwise).
+    pub(super) fn shifts_frequency(&self) -> bool {
+        self.effects.any() && self.light_speed == LightSpeed::Finite
+    }
+
     /// The frequency ratio between the lab and the frame of a surface
     /// at `at` moving with `velocity` (clock `gamma`) for light
     /// propagating along `k`: nu_surface / nu_lab; 1 when light is
@@ -94,7 +101,7 @@ impl Shader<'_> {
     ///
     /// [`Schwarzschild::static_frame`]: crate::Schwarzschild::static_frame
     pub(super) fn to_surface(&self, at: DVec3, velocity: DVec3, gamma: f64, k: DVec3) -> f64 {
-        if !self.effects.any() || self.light_speed == LightSpeed::Infinite {
+        if !self.shifts_frequency() {
             return 1.0;
         }
         let Spacetime::Schwarzschild(hole) = &self.spacetime else {
@@ -150,10 +157,11 @@ impl Shader<'_> {
         let m = object.material_of(surface.triangle);
         let view = -ray.direction.x;
         let to_light = self.light.position - hit.event.x;
+        let light_distance = to_light.length();
         // A light on the surface point lights nothing; a non-finite
         // direction stays NaN, for the pixel's check to report.
         let l = if to_light.is_finite() {
-            to_light.normalize_or_zero()
+            unit_or_zero(to_light, light_distance)
         } else {
             DVec3::NAN
         };
@@ -176,8 +184,13 @@ impl Shader<'_> {
             }
         }
         let at = hit.event.x;
-        let from_light = self.to_surface(at, velocity, gamma, -l);
-        let out = 1.0 / self.to_surface(at, velocity, gamma, view.normalize());
+        let (from_light, out) = if self.shifts_frequency() {
+            let from_light = self.to_surface(at, velocity, gamma, -l);
+            let to_origin = self.to_surface(at, velocity, gamma, view.normalize());
+            (from_light, 1.0 / to_origin)
+        } else {
+            (1.0, 1.0)
+        };
         Lit {
             object: surface.object,
             triangle: surface.triangle,
@@ -185,7 +198,7 @@ impl Shader<'_> {
             texel: self.texel(hit, &surface, object),
             n,
             l,
-            light_distance: to_light.length(),
+            light_distance,
             lambert,
             surface_frame,
             shadowed,
@@ -195,5 +208,17 @@ impl Shader<'_> {
             from_light,
             out,
         }
+    }
+}
+
+/// `v` over its `length`, or zero where that is not a finite positive
+/// scale (a zero or overflowing length): `v.normalize_or_zero()` to the
+/// bit, with the length found once for both.
+fn unit_or_zero(v: DVec3, length: f64) -> DVec3 {
+    let rcp = 1.0 / length;
+    if rcp.is_finite() && rcp > 0.0 {
+        v * rcp
+    } else {
+        DVec3::ZERO
     }
 }
