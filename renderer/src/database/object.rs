@@ -110,39 +110,11 @@ impl ObjectRecord {
 
 #[cfg(test)]
 mod tests {
+    use crate::database::tests::{object, scene};
     use crate::database::Database;
-    use crate::scene::{Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject, Shape};
-    use crate::spacetime::{Event, FourVector, Spacetime};
+    use crate::scene::{Material, Mesh, Motion, ObjectKind, Shape};
+    use crate::spacetime::{Event, FourVector};
     use glam::DVec3;
-
-    /// A scene of the given objects under a light far above.
-    fn scene(objects: Vec<SceneObject>) -> Scene {
-        Scene {
-            objects,
-            light: Light {
-                position: DVec3::new(0.0, 100.0, 0.0),
-                color: DVec3::ONE,
-                ambient: 0.3,
-                spectrum: None,
-            },
-            background: DVec3::ZERO,
-            sky: None,
-            spacetime: Spacetime::Flat,
-        }
-    }
-
-    /// An object named `name` of the given kind, mesh and motion, matte
-    /// orange (0.8, 0.5, 0.2), neither an analytic sphere nor blinking.
-    fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> SceneObject {
-        SceneObject {
-            name: name.into(),
-            kind,
-            shape: Shape::Mesh(mesh),
-            motion,
-            material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
-            face_materials: Vec::new(),
-        }
-    }
 
     /// A point of a moving object is where it is in the object's own frame,
     /// whatever the lab time: for a vertex at rest-frame offset p of a cube at

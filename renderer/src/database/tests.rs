@@ -1,10 +1,40 @@
-//! A translated prism's surface, read where its exact test found its
-//! triangle, is the one its index gives.
+//! The database's shared test scenes, and a translated prism's surface,
+//! read where its exact test found its triangle, against the one its
+//! index gives.
 
 use super::*;
 use crate::rng::SplitMix64;
 use crate::scene::{Light, Material, Mesh, Motion, ObjectKind, Scene, SceneObject, Shape};
 use crate::spacetime::{LightSpeed, Ray, Spacetime};
+
+/// A scene of the given objects under a light far above.
+pub(super) fn scene(objects: Vec<SceneObject>) -> Scene {
+    Scene {
+        objects,
+        light: Light {
+            position: DVec3::new(0.0, 100.0, 0.0),
+            color: DVec3::ONE,
+            ambient: 0.3,
+            spectrum: None,
+        },
+        background: DVec3::ZERO,
+        sky: None,
+        spacetime: Spacetime::Flat,
+    }
+}
+
+/// An object named `name` of the given kind, mesh and motion, matte
+/// orange (0.8, 0.5, 0.2), neither an analytic sphere nor blinking.
+pub(super) fn object(name: &str, kind: ObjectKind, mesh: Mesh, motion: Motion) -> SceneObject {
+    SceneObject {
+        name: name.into(),
+        kind,
+        shape: Shape::Mesh(mesh),
+        motion,
+        material: Material::matte(DVec3::new(0.8, 0.5, 0.2)),
+        face_materials: Vec::new(),
+    }
+}
 
 /// `n` random triangles moving at 0.6c along a diagonal from lab time -50
 /// (V_obj: contracted in the lab), about the origin at lab time -30: a
@@ -21,30 +51,12 @@ fn moving_triangles(n: usize) -> Database {
             mesh.triangles.push([k, k + 1, k + 2]);
         }
     }
-    let object = SceneObject {
-        name: "triangles".into(),
-        kind: ObjectKind::VObj,
-        shape: Shape::Mesh(mesh),
-        motion: Motion::Velocity {
-            start: Event::new(-50.0, DVec3::new(-8.5, -8.5, 0.0)),
-            velocity: DVec3::new(0.6, 0.6, 0.0) / 2f64.sqrt(),
-            proper_lifetime: 200.0,
-        },
-        material: Material::matte(DVec3::ONE),
-        face_materials: Vec::new(),
+    let motion = Motion::Velocity {
+        start: Event::new(-50.0, DVec3::new(-8.5, -8.5, 0.0)),
+        velocity: DVec3::new(0.6, 0.6, 0.0) / 2f64.sqrt(),
+        proper_lifetime: 200.0,
     };
-    let scene = Scene {
-        objects: vec![object],
-        light: Light {
-            position: DVec3::new(0.0, 100.0, 0.0),
-            color: DVec3::ONE,
-            ambient: 0.3,
-            spectrum: None,
-        },
-        background: DVec3::ZERO,
-        sky: None,
-        spacetime: Spacetime::Flat,
-    };
+    let scene = scene(vec![object("triangles", ObjectKind::VObj, mesh, motion)]);
     Database::build(&scene, true).expect("a valid scene")
 }
 
