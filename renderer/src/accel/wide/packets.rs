@@ -37,6 +37,7 @@ impl<const A: usize> WideBvh<A> {
             return best;
         }
         let wide = wide_rays(simd, rays);
+        let one = one_origin(rays);
         // (Loops rather than `map`, which is not inlined here.)
         let (mut lo32, mut hi32) = ([0.0; PACKET], [0.0; PACKET]);
         for i in 0..PACKET {
@@ -82,7 +83,7 @@ impl<const A: usize> WideBvh<A> {
                 continue;
             }
             let node = &self.nodes[w.child.index as usize];
-            current = packet_enters(node, &wide, lanes, (&lo32, &hi32), &mut stack);
+            current = packet_enters(node, (&wide, one), lanes, (&lo32, &hi32), &mut stack);
         }
         best
     }
@@ -113,6 +114,7 @@ impl<const A: usize> WideBvh<A> {
             return leaf(self.leaf_items(self.root), lanes, &mut hi);
         }
         let wide = wide_rays(simd, rays);
+        let one = one_origin(rays);
         // hi32[i] is hi[i] rounded up.
         let (lo32, mut hi32) = ([down(range.0); PACKET], [up(range.1); PACKET]);
         let mut stack = Stack::new();
@@ -133,7 +135,7 @@ impl<const A: usize> WideBvh<A> {
                 continue;
             }
             let node = &self.nodes[w.child.index as usize];
-            current = packet_enters(node, &wide, lanes, (&lo32, &hi32), &mut stack);
+            current = packet_enters(node, (&wide, one), lanes, (&lo32, &hi32), &mut stack);
         }
     }
 }
@@ -150,14 +152,30 @@ fn wide_rays<const A: usize, S: Simd8>(
     [ray(0), ray(1), ray(2), ray(3)]
 }
 
+/// Whether the packet's rays all start at the same point with the same
+/// direction signs (a camera's primary rays, from one event): their slab
+/// tests then share the node's faces less their origins
+/// ([`WideRay::offsets`]), the same values to the bit.
+#[inline(always)]
+fn one_origin<const A: usize>(rays: &[AxisRay<A>; PACKET]) -> bool {
+    let (o, inv) = rays[0];
+    rays[1..].iter().all(|(oi, invi)| {
+        (0..A).all(|a| {
+            oi[a].to_bits() == o[a].to_bits()
+                && invi[a].is_sign_negative() == inv[a].is_sign_negative()
+        })
+    })
+}
+
 /// A packet's visit of `node`: its rays of `lanes` tested against the
-/// eight boxes, each within its range `(lo32[i], hi32[i])`; returns the
-/// nearest child any entered, the others pushed (see
-/// [`nearest_first_of_packet`]).
+/// eight boxes, each within its range `(lo32[i], hi32[i])`, from the
+/// faces less their origins found once where the rays share them
+/// (`one`, [`one_origin`]); returns the nearest child any entered, the
+/// others pushed (see [`nearest_first_of_packet`]).
 #[inline(always)]
 fn packet_enters<const A: usize, S: Simd8>(
     node: &WideNode<A>,
-    wide: &[WideRay<A, S>; PACKET],
+    (wide, one): (&[WideRay<A, S>; PACKET], bool),
     lanes: Lanes,
     (lo32, hi32): (&[f32; PACKET], &[f32; PACKET]),
     stack: &mut Stack<Waiting>,
@@ -168,9 +186,14 @@ fn packet_enters<const A: usize, S: Simd8>(
     let infinity = s.splat(f32::INFINITY);
     let mut least = infinity;
     let mut by_ray = 0u32;
+    let shared = one.then(|| wide[0].offsets(node));
     for (i, ray) in wide.iter().enumerate() {
         if lanes.holds(i) {
-            let (entry, inside) = ray.enter_lanes(node, (lo32[i], hi32[i]));
+            let offsets = match &shared {
+                Some(offsets) => *offsets,
+                None => ray.offsets(node),
+            };
+            let (entry, inside) = ray.enter_from(&offsets, (lo32[i], hi32[i]));
             least = s.min_or_second(least, s.select(inside, entry, infinity));
             by_ray |= s.bits(inside) << (8 * i);
         }
@@ -243,4 +266,30 @@ fn nearest_first_of_packet<const A: usize>(
     }
     found[..n - 1].iter().for_each(|&f| stack.push(f));
     Some(found[n - 1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rays share their origins when they start at the same point with
+    /// the same direction signs, whatever their directions' sizes; a ray
+    /// one ulp away, turned on one axis, or starting at -0 where the others
+    /// start at +0 does not.
+    #[test]
+    fn one_origin_needs_the_same_point_and_direction_signs() {
+        let ray: AxisRay<3> = ([1.0, -2.0, 0.0], [0.5, -4.0, 2.0]);
+        let mut rays = [ray; PACKET];
+        rays[2].1 = [0.7, -1.0, 9.0];
+        assert!(one_origin(&rays));
+        let mut moved = rays;
+        moved[3].0[1] = f64::from_bits((-2.0f64).to_bits() + 1);
+        assert!(!one_origin(&moved));
+        let mut turned = rays;
+        turned[1].1[2] = -2.0;
+        assert!(!one_origin(&turned));
+        let mut signed = rays;
+        signed[1].0[2] = -0.0;
+        assert!(!one_origin(&signed));
+    }
 }

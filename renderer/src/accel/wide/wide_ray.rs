@@ -93,17 +93,43 @@ impl<const A: usize, S: Simd8> WideRay<A, S> {
     /// ones for each box entered.
     #[inline(always)]
     pub(super) fn enter_lanes(&self, node: &WideNode<A>, range: (f32, f32)) -> (S::F, S::F) {
+        self.enter_from(&self.offsets(node), range)
+    }
+
+    /// A node's faces less this ray's origins, per axis: the near faces'
+    /// and the far faces'. Rays that start at the same point with the
+    /// same direction signs have the same origins ([`WideRay::new`]), so
+    /// a packet of them finds these once a node for all its rays.
+    #[inline(always)]
+    pub(super) fn offsets(&self, node: &WideNode<A>) -> [(S::F, S::F); A] {
         let s = self.simd;
-        let mut entry = s.splat(range.0);
-        let mut exit = s.splat(range.1);
-        for a in 0..A {
+        std::array::from_fn(|a| {
             // (A side of 0 or 1 and an axis below A: indices that need no
             // bounds check.)
             let side = self.near_side[a] & 1;
             let near_face = s.load(node.faces[side][a]);
             let far_face = s.load(node.faces[side ^ 1][a]);
-            let near = s.mul(s.sub(near_face, self.near_o[a]), self.near_inv[a]);
-            let far = s.mul(s.sub(far_face, self.far_o[a]), self.far_inv[a]);
+            (
+                s.sub(near_face, self.near_o[a]),
+                s.sub(far_face, self.far_o[a]),
+            )
+        })
+    }
+
+    /// [`WideRay::enter_lanes`] from the node's [`WideRay::offsets`] (this
+    /// ray's, or those of a ray with the same origins).
+    #[inline(always)]
+    pub(super) fn enter_from(
+        &self,
+        offsets: &[(S::F, S::F); A],
+        range: (f32, f32),
+    ) -> (S::F, S::F) {
+        let s = self.simd;
+        let mut entry = s.splat(range.0);
+        let mut exit = s.splat(range.1);
+        for (a, &(near_offset, far_offset)) in offsets.iter().enumerate() {
+            let near = s.mul(near_offset, self.near_inv[a]);
+            let far = s.mul(far_offset, self.far_inv[a]);
             // A NaN (an axis the ray is parallel to) is dropped.
             entry = s.max_or_second(near, entry);
             exit = s.min_or_second(far, exit);
