@@ -87,10 +87,10 @@ mod render;
 mod rng;
 mod scene;
 mod shading;
+mod simd;
 mod spacetime;
 mod trace;
 
-pub use accel::SimdLevel;
 pub use camera::{Attitude, Camera, CameraWorldline, Kinematics, Model};
 pub use color::{
     band_nm, chromaticity, cmf, xyz, xyz_to_rgb, Spectrum, SpectrumError, SpectrumErrorKind,
@@ -109,6 +109,7 @@ pub use scene::{
     UvMapping,
 };
 pub use shading::{BackgroundBand, BentEnd, Effects, Found, Shader};
+pub use simd::SimdLevel;
 pub use spacetime::{
     Boost, Event, FourVector, Geodesic, Leg, LightSpeed, Ray, Schwarzschild, Spacetime, Waypoint,
     WaypointWindow, CHORD_TOLERANCE, MAX_CHORDS, MAX_WINDOW_WAYPOINTS, SKY_TOLERANCE,

@@ -10,4 +10,3 @@ mod wide;
 pub(crate) use bvh::rounding_margin;
 pub(crate) use packet::{Lanes, PACKET};
 pub(crate) use two_level::{StretchPrisms, TwoLevel};
-pub use wide::SimdLevel;

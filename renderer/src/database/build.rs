@@ -3,7 +3,6 @@
 
 use super::worldlines::{resolve_hyperbolic, shared_cuts, Resolved, Shared};
 use super::{ComovingMeshes, Database, Keyframed, ObjectRecord, Packing, Run, Stretch, Traversal};
-use crate::accel::SimdLevel;
 use crate::accel::{rounding_margin, StretchPrisms, TwoLevel};
 use crate::geometry::{
     self, extrude_between, piece, CornerRows, Pose, PreparedTet, PrismCorners, Sphere,
@@ -12,6 +11,7 @@ use crate::scene::{
     Fault, Material, Mesh, Motion, ObjectKind, Scene, SceneError, SceneErrorKind as K,
     SceneField as F, SceneObject, Shape, NO_MESH,
 };
+use crate::simd::SimdLevel;
 use crate::spacetime::{Boost, Event, FourVector, Worldline};
 use glam::DVec3;
 use rayon::prelude::*;

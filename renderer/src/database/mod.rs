@@ -12,11 +12,12 @@ pub(crate) use object::{ObjectRecord, Stretch};
 
 use comoving::ComovingMeshes;
 
-use crate::accel::{SimdLevel, StretchPrisms, TwoLevel};
+use crate::accel::{StretchPrisms, TwoLevel};
 use crate::geometry::{
     corner_order, corners_between, piece, Barycentric, CornerRows, Hit, PreparedTet, PrimitiveId,
     Prism, PrismCorners, Sphere, Tetrahedron,
 };
+use crate::simd::SimdLevel;
 use crate::spacetime::{Event, FourVector};
 use glam::DVec3;
 use std::sync::OnceLock;

@@ -1,5 +1,7 @@
-//! A conservative f32 pre-test of four comoving triangles at once, one SIMD
-//! lane each, in front of the exact test of [`intersect_prism`]. It rejects
+//! A conservative f32 pre-test of eight comoving triangles at once, one
+//! SIMD lane each (a leaf's, at the widest vector level the machine has:
+//! one AVX register, or two SSE2 registers at x86-64's baseline), in front
+//! of the exact test of [`intersect_prism`]. It rejects
 //! a triangle only where the exact test certainly rejects it as outside:
 //! two of the three edge functions of opposite signs, each farther from
 //! zero than the bound on what f32 can have changed it by. Every other
@@ -24,12 +26,13 @@
 
 use super::triangle::ComovingRay;
 use crate::scene::Mesh;
+use crate::simd::{at_level, Simd8, SimdLevel};
 use glam::DVec3;
 use rayon::prelude::*;
-use wide::{f32x4, CmpGt, CmpLt};
+use wide::f32x8;
 
 /// Triangles a test covers.
-pub(crate) const LANES: usize = 4;
+pub(crate) const LANES: usize = 8;
 
 /// Largest K (see the module's doc) for which rays are filtered.
 const MAX_REACH: f64 = 1e15;
@@ -43,7 +46,7 @@ const TINY: f32 = f32::MIN_POSITIVE * 64.0; // 2^-120
 
 /// Comoving triangles' corners in f32 (rounded to nearest), row by row:
 /// row 3 c + a holds coordinate a of corner c of every triangle, so that
-/// the same coordinate of consecutive triangles is one 16-byte load.
+/// the same coordinate of [`LANES`] consecutive triangles is one load.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct CornerRows {
     /// Length of a row: the triangles, and [`LANES`] - 1 of padding so
@@ -129,14 +132,9 @@ impl CornerRows {
                 self.rows_of(1, axes),
                 self.rows_of(2, axes),
             ],
-            origin: [
-                f32x4::splat(origin[0] as f32),
-                f32x4::splat(origin[1] as f32),
-                f32x4::splat(origin[2] as f32),
-            ],
-            shear: [f32x4::splat(sx as f32), f32x4::splat(sy as f32)],
-            e: f32x4::splat(e),
-            e2: f32x4::splat(2.0 * e),
+            origin: origin.map(|x| x as f32),
+            shear: [sx as f32, sy as f32],
+            e,
         })
     }
 
@@ -148,38 +146,67 @@ impl CornerRows {
     }
 
     /// Of the [`LANES`] triangles from `first` on, those (bit i for
-    /// triangle `first + i`) the exact test might not reject as outside.
-    /// (Not inlined: its many vector registers would otherwise be saved
-    /// around the exact tests that follow it.)
+    /// triangle `first + i`) the exact test might not reject as outside,
+    /// tested at the widest vector level `level` allows on this machine
+    /// (every level lets the same triangles through). (Not inlined: its
+    /// many vector registers would otherwise be saved around the exact
+    /// tests that follow it.)
     #[inline(never)]
-    pub(crate) fn candidates(&self, ray: &FilterRay, first: u32) -> u32 {
+    pub(crate) fn candidates(&self, level: SimdLevel, ray: &FilterRay, first: u32) -> u32 {
+        at_level!(level, |simd| self.candidates_at(simd, ray, first))
+    }
+
+    /// [`CornerRows::candidates`] at the vector level of `s`. (Helpers
+    /// rather than closures, which are not always inlined into the level's
+    /// code, where an intrinsic not inlined is a call.)
+    #[inline(always)]
+    fn candidates_at<S: Simd8>(&self, s: S, ray: &FilterRay, first: u32) -> u32 {
+        let (a, b, c) = (
+            self.sheared(s, ray, 0, first),
+            self.sheared(s, ray, 1, first),
+            self.sheared(s, ray, 2, first),
+        );
+        let (u, v, w) = (edge(s, ray, c, b), edge(s, ray, a, c), edge(s, ray, b, a));
+        let negative = s.or(s.or(u.0, v.0), w.0);
+        let positive = s.or(s.or(u.1, v.1), w.1);
+        !s.bits(s.and(negative, positive)) & ((1 << LANES) - 1)
+    }
+
+    /// Corner `c` of the [`LANES`] triangles from `first` on, relative to
+    /// the ray and sheared (the ray the third axis): X, Y and |X| + |Y|.
+    #[inline(always)]
+    fn sheared<S: Simd8>(&self, s: S, ray: &FilterRay, c: usize, first: u32) -> Lanes3<S> {
         let load = |row: u32| {
             // Both u32: the sum cannot overflow, one bound to check.
             let at = row as usize + first as usize;
-            let lanes: [f32; LANES] = self.rows[at..at + LANES].try_into().expect("four lanes");
-            f32x4::from(lanes)
+            let lanes: [f32; LANES] = self.rows[at..at + LANES].try_into().expect("eight lanes");
+            s.load(f32x8::from(lanes))
         };
-        // (No array map here: it is not inlined.)
-        let sheared = |c: usize| {
-            let [rx, ry, rz] = ray.rows[c];
-            let z = load(rz) - ray.origin[2];
-            let x = (load(rx) - ray.origin[0]) - ray.shear[0] * z;
-            let y = (load(ry) - ray.origin[1]) - ray.shear[1] * z;
-            (x, y, x.abs() + y.abs())
-        };
-        let (a, b, c) = (sheared(0), sheared(1), sheared(2));
-        // Edge function p x q: certainly negative, certainly positive.
-        let edge = |p: (f32x4, f32x4, f32x4), q: (f32x4, f32x4, f32x4)| {
-            let e = p.0 * q.1 - p.1 * q.0;
-            let bound = ray.e * (p.2 + q.2 + ray.e2)
-                + f32x4::splat(ROUNDING) * p.2 * q.2
-                + f32x4::splat(TINY);
-            (e.cmp_lt(f32x4::ZERO - bound), e.cmp_gt(bound))
-        };
-        let (u, v, w) = (edge(c, b), edge(a, c), edge(b, a));
-        let outside = (u.0 | v.0 | w.0) & (u.1 | v.1 | w.1);
-        !(outside.move_mask() as u32) & ((1 << LANES) - 1)
+        let [rx, ry, rz] = ray.rows[c];
+        let (x, y, z) = (load(rx), load(ry), load(rz));
+        let [ox, oy, oz] = ray.origin;
+        let [sx, sy] = ray.shear;
+        let z = s.sub(z, s.splat(oz));
+        let x = s.sub(s.sub(x, s.splat(ox)), s.mul(s.splat(sx), z));
+        let y = s.sub(s.sub(y, s.splat(oy)), s.mul(s.splat(sy), z));
+        (x, y, s.add(s.abs(x), s.abs(y)))
     }
+}
+
+/// Per lane: a sheared corner's X and Y, and |X| + |Y|.
+type Lanes3<S> = (<S as Simd8>::F, <S as Simd8>::F, <S as Simd8>::F);
+
+/// The edge function p x q of sheared corners p and q, per lane: where it
+/// is certainly negative, and where certainly positive (beyond the bound
+/// of the module's doc).
+#[inline(always)]
+fn edge<S: Simd8>(s: S, ray: &FilterRay, p: Lanes3<S>, q: Lanes3<S>) -> (S::F, S::F) {
+    let f = s.sub(s.mul(p.0, q.1), s.mul(p.1, q.0));
+    let e = s.splat(ray.e);
+    let reach = s.add(s.add(p.2, q.2), s.splat(2.0 * ray.e));
+    let products = s.mul(s.mul(s.splat(ROUNDING), p.2), q.2);
+    let bound = s.add(s.add(s.mul(e, reach), products), s.splat(TINY));
+    (s.lt(f, s.sub(s.splat(0.0), bound)), s.lt(bound, f))
 }
 
 /// A comoving ray prepared for [`CornerRows::candidates`].
@@ -188,12 +215,11 @@ pub(crate) struct FilterRay {
     /// Where each corner's coordinates start, in the ray's axis order.
     rows: [[u32; 3]; 3],
     /// The comoving origin in f32, in the ray's axis order.
-    origin: [f32x4; 3],
+    origin: [f32; 3],
     /// The shear's first two components in f32.
-    shear: [f32x4; 2],
-    /// E (see the module's doc) and 2E.
-    e: f32x4,
-    e2: f32x4,
+    shear: [f32; 2],
+    /// E (see the module's doc).
+    e: f32,
 }
 
 #[cfg(test)]
@@ -251,9 +277,8 @@ mod tests {
                         continue;
                     };
                     let mut filter = rows.prepare(&ray, reach).expect("filtered");
-                    filter.e *= f32x4::splat(slack);
-                    filter.e2 *= f32x4::splat(slack);
-                    let mask = rows.candidates(&filter, 0);
+                    filter.e *= slack;
+                    let mask = rows.candidates(SimdLevel::Baseline, &filter, 0);
                     for (i, t) in tris.iter().enumerate() {
                         if mask & (1 << i) == 0 {
                             rejected += 1;
@@ -285,6 +310,48 @@ mod tests {
     fn without_its_bound_the_filter_rejects_wrongly() {
         let (_, wrong) = rejections(0.0, 7);
         assert!(wrong > 0);
+    }
+
+    /// Every vector level this machine runs lets the same triangles
+    /// through as the baseline, at every scale, leaves of fewer than
+    /// [`LANES`] triangles included (their lanes past the rows' end read
+    /// the padding); the control: the same rays with no allowance for
+    /// rounding let other triangles through, so the masks compared are
+    /// ones the arithmetic decides.
+    #[test]
+    fn every_level_lets_the_same_triangles_through() {
+        let mut rng = SplitMix64::new(11);
+        let (mut compared, mut decided) = (0, 0);
+        for scale in [0.05, 1.0, 1e5] {
+            for size in [scale * 1e-3, scale] {
+                for _ in 0..500 {
+                    let count = 1 + (rng.next_u64() % (2 * LANES as u64)) as usize;
+                    let tris: Vec<[DVec3; 3]> = (0..count)
+                        .map(|_| triangle(&mut rng, scale, size))
+                        .collect();
+                    let rows = CornerRows::new(count, |t| tris[t]);
+                    let aim = (rng.next_u64() % count as u64) as usize;
+                    let (o, d) = aimed(&mut rng, &tris[aim], size);
+                    let Some(ray) = ComovingRay::new(o, d, (0.0, DVec3::ZERO), DVec3::ZERO) else {
+                        continue;
+                    };
+                    let filter = rows.prepare(&ray, reach(tris.iter().copied()));
+                    let filter = filter.expect("filtered");
+                    let loose = FilterRay { e: 0.0, ..filter };
+                    for first in 0..count as u32 {
+                        let mask = |level, f: &FilterRay| rows.candidates(level, f, first);
+                        let baseline = mask(SimdLevel::Baseline, &filter);
+                        for level in SimdLevel::supported() {
+                            assert_eq!(mask(level, &filter), baseline, "{level}");
+                            compared += 1;
+                        }
+                        decided += usize::from(mask(SimdLevel::Baseline, &loose) != baseline);
+                    }
+                }
+            }
+        }
+        assert!(compared > 10_000, "{compared}");
+        assert!(decided > 0, "the control");
     }
 
     /// Rows filled on two threads hold, at row 3 c + a and column t,

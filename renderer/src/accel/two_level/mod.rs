@@ -7,8 +7,9 @@
 
 use super::bvh::{rounding_margin, Bounds4, LEAF_SIZE};
 use super::packet::{Lanes, PACKET};
-use super::wide::{at_level, down, up, AxisRay, Simd8, SimdLevel, SliceBvh, SpaceBvh};
+use super::wide::{down, up, AxisRay, SliceBvh, SpaceBvh};
 use crate::geometry::{comoving_line, nearer, Hit};
+use crate::simd::{at_level, Simd8, SimdLevel};
 use crate::spacetime::Event;
 use glam::{DVec3, DVec4};
 

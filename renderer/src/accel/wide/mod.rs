@@ -1,7 +1,7 @@
 //! Hierarchies of nodes of eight children whose boxes sit side by side
 //! per face in f32 rounded outward: one node visit tests the eight boxes
 //! at once in 8-lane SIMD, at the widest vector level the machine offers
-//! (`simd`: one AVX register where there is AVX2, two SSE2 registers at
+//! (`crate::simd`: one AVX register where there is AVX2, two SSE2 registers at
 //! x86-64's baseline). Two live here, alike but for their axes:
 //! - [`SpaceBvh`], one stretch's hierarchy over its prisms, in the
 //!   stretch's comoving x, y, z only. Every prism of a stretch lives over
@@ -25,14 +25,9 @@
 
 mod build;
 mod packets;
-mod simd;
 mod traverse;
 mod wide_ray;
 
-#[cfg(target_arch = "x86_64")]
-pub(crate) use simd::v3;
-pub use simd::SimdLevel;
-pub(crate) use simd::{at_level, Baseline, Simd8};
 pub(crate) use traverse::AxisRay;
 
 use super::bvh::Child;

@@ -3,13 +3,13 @@
 //! whose leaves are searched by the rays that reach them together (the top
 //! level's time slices, each a stretch's hierarchy the packet searches on).
 
-use super::simd::Simd8;
 use super::traverse::AxisRay;
 use super::wide_ray::WideRay;
 use super::{down, up, WideBvh, WideNode, WIDTH};
 use crate::accel::bvh::{Child, Stack};
 use crate::accel::packet::{Lanes, PACKET};
 use crate::geometry::{nearer, Hit};
+use crate::simd::Simd8;
 
 impl<const A: usize> WideBvh<A> {
     /// [`WideBvh::closest`] for a packet of rays `rays[i]` = (o, 1/d), those

@@ -1,11 +1,11 @@
 //! Searching a wide hierarchy with one ray, nearest child first (packets
 //! in `packets`, which part into this search where one ray is left).
 
-use super::simd::Simd8;
 use super::wide_ray::WideRay;
 use super::{down, up, WideBvh, WideNode, NO_CHILD, WIDTH};
 use crate::accel::bvh::{Child, Stack};
 use crate::geometry::{nearer, Hit};
+use crate::simd::Simd8;
 
 /// A ray as the searches take it: its origin o and 1/d, one entry an axis.
 pub(crate) type AxisRay<const A: usize> = ([f64; A], [f64; A]);
@@ -134,12 +134,12 @@ fn nearest_first<const A: usize>(
 
 #[cfg(test)]
 mod tests {
-    use super::super::simd::{wider, Baseline};
     use super::super::test_support::{aimed_ray, f64_entry, random_box, Box64};
     use super::*;
     use crate::accel::bvh::{Bounds4, LEAF_SIZE};
     use crate::accel::packet::{Lanes, PACKET};
     use crate::rng::SplitMix64;
+    use crate::simd::{wider, Baseline};
     use glam::DVec4;
 
     /// 2000 random boxes over `A` axes at the scale `scale`, and the

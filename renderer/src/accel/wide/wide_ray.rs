@@ -1,8 +1,8 @@
 //! The eight-lane f32 slab test of a ray against a node's boxes, made
 //! conservative.
 
-use super::simd::Simd8;
 use super::{down, up, WideNode, WIDTH};
+use crate::simd::Simd8;
 
 /// Relative margin of the f32 slab parameters: each is (face - origin) *
 /// (1/d) with three roundings to nearest of at most 2^-24 each (the
@@ -148,11 +148,11 @@ impl<const A: usize, S: Simd8> WideRay<A, S> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::simd::{wider, Baseline};
     use super::super::test_support::{aimed_ray, f64_entry, random_box, Box64};
     use super::super::NO_CHILD;
     use super::*;
     use crate::rng::SplitMix64;
+    use crate::simd::{wider, Baseline};
     use wide::f32x8;
 
     /// The same slab test in f32 without care: origin and 1/d rounded to

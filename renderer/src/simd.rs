@@ -1,22 +1,24 @@
-//! The eight-lane f32 arithmetic of the node tests, at the vector level
-//! the machine offers, chosen when the search starts.
+//! The eight-lane f32 arithmetic of the searches (the node tests and the
+//! triangle filter), at the vector level the machine offers, chosen when
+//! a search starts.
 //!
-//! The hierarchies are searched through [`Simd8`], a token whose methods
-//! are the few lanewise operations the slab test needs. [`Baseline`] is
-//! the `wide` crate's f32x8 as the build's target compiles it (at x86-64's
-//! baseline, two SSE2 registers); `pulp::x86::V3` is one AVX register, a
-//! token that exists only where `pulp` has found AVX2 and FMA on the CPU,
-//! so that its safe intrinsics are sound. A search generic over the token
-//! is run inside `pulp::x86::V3::vectorize`, which compiles what it
-//! inlines for those features (every step of the search down to the leaf
-//! callbacks is `#[inline(always)]`).
+//! The hierarchies are searched, and the filter run, through [`Simd8`], a
+//! token whose methods are the few lanewise operations they need.
+//! [`Baseline`] is the `wide` crate's f32x8 as the build's target compiles
+//! it (at x86-64's baseline, two SSE2 registers); `pulp::x86::V3` is one
+//! AVX register, a token that exists only where `pulp` has found AVX2 and
+//! FMA on the CPU, so that its safe intrinsics are sound. A search generic
+//! over the token is run inside `pulp::x86::V3::vectorize`, which compiles
+//! what it inlines for those features (every step of the search down to
+//! the leaf callbacks is `#[inline(always)]`; the filter enters its own).
 //!
 //! Both levels run the same IEEE operations lane by lane (a subtraction,
-//! a product, the maximum and minimum of SSE's `maxps`/`minps`, which
-//! return their second operand where either is NaN, and an ordered
-//! less-or-equal), and no operation is fused, so every level finds the
-//! same boxes entered at the same parameters, and so the same hits to the
-//! bit.
+//! a product, a sum, the maximum and minimum of SSE's `maxps`/`minps`,
+//! which return their second operand where either is NaN, ordered
+//! comparisons, and the bitwise operations of masks and of the absolute
+//! value), and no operation is fused, so every level finds the same boxes
+//! entered at the same parameters, lets the same triangles through, and
+//! so finds the same hits to the bit.
 
 use std::sync::atomic::{AtomicU8, Ordering};
 use wide::f32x8;
@@ -122,7 +124,7 @@ pub(crate) fn v3(level: SimdLevel) -> Option<pulp::x86::V3> {
 #[cfg(target_arch = "x86_64")]
 macro_rules! at_level {
     ($level:expr, |$s:ident| $body:expr) => {
-        match $crate::accel::wide::v3($level) {
+        match $crate::simd::v3($level) {
             Some(v3) => v3.vectorize(
                 #[inline(always)]
                 || {
@@ -131,7 +133,7 @@ macro_rules! at_level {
                 },
             ),
             None => {
-                let $s = $crate::accel::wide::Baseline;
+                let $s = $crate::simd::Baseline;
                 $body
             }
         }
@@ -143,7 +145,7 @@ macro_rules! at_level {
 macro_rules! at_level {
     ($level:expr, |$s:ident| $body:expr) => {{
         let _ = $level;
-        let $s = $crate::accel::wide::Baseline;
+        let $s = $crate::simd::Baseline;
         $body
     }};
 }
@@ -172,6 +174,14 @@ pub(crate) trait Simd8: Copy {
     fn min_or_second(self, a: Self::F, b: Self::F) -> Self::F;
     /// All ones where `a <= b` (ordered), zeros elsewhere.
     fn le(self, a: Self::F, b: Self::F) -> Self::F;
+    /// All ones where `a < b` (ordered), zeros elsewhere.
+    fn lt(self, a: Self::F, b: Self::F) -> Self::F;
+    /// `a` with its sign bits cleared.
+    fn abs(self, a: Self::F) -> Self::F;
+    /// The bits of `a` or `b` (of masks: either set).
+    fn or(self, a: Self::F, b: Self::F) -> Self::F;
+    /// The bits of `a` and `b` (of masks: both set).
+    fn and(self, a: Self::F, b: Self::F) -> Self::F;
     /// Bit i set where lane i of the mask `m` is set.
     fn bits(self, m: Self::F) -> u32;
     /// `a` where the mask `m` is set, `b` elsewhere (`m` a comparison's:
@@ -239,6 +249,27 @@ impl Simd8 for Baseline {
     }
 
     #[inline(always)]
+    fn lt(self, a: f32x8, b: f32x8) -> f32x8 {
+        use wide::CmpLt;
+        a.cmp_lt(b)
+    }
+
+    #[inline(always)]
+    fn abs(self, a: f32x8) -> f32x8 {
+        a.abs()
+    }
+
+    #[inline(always)]
+    fn or(self, a: f32x8, b: f32x8) -> f32x8 {
+        a | b
+    }
+
+    #[inline(always)]
+    fn and(self, a: f32x8, b: f32x8) -> f32x8 {
+        a & b
+    }
+
+    #[inline(always)]
     fn bits(self, m: f32x8) -> u32 {
         m.move_mask() as u32
     }
@@ -257,7 +288,7 @@ impl Simd8 for Baseline {
 #[cfg(target_arch = "x86_64")]
 mod x86_v3 {
     use super::Simd8;
-    use core::arch::x86_64::{__m256, _CMP_LE_OQ};
+    use core::arch::x86_64::{__m256, _CMP_LE_OQ, _CMP_LT_OQ};
     use pulp::x86::V3;
     use wide::f32x8;
 
@@ -306,6 +337,27 @@ mod x86_v3 {
         }
 
         #[inline(always)]
+        fn lt(self, a: __m256, b: __m256) -> __m256 {
+            self.avx._mm256_cmp_ps::<_CMP_LT_OQ>(a, b)
+        }
+
+        #[inline(always)]
+        fn abs(self, a: __m256) -> __m256 {
+            let magnitude = self.avx._mm256_set1_ps(f32::from_bits(i32::MAX as u32));
+            self.avx._mm256_and_ps(a, magnitude)
+        }
+
+        #[inline(always)]
+        fn or(self, a: __m256, b: __m256) -> __m256 {
+            self.avx._mm256_or_ps(a, b)
+        }
+
+        #[inline(always)]
+        fn and(self, a: __m256, b: __m256) -> __m256 {
+            self.avx._mm256_and_ps(a, b)
+        }
+
+        #[inline(always)]
         fn bits(self, m: __m256) -> u32 {
             self.avx._mm256_movemask_ps(m) as u32
         }
@@ -324,7 +376,7 @@ mod x86_v3 {
 
 /// The widest level above the baseline this machine has, for tests.
 #[cfg(test)]
-pub(super) fn wider() -> Option<impl Simd8> {
+pub(crate) fn wider() -> Option<impl Simd8> {
     #[cfg(target_arch = "x86_64")]
     return v3(SimdLevel::X86V3);
     #[cfg(not(target_arch = "x86_64"))]
@@ -364,7 +416,7 @@ mod tests {
     /// Every operation of a level on the lanes `a`, `b`, `c`, as bits.
     fn results(s: impl Simd8, a: [f32; 8], b: [f32; 8], c: [f32; 8]) -> Vec<[u32; 8]> {
         let [a, b, c] = [a, b, c].map(|x| s.load(f32x8::from(x)));
-        let m = s.le(a, b);
+        let (m, n) = (s.le(a, b), s.lt(b, c));
         let out = [
             s.splat(-0.0),
             s.mul(a, c),
@@ -373,13 +425,17 @@ mod tests {
             s.max_or_second(a, b),
             s.min_or_second(a, b),
             m,
+            n,
             s.select(m, a, c),
+            s.abs(a),
+            s.or(m, n),
+            s.and(m, n),
         ];
         let mut bits: Vec<[u32; 8]> = out
             .iter()
             .map(|&x| s.to_array(x).map(f32::to_bits))
             .collect();
-        bits.push([s.bits(m); 8]);
+        bits.push([s.bits(m), s.bits(n), 0, 0, 0, 0, 0, 0]);
         bits
     }
 
