@@ -193,7 +193,7 @@ fn hit(o: DVec4, d: DVec4, p: u32, stored: usize, (s, bary): (f64, [f64; 3])) ->
 
 /// The closest hit within `range` of the lab ray `o + s d` on the prisms
 /// `items` of translation `run`, stored side by side from position `first`
-/// of the run: filtered eight at a time, and those the filter lets through
+/// of the run: filtered up to eight at a time, and those the filter lets through
 /// tested exactly (the ray in the run's comoving form), in order.
 #[inline(always)]
 fn filtered_leaf(
@@ -209,8 +209,10 @@ fn filtered_leaf(
     let mut best: Option<Hit> = None;
     let mut chunk = 0;
     while chunk < items.len() {
-        let lanes = (1u32 << (items.len() - chunk).min(LANES)) - 1;
-        let mut candidates = db.rows.candidates(db.simd, filter, (at + chunk) as u32) & lanes;
+        let count = (items.len() - chunk).min(LANES);
+        let mut candidates = db
+            .rows
+            .candidates(db.simd, filter, (at + chunk) as u32, count);
         while candidates != 0 {
             let i = chunk + candidates.trailing_zeros() as usize;
             candidates &= candidates - 1;
@@ -246,7 +248,7 @@ impl<'a, T: Trace> Tester<'a, T> {
     /// The closest hit within `range` on the prisms `items` (counted from
     /// the run's first) of a leaf of run `k`'s hierarchy, which are stored
     /// side by side from position `first` of the run. A translation's are
-    /// filtered eight at a time (in f32, conservatively) and only those the
+    /// filtered up to eight at a time (in f32, conservatively) and only those the
     /// filter lets through are tested exactly, in order; when recording,
     /// every one is tested.
     #[inline(never)]
