@@ -193,16 +193,26 @@ impl CornerRows {
     /// the ray and sheared (the ray the third axis): X, Y and |X| + |Y|.
     #[inline(always)]
     fn sheared<L: Lanes>(&self, s: L, ray: &FilterRay, c: usize, first: u32) -> Lanes3<L> {
-        // Both u32: the sums cannot overflow, one bound to check each.
-        let load = |row: u32| s.load(&self.rows[row as usize + first as usize..]);
         let [rx, ry, rz] = ray.rows[c];
-        let (x, y, z) = (load(rx), load(ry), load(rz));
+        let (x, y, z) = (
+            self.lanes(s, rx, first),
+            self.lanes(s, ry, first),
+            self.lanes(s, rz, first),
+        );
         let [ox, oy, oz] = ray.origin;
         let [sx, sy] = ray.shear;
         let z = s.sub(z, s.splat(oz));
         let x = s.sub(s.sub(x, s.splat(ox)), s.mul(s.splat(sx), z));
         let y = s.sub(s.sub(y, s.splat(oy)), s.mul(s.splat(sy), z));
         (x, y, s.add(s.abs(x), s.abs(y)))
+    }
+
+    /// The `L::WIDTH` values of the row starting at `row` from triangle
+    /// `first` on.
+    #[inline(always)]
+    fn lanes<L: Lanes>(&self, s: L, row: u32, first: u32) -> L::F {
+        // Both u32: the sum cannot overflow, one bound to check.
+        s.load(&self.rows[row as usize + first as usize..])
     }
 }
 
