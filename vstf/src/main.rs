@@ -30,9 +30,10 @@ fn main() -> ExitCode {
         Command::Bench {
             quick,
             measure,
+            against,
             frames,
         } => match measure {
-            Some(fixture) => cli::bench::measure(&fixture, frames),
+            Some(fixture) => cli::bench::measure(&fixture, against.as_deref(), frames),
             None => cli::bench::run(root, quick),
         },
         Command::List { views } => cli::list::run(root, views),

@@ -12,6 +12,8 @@
 //! `libembree-dev` when it is installed; without it the section prints this
 //! renderer's own figures and how to install Embree.
 
+use super::paired::{self, Paired};
+use super::primary::{self, cpu_seconds, trace};
 use super::tori;
 use crate::fixture::{Fixture, Overrides};
 use renderer::{Image, Traversal};
@@ -48,24 +50,6 @@ pub struct Measured {
     pub peak: u64,
     /// Pixels whose ray hit a triangle.
     pub hits: u64,
-}
-
-/// CPU seconds this process has used, every thread's, user and system:
-/// the clock Embree's side reads (`CLOCK_PROCESS_CPUTIME_ID`), to the
-/// nanosecond. (/proc gives the same time in 10 ms ticks, 2% of a frame.)
-/// NaN where the clock cannot be read.
-#[cfg(unix)]
-fn cpu_seconds() -> f64 {
-    use nix::time::{clock_gettime, ClockId};
-    clock_gettime(ClockId::CLOCK_PROCESS_CPUTIME_ID)
-        .map_or(f64::NAN, |t| t.tv_sec() as f64 + t.tv_nsec() as f64 * 1e-9)
-}
-
-/// No process CPU clock is read off Unix (Embree's side, section 7, runs
-/// on Linux alone).
-#[cfg(not(unix))]
-fn cpu_seconds() -> f64 {
-    f64::NAN
 }
 
 /// This renderer's side, run in this process: load the fixture at `path`,
@@ -118,57 +102,11 @@ pub fn measure(path: &Path, frames: usize) -> Result<Measured, String> {
     Ok(m)
 }
 
-/// How many of the view's primary rays (one at each pixel's centre) hit
-/// something: the work of Embree's side, on both threads, in packets of
-/// 2 x 2 pixels ([`renderer::Database::closest_hits`]).
-fn trace(db: &renderer::Database, view: &crate::fixture::View) -> u64 {
-    use rayon::prelude::*;
-    let (w, h) = (view.camera.width, view.camera.height);
-    let light = view.model.light_speed;
-    let ray = |x: u32, y: u32| {
-        let (px, py) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
-        view.camera.ray(px, py, view.camera_t, light)
-    };
-    (0..h.div_ceil(2))
-        .into_par_iter()
-        .map(|pair| {
-            let rows = 2 * pair..(2 * pair + 2).min(h);
-            let mut rays = Vec::with_capacity(4);
-            let mut hits = [None; 4];
-            let mut count = 0;
-            for x0 in (0..w).step_by(2) {
-                rays.clear();
-                for y in rows.clone() {
-                    rays.extend((x0..(x0 + 2).min(w)).map(|x| ray(x, y)));
-                }
-                let hits = &mut hits[..rays.len()];
-                db.closest_hits(&rays, (0.0, f64::INFINITY), hits);
-                count += hits.iter().filter(|h| h.is_some()).count() as u64;
-            }
-            count
-        })
-        .sum()
-}
-
 /// [`measure`] in a fresh `vstf` process (so that its peak memory is this
 /// scene's alone), at this process's vector level.
 fn measure_in_child(path: &Path, frames: usize) -> Result<Measured, String> {
-    let exe = std::env::current_exe().map_err(|e| format!("cannot find vstf itself: {e}"))?;
-    let out = Command::new(exe)
-        .args(["--simd", renderer::SimdLevel::best().name()])
-        .args(["bench", "--measure"])
-        .arg(path)
-        .args(["--frames", &frames.to_string()])
-        .output()
-        .map_err(|e| format!("cannot run vstf bench --measure: {e}"))?;
-    if !out.status.success() {
-        return Err(format!(
-            "vstf bench --measure {} failed: {}",
-            path.display(),
-            String::from_utf8_lossy(&out.stderr)
-        ));
-    }
-    serde_json::from_slice(&out.stdout).map_err(|e| format!("vstf bench --measure: {e}"))
+    let frames = frames.to_string();
+    primary::measure_in_child(&[path.as_ref(), "--frames".as_ref(), frames.as_ref()])
 }
 
 /// Compiles Embree's side into `dir`, or says why it cannot.
@@ -262,6 +200,8 @@ struct Scene {
     ours: Vec<Measured>,
     /// This renderer on the same tori moving at 0.9c.
     moving: Vec<Measured>,
+    /// The moving and the static tori traced in turn in one process.
+    paired: Vec<Paired>,
     single: Vec<Measured>,
     packets: Vec<Measured>,
 }
@@ -297,12 +237,15 @@ pub fn section(dir: &Path, quick: bool, out: &mut String) -> Result<(), String> 
             triangles,
             ours: Vec::new(),
             moving: Vec::new(),
+            paired: Vec::new(),
             single: Vec::new(),
             packets: Vec::new(),
         };
         for _ in 0..sizes.rounds {
             s.ours.push(measure_in_child(&fixture, sizes.frames)?);
             s.moving.push(measure_in_child(&moving, sizes.frames)?);
+            s.paired
+                .push(paired::measure_in_child(&moving, &fixture, sizes.frames)?);
             if let Ok(exe) = &exe {
                 s.single
                     .push(embree(exe, &obj, sizes.image, 1, sizes.frames)?);
@@ -329,15 +272,15 @@ fn ratios_of(
     theirs: &[Measured],
     ft: impl Fn(&Measured) -> f64,
 ) -> String {
-    let r: Vec<f64> = ours
-        .iter()
-        .zip(theirs)
-        .map(|(a, b)| fo(a) / ft(b))
-        .collect();
-    let (lo, hi) = r
-        .iter()
-        .fold((f64::INFINITY, 0.0_f64), |(l, h), &x| (l.min(x), h.max(x)));
-    if r.is_empty() {
+    range(ours.iter().zip(theirs).map(|(a, b)| fo(a) / ft(b)))
+}
+
+/// The smallest and largest of `ratios`, or `-` for none.
+fn range(ratios: impl Iterator<Item = f64>) -> String {
+    let (lo, hi, n) = ratios.fold((f64::INFINITY, 0.0_f64, 0), |(l, h, n), x| {
+        (l.min(x), h.max(x), n + 1)
+    });
+    if n == 0 {
         "-".into()
     } else if (hi - lo) < 0.005 {
         format!("{lo:.2}x")
@@ -417,11 +360,12 @@ fn print_scenes(scenes: &[Scene], out: &mut String) {
     for s in scenes {
         let _ = writeln!(
             out,
-            "   {} triangles moving at 0.9c (V_obj, Lorentz-contracted, relativistic; {} rays hit): trace {:.3} s, {} its static frame (goal <= 1.1x)",
+            "   {} triangles moving at 0.9c (V_obj, Lorentz-contracted, relativistic; {} rays hit): trace {:.3} s, {} its static frame each in its own process on every thread, {} both in one process on one bound core, frames in turn (goal <= 1.1x)",
             s.triangles,
             s.moving.first().map_or(0, |m| m.hits),
             best(&s.moving, |m| m.trace_cpu),
             ratios(&s.moving, &s.ours, |m| m.trace_cpu),
+            range(s.paired.iter().map(Paired::ratio)),
         );
     }
     let Some(large) = scenes.last() else { return };
@@ -461,30 +405,5 @@ fn print_scenes(scenes: &[Scene], out: &mut String) {
             b.triangles,
             pair(slope(&a.ours, &b.ours), slope(&a.single, &b.single), "B")
         );
-    }
-}
-
-#[cfg(all(test, unix))]
-mod tests {
-    use super::cpu_seconds;
-
-    /// The process clock reads work far finer than /proc's 10 ms ticks,
-    /// and never runs backwards: of consecutive readings that differ, some
-    /// differ by under a millisecond (a tick-counting clock moves only by
-    /// whole ticks). Other tests' threads, which this process clock counts
-    /// too, may make any one step longer, not all of them.
-    #[test]
-    fn the_cpu_clock_reads_finer_than_a_tick() {
-        let mut last = cpu_seconds();
-        let mut smallest = f64::INFINITY;
-        for _ in 0..100_000 {
-            let now = cpu_seconds();
-            assert!(now >= last, "{now} after {last}");
-            if now > last {
-                smallest = smallest.min(now - last);
-            }
-            last = now;
-        }
-        assert!(smallest < 0.001, "the smallest step was {smallest} s");
     }
 }

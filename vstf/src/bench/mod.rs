@@ -5,6 +5,8 @@
 //! is installed.
 
 pub mod embree;
+pub mod paired;
+mod primary;
 pub mod tori;
 
 use crate::fixture::{Fixture, Overrides, View};

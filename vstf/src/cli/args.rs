@@ -129,6 +129,10 @@ pub enum Command {
         /// memory in this process and print them as JSON.
         #[arg(long, hide = true)]
         measure: Option<PathBuf>,
+        /// (Internal) with --measure: trace this fixture's frames in turn
+        /// with the measured one's, in this process, and print both as JSON.
+        #[arg(long, hide = true, requires = "measure")]
+        against: Option<PathBuf>,
         /// (Internal) frames rendered by --measure.
         #[arg(long, hide = true, default_value_t = 1)]
         frames: usize,

@@ -11,9 +11,18 @@ pub fn run(root: Option<&Path>, quick: bool) -> Result<(), Error> {
 }
 
 /// One side of the Embree comparison, for the benchmark's own child
-/// process: the fixture's load, build, frames and peak memory as JSON.
-pub fn measure(fixture: &Path, frames: usize) -> Result<(), Error> {
-    let m = vstf::bench::embree::measure(fixture, frames)?;
-    println!("{}", serde_json::to_string(&m).map_err(|e| e.to_string())?);
+/// process: the fixture's load, build, frames and peak memory as JSON;
+/// with `against`, the two fixtures' tracing, frames in turn, as JSON.
+pub fn measure(fixture: &Path, against: Option<&Path>, frames: usize) -> Result<(), Error> {
+    let json = match against {
+        Some(still) => {
+            let (measured, _) = vstf::bench::paired::on_one_core(|| {
+                vstf::bench::paired::measure(fixture, still, frames)
+            })?;
+            serde_json::to_string(&measured?)
+        }
+        None => serde_json::to_string(&vstf::bench::embree::measure(fixture, frames)?),
+    };
+    println!("{}", json.map_err(|e| e.to_string())?);
     Ok(())
 }

@@ -33,9 +33,23 @@ fn bench_quick_prints_every_figure() {
         "same scene and size (goal <= 1.3)",
         "(goal >= 100x at 10k)",
         "goal <= 0.3 s)",
-        "its static frame (goal <= 1.1x)",
+        "frames in turn (goal <= 1.1x)",
     ] {
         assert!(text.contains(goal), "{goal:?} missing from:\n{text}");
+    }
+    // The cost of motion twice: across two processes on every thread, and
+    // within one process on one bound core.
+    let moving: Vec<&str> = text
+        .lines()
+        .filter(|l| l.contains("moving at 0.9c"))
+        .collect();
+    assert_eq!(moving.len(), 2, "{text}");
+    for line in moving {
+        let ratios = line
+            .split_whitespace()
+            .filter(|w| w.ends_with('x') && w[..1].parse::<u8>().is_ok());
+        assert_eq!(ratios.count(), 2, "two ratios: {line}");
+        assert!(line.contains("one bound core"), "{line}");
     }
     // Section 7: with Embree installed both sides trace the same rays and
     // hit on the same pixels; without it, it says how to install it. Under
