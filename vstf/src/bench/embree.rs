@@ -275,17 +275,19 @@ fn ratios_of(
     range(ours.iter().zip(theirs).map(|(a, b)| fo(a) / ft(b)))
 }
 
-/// The smallest and largest of `ratios`, or `-` for none.
+/// The smallest and largest of `ratios` to two decimals (one figure
+/// where they print the same), or `-` for none.
 fn range(ratios: impl Iterator<Item = f64>) -> String {
     let (lo, hi, n) = ratios.fold((f64::INFINITY, 0.0_f64, 0), |(l, h, n), x| {
         (l.min(x), h.max(x), n + 1)
     });
+    let (lo, hi) = (format!("{lo:.2}"), format!("{hi:.2}"));
     if n == 0 {
         "-".into()
-    } else if (hi - lo) < 0.005 {
-        format!("{lo:.2}x")
+    } else if lo == hi {
+        format!("{lo}x")
     } else {
-        format!("{lo:.2}-{hi:.2}x")
+        format!("{lo}-{hi}x")
     }
 }
 
@@ -405,5 +407,20 @@ fn print_scenes(scenes: &[Scene], out: &mut String) {
             b.triangles,
             pair(slope(&a.ours, &b.ours), slope(&a.single, &b.single), "B")
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::range;
+
+    /// A range of ratios prints as one figure where both ends round to
+    /// the same hundredth, as two otherwise, and `-` when empty.
+    #[test]
+    fn a_range_prints_its_ends_unless_they_round_alike() {
+        assert_eq!(range([1.0651, 1.0699].into_iter()), "1.07x");
+        assert_eq!(range([1.0649, 1.0651].into_iter()), "1.06-1.07x");
+        assert_eq!(range([1.2, 0.95, 1.1].into_iter()), "0.95-1.20x");
+        assert_eq!(range(std::iter::empty()), "-");
     }
 }
