@@ -6,7 +6,9 @@
 //! side does; this renderer's whole render, shading and image included,
 //! and the same with the frame encoded as PNG, as an animation delivers
 //! it, are printed beside it), the build, peak memory, and the time from nothing
-//! loaded to the first frame.
+//! loaded to the first frame. The cost of motion (the tori at 0.9c against
+//! their static frame) is taken both across two such processes and within
+//! one, on one core ([`super::paired`]).
 //!
 //! Embree's side is `ebench.c`, compiled here against Debian's
 //! `libembree-dev` when it is installed; without it the section prints this
